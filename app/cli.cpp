@@ -1,0 +1,142 @@
+#include "cli.h"
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+
+namespace ranryu::app {
+namespace {
+
+// Which options each command takes.
+const std::map<std::string, std::set<std::string>> kAccepts = {
+    {"run", {"--scene", "--frames", "--size", "--screenshot", "--shader-dir", "--gl-debug"}},
+    {"record", {"--scene", "--frames", "--size", "--out", "--force", "--shader-dir", "--gl-debug"}},
+    {"profile", {"--scene", "--frames", "--size", "--warmup", "--json", "--csv", "--shader-dir", "--gl-debug"}},
+    {"scenes", {}},
+};
+const std::set<std::string> kFlags = {"--force", "--gl-debug"};
+
+int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size())
+        throw InputError(option + " " + text + ": not a whole number");
+    if (v < lo || v > hi)
+        throw InputError(option + " " + text + ": out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+}  // namespace
+
+Options parse(const std::vector<std::string>& args) {
+    Options o;
+    if (args.empty()) throw InputError("no command given (try: ranryu --help)");
+    const std::string& first = args[0];
+    if (first == "--help" || first == "-h" || first == "help") {
+        o.command = "help";
+        return o;
+    }
+    if (first == "--version") {
+        o.command = "version";
+        return o;
+    }
+    if (!kAccepts.count(first)) throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes)");
+    o.command = first;
+    const auto& accepts = kAccepts.at(first);
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        std::string opt = args[i], value;
+        if (opt == "--help" || opt == "-h") {
+            o.help = true;
+            continue;
+        }
+        if (const auto eq = opt.find('='); opt.starts_with("--") && eq != std::string::npos) {
+            value = opt.substr(eq + 1);
+            opt = opt.substr(0, eq);
+        } else if (!kFlags.count(opt) && opt.starts_with("--")) {
+            if (i + 1 >= args.size()) throw InputError(opt + ": needs a value");
+            value = args[++i];
+        }
+        if (!opt.starts_with("--")) throw InputError("unexpected argument \"" + opt + "\" for ranryu " + first);
+        if (!accepts.count(opt))
+            throw InputError("unknown option " + opt + " for ranryu " + first + " (see ranryu " + first + " --help)");
+        if (opt == "--scene") o.scene = value;
+        else if (opt == "--frames") o.frames = parse_int(opt, value, first == "run" ? 0 : 1, 1'000'000);
+        else if (opt == "--size") {
+            const auto x = value.find('x');
+            if (x == std::string::npos) throw InputError("--size " + value + ": expected WIDTHxHEIGHT, e.g. 960x540");
+            const std::string w = value.substr(0, x), h = value.substr(x + 1);
+            int wv = 0, hv = 0;
+            try {
+                wv = parse_int("--size", w, 16, 8192);
+                hv = parse_int("--size", h, 16, 8192);
+            } catch (const InputError&) {
+                throw InputError("--size " + value + ": width and height must be whole numbers in [16, 8192]");
+            }
+            o.width = wv;
+            o.height = hv;
+        } else if (opt == "--out") o.out = value;
+        else if (opt == "--force") o.force = true;
+        else if (opt == "--screenshot") o.screenshot = value;
+        else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
+        else if (opt == "--json") o.json = value;
+        else if (opt == "--csv") o.csv = value;
+        else if (opt == "--shader-dir") o.shader_dir = value;
+        else if (opt == "--gl-debug") o.gl_debug = true;
+        if (!kFlags.count(opt) && value.empty()) throw InputError(opt + ": needs a value");
+    }
+    return o;
+}
+
+std::string usage() {
+    return R"(ranryu - real-time SPH liquid with sub-particle turbulence, on OpenGL 4.3 compute shaders
+
+usage: ranryu COMMAND [options]      (ranryu COMMAND --help for its options)
+
+commands:
+  run       watch a scene in a window
+  record    render a scene headless to frame_00000.png, ... and run.json
+  profile   run a scene headless and print per-pass GPU timings
+  scenes    list the bundled scenes
+
+  --version   print the version
+  --help      this text
+
+exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output folder)
+)";
+}
+
+std::string command_help(const std::string& cmd) {
+    const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default falling-block)
+  --size WxH          image size in pixels, 16..8192 each (default: the scene's)
+  --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
+  --gl-debug          debug context; print the driver's KHR_debug messages
+)";
+    if (cmd == "run")
+        return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom, Esc to quit.\n\n" + common +
+               R"(  --frames N          quit after N frames (default 0: run until the window closes)
+  --screenshot FILE   save the window's last frame as PNG (with --frames, for tests)
+)";
+    if (cmd == "record")
+        return "usage: ranryu record [options]\n\nRender a scene offscreen and write frame_00000.png, ... and run.json (scene, size,\n"
+               "frames, simulated time per frame, per-pass GPU timings) into --out, then print the timing table.\n\n" +
+               common +
+               R"(  --frames N          frames to record (default 120)
+  --out DIR           output folder (default out/SCENE); created if missing
+  --force             replace an earlier run in DIR (otherwise refused)
+)";
+    if (cmd == "profile")
+        return "usage: ranryu profile [options]\n\nRun a scene headless for N frames and print, per GPU pass: calls per frame,\n"
+               "min / median / max ms per frame and share of the frame.\n\n" + common +
+               R"(  --frames N          frames to time (default 300)
+  --warmup N          frames run before timing starts (default 30)
+  --json FILE         also write the report as JSON (device, driver, date, scene, particles, passes)
+  --csv FILE          also write it as CSV, one row per pass
+)";
+    if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
+    return usage();
+}
+
+}  // namespace ranryu::app

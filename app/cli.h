@@ -1,0 +1,31 @@
+#pragma once
+// Command-line parsing for `ranryu COMMAND [options]`. Every mistake raises ranryu::InputError
+// with one line naming the option and what is wrong (exit code 2).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ranryu::app {
+
+struct Options {
+    std::string command;          // run | record | profile | scenes | help | version
+    bool help = false;            // COMMAND --help
+
+    std::string scene = "falling-block";
+    std::optional<int> frames;    // unset: the command's default
+    std::optional<int> width, height;
+    std::string out;              // record: output folder
+    bool force = false;           // record: replace an earlier run in --out
+    std::string screenshot;       // run: PNG of the window's last frame
+    int warmup = 30;              // profile: frames run before timing
+    std::string json, csv;        // profile: report files
+    std::string shader_dir;       // read shaders from this folder instead of the embedded copies
+    bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
+};
+
+Options parse(const std::vector<std::string>& args);
+
+std::string usage();                                // ranryu --help
+std::string command_help(const std::string& cmd);   // ranryu CMD --help
+
+}  // namespace ranryu::app

@@ -1,0 +1,216 @@
+#include "commands.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+
+#include <glm/gtc/constants.hpp>
+
+#include "core/error.h"
+#include "frame/pipeline.h"
+#include "gl/context.h"
+#include "profile/report.h"
+#include "record/png.h"
+#include "record/recorder.h"
+#include "scene/scene.h"
+#include "shader/source.h"
+#ifdef RANRYU_HAVE_GLFW
+#include "gl/window.h"
+#endif
+
+namespace ranryu::app {
+namespace {
+
+#ifdef NDEBUG
+constexpr bool kDebugBuild = false;
+#else
+constexpr bool kDebugBuild = true;
+#endif
+
+shader::FileSource shader_source(const Options& o) {
+    std::string dir = o.shader_dir;
+    if (dir.empty())
+        if (const char* env = std::getenv("RANRYU_SHADER_DIR")) dir = env;
+    if (dir.empty()) return shader::FileSource::embedded();
+    if (!std::filesystem::is_directory(dir)) throw InputError("--shader-dir " + dir + ": not a folder");
+    return shader::FileSource::directory(dir);
+}
+
+glm::ivec2 image_size(const Options& o, const scene::Scene& s) {
+    return {o.width.value_or(s.width), o.height.value_or(s.height)};
+}
+
+void print_device(const gl::DeviceInfo& d) {
+    std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
+    if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
+    std::fflush(stdout);
+}
+
+profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int frames, int warmup) {
+    profile::RunInfo info;
+    info.renderer = d.renderer;
+    info.driver = d.version;
+    info.platform = d.platform;
+    info.date = profile::utc_now_iso8601();
+    info.scene = p.scene().name;
+    info.particles = p.particles().count();
+    info.width = p.target().width();
+    info.height = p.target().height();
+    info.frames = frames;
+    info.warmup = warmup;
+    info.substeps = p.scene().substeps();
+    info.frame_dt = p.scene().frame_dt;
+    return info;
+}
+
+// Headless context, with the debug callback in Debug builds or with --gl-debug.
+std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
+    const bool debug = kDebugBuild || o.gl_debug;
+    auto ctx = std::make_unique<gl::HeadlessContext>(debug);
+    if (debug) gl::install_debug_callback();
+    print_device(ctx->info());
+    return ctx;
+}
+
+}  // namespace
+
+int scenes(const Options&) {
+    for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
+    return 0;
+}
+
+int record(const Options& o) {
+    const scene::Scene scene = scene::load(o.scene);
+    const glm::ivec2 size = image_size(o, scene);
+    const int frames = o.frames.value_or(120);
+    const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
+    // Check the folder before any GPU work, so bad input costs nothing and loses nothing.
+    if (const std::size_t removed = record::prepare_output(out, o.force))
+        std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
+
+    auto ctx = headless(o);
+    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
+    record::Recorder recorder(pipeline.timer(), out, size.x, size.y);
+    for (int f = 0; f < frames; ++f) {
+        pipeline.begin_frame();
+        pipeline.simulate();
+        pipeline.draw();
+        recorder.capture(pipeline.target());
+        pipeline.end_frame();
+    }
+    recorder.finish();
+    pipeline.timer().drain();
+
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0));
+    nlohmann::json run = profile::to_json(report);
+    run["scene_origin"] = scene.origin;
+    run["frames_written"] = recorder.frames_written();
+    run["frame_pattern"] = "frame_%05d.png";
+    run["simulated_seconds"] = pipeline.simulated_time();
+    profile::write_text_file(out / "run.json", run.dump(2) + "\n", "run.json in --out " + out.string());
+    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(recorder.frames_written()),
+                size.x, size.y, out.string().c_str());
+    std::printf("%s", profile::table(report).c_str());
+    return 0;
+}
+
+int profile_cmd(const Options& o) {
+    const scene::Scene scene = scene::load(o.scene);
+    const glm::ivec2 size = image_size(o, scene);
+    const int frames = o.frames.value_or(300);
+    auto ctx = headless(o);
+    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
+    auto one_frame = [&] {
+        pipeline.begin_frame();
+        pipeline.simulate();
+        pipeline.draw();
+        pipeline.end_frame();
+    };
+    for (int f = 0; f < o.warmup; ++f) one_frame();
+    pipeline.timer().drain();
+    pipeline.timer().reset_samples();
+    for (int f = 0; f < frames; ++f) one_frame();
+    pipeline.timer().drain();
+
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup));
+    std::printf("%s", profile::table(report).c_str());
+    if (!o.json.empty()) profile::write_text_file(o.json, profile::to_json(report).dump(2) + "\n", "--json " + o.json);
+    if (!o.csv.empty()) profile::write_text_file(o.csv, profile::to_csv(report), "--csv " + o.csv);
+    return 0;
+}
+
+int run(const Options& o) {
+#ifndef RANRYU_HAVE_GLFW
+    (void)o;
+    throw Error("this build has no window (GLFW was not found at configure time); use `ranryu record` or `ranryu profile`");
+#else
+    const scene::Scene scene = scene::load(o.scene);
+    const glm::ivec2 size = image_size(o, scene);
+    const int frames = o.frames.value_or(0);
+    if (!o.screenshot.empty()) {
+        // Refuse before opening anything: an existing file is earlier output, and the folder must exist.
+        const std::filesystem::path shot(o.screenshot);
+        if (std::filesystem::exists(shot)) throw InputError("--screenshot " + o.screenshot + ": the file exists; not overwriting it");
+        const auto parent = shot.parent_path().empty() ? std::filesystem::path(".") : shot.parent_path();
+        if (!std::filesystem::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
+    }
+    const bool debug = kDebugBuild || o.gl_debug;
+    gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
+    if (debug) gl::install_debug_callback();
+    print_device(window.info());
+    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
+    const profile::PassId present = pipeline.timer().pass("present");
+
+    // Orbit camera: spherical coordinates around the scene's target.
+    render::Camera cam = pipeline.camera();
+    glm::vec3 arm = cam.eye - cam.target;
+    float radius = glm::length(arm);
+    float yaw = std::atan2(arm.x, arm.z), pitch = std::asin(glm::clamp(arm.y / radius, -1.0f, 1.0f));
+
+    while (!window.should_close() && (frames == 0 || pipeline.frames() < std::uint64_t(frames))) {
+        window.poll();
+        if (const gl::Window::Input in = window.take_input(); in.drag != glm::vec2(0.0f) || in.wheel != 0.0f) {
+            yaw -= 0.005f * in.drag.x;
+            pitch = glm::clamp(pitch + 0.005f * in.drag.y, -1.5f, 1.5f);
+            radius *= std::pow(0.9f, in.wheel);
+            cam.eye = cam.target + radius * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                                      std::cos(pitch) * std::cos(yaw));
+            pipeline.set_camera(cam);
+        }
+        pipeline.begin_frame();
+        pipeline.simulate();
+        pipeline.draw();
+        const glm::ivec2 fb = window.framebuffer_size();
+        {
+            auto pass = pipeline.timer().scope(present);
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, pipeline.target().framebuffer());
+            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+            glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        }
+        pipeline.end_frame();
+        const bool last = frames != 0 && pipeline.frames() == std::uint64_t(frames);
+        if (last && !o.screenshot.empty()) {
+            // Once, at exit: read the window's back buffer, which is what the swap shows.
+            std::vector<std::uint8_t> pixels(std::size_t(fb.x) * std::size_t(fb.y) * 4), flipped(pixels.size());
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            glReadBuffer(GL_BACK);
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+            const std::size_t row = std::size_t(fb.x) * 4;
+            for (int y = 0; y < fb.y; ++y)
+                std::copy_n(pixels.data() + std::size_t(fb.y - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
+            record::write_png(o.screenshot, fb.x, fb.y, flipped.data());
+            std::printf("wrote %s (%dx%d)\n", o.screenshot.c_str(), fb.x, fb.y);
+        }
+        window.swap();
+    }
+    pipeline.timer().drain();
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0));
+    std::printf("%s", profile::table(report).c_str());
+    return 0;
+#endif
+}
+
+}  // namespace ranryu::app

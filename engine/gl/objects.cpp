@@ -1,0 +1,125 @@
+#include "gl/objects.h"
+
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+
+namespace ranryu::gl {
+
+void label(GLenum identifier, GLuint name, std::string_view text) {
+    if (!text.empty() && name != 0) glObjectLabel(identifier, name, GLsizei(text.size()), text.data());
+}
+
+Buffer::Buffer(std::size_t bytes, GLenum usage, const void* data, std::string_view name) : size_(bytes) {
+    GLuint id = 0;
+    glGenBuffers(1, &id);
+    name_ = Name<DeleteBuffer>(id);
+    // Any target works for allocation; COPY_WRITE_BUFFER leaves the binding points used by passes alone.
+    glBindBuffer(GL_COPY_WRITE_BUFFER, id);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(bytes == 0 ? 4 : bytes), data, usage);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    label(GL_BUFFER, id, name);
+}
+
+void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
+    if (offset + bytes > size_)
+        throw Error("Buffer::upload past the end (" + std::to_string(offset + bytes) + " > " +
+                    std::to_string(size_) + " bytes)");
+    glBindBuffer(GL_COPY_WRITE_BUFFER, id());
+    glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(offset), GLsizeiptr(bytes), data);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+void Buffer::read_bytes(void* dst, std::size_t bytes, std::size_t offset) const {
+    if (offset + bytes > size_)
+        throw Error("Buffer::read past the end (" + std::to_string(offset + bytes) + " > " +
+                    std::to_string(size_) + " bytes)");
+    if (bytes == 0) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_COPY_READ_BUFFER, id());
+    glGetBufferSubData(GL_COPY_READ_BUFFER, GLintptr(offset), GLsizeiptr(bytes), dst);
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+}
+
+Texture2D::Texture2D(GLenum internal_format, int width, int height, std::string_view name)
+    : width_(width), height_(height) {
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    name_ = Name<DeleteTexture>(id);
+    glBindTexture(GL_TEXTURE_2D, id);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    label(GL_TEXTURE, id, name);
+}
+
+RenderTarget::RenderTarget(int width, int height, std::string_view name)
+    : color_(GL_RGBA8, width, height, std::string(name) + ".color"),
+      depth_(GL_DEPTH_COMPONENT32F, width, height, std::string(name) + ".depth") {
+    GLuint id = 0;
+    glGenFramebuffers(1, &id);
+    fbo_ = Name<DeleteFramebuffer>(id);
+    glBindFramebuffer(GL_FRAMEBUFFER, id);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_.id(), 0);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("render target " + std::string(name) + " is incomplete (status 0x" +
+                    std::to_string(status) + ")");
+    label(GL_FRAMEBUFFER, id, name);
+}
+
+VertexArray::VertexArray() {
+    GLuint id = 0;
+    glGenVertexArrays(1, &id);
+    name_ = Name<DeleteVertexArray>(id);
+}
+
+Queries::Queries(std::size_t count) : names_(count) {
+    if (count) glGenQueries(GLsizei(count), names_.data());
+}
+Queries& Queries::operator=(Queries&& o) noexcept {
+    if (this != &o) {
+        if (!names_.empty()) glDeleteQueries(GLsizei(names_.size()), names_.data());
+        names_ = std::move(o.names_);
+    }
+    return *this;
+}
+Queries::~Queries() {
+    if (!names_.empty()) glDeleteQueries(GLsizei(names_.size()), names_.data());
+}
+
+Fence& Fence::operator=(Fence&& o) noexcept {
+    if (this != &o) {
+        reset();
+        sync_ = std::exchange(o.sync_, nullptr);
+    }
+    return *this;
+}
+Fence::~Fence() { reset(); }
+void Fence::reset() {
+    if (sync_) glDeleteSync(sync_);
+    sync_ = nullptr;
+}
+void Fence::insert() {
+    reset();
+    sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+}
+bool Fence::signaled() const {
+    if (!sync_) return true;
+    const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+    return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+}
+void Fence::wait() const {
+    if (!sync_) return;
+    for (;;) {
+        const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000ull);
+        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
+        if (r == GL_WAIT_FAILED) throw Error("glClientWaitSync failed");
+    }
+}
+
+}  // namespace ranryu::gl

@@ -1,0 +1,68 @@
+#include "gl/window.h"
+
+#include <GLFW/glfw3.h>
+
+#include <utility>
+
+#include "core/error.h"
+
+namespace ranryu::gl {
+
+Window::Window(int width, int height, const std::string& title, bool debug) {
+    glfwSetErrorCallback([](int, const char*) {});
+    if (!glfwInit()) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        throw Error(std::string("cannot open a window: ") + (why ? why : "glfwInit failed") +
+                    " (no display? use `ranryu record` or `ranryu profile` headless)");
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
+    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        glfwTerminate();
+        throw Error(std::string("cannot create an OpenGL 4.3 core window: ") + (why ? why : "unknown reason"));
+    }
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(1);
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->input_.wheel += float(dy);
+    });
+    info_ = query_device("GLFW");
+}
+
+Window::~Window() {
+    if (window_) glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(window_); }
+
+void Window::poll() {
+    glfwPollEvents();
+    if (glfwGetKey(window_, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    glm::dvec2 c;
+    glfwGetCursorPos(window_, &c.x, &c.y);
+    const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    if (down && dragging_) input_.drag += glm::vec2(c - last_cursor_);
+    dragging_ = down;
+    last_cursor_ = c;
+}
+
+void Window::swap() { glfwSwapBuffers(window_); }
+
+glm::ivec2 Window::framebuffer_size() const {
+    glm::ivec2 s;
+    glfwGetFramebufferSize(window_, &s.x, &s.y);
+    return s;
+}
+
+Window::Input Window::take_input() { return std::exchange(input_, Input{}); }
+
+}  // namespace ranryu::gl

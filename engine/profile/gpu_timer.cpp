@@ -1,0 +1,106 @@
+#include "profile/gpu_timer.h"
+
+#include "core/error.h"
+
+namespace ranryu::profile {
+
+GpuTimer::GpuTimer(int frames_in_flight, int max_calls_per_frame) : max_calls_(std::size_t(max_calls_per_frame)) {
+    slots_.resize(std::size_t(frames_in_flight));
+    for (Slot& s : slots_) {
+        s.queries = gl::Queries(2 * max_calls_);
+        s.records.reserve(max_calls_);
+    }
+    passes_.reserve(64);
+    frame_ms_.reserve(4096);
+}
+
+PassId GpuTimer::pass(std::string_view name) {
+    for (std::size_t i = 0; i < passes_.size(); ++i)
+        if (passes_[i].name == name) return PassId{std::uint16_t(i)};
+    passes_.push_back(PassSamples{std::string(name), {}, {}});
+    scratch_ms_.push_back(0.0);
+    scratch_calls_.push_back(0);
+    return PassId{std::uint16_t(passes_.size() - 1)};
+}
+
+// Reads a slot's timestamps. When the GPU is a whole ring behind, GL_QUERY_RESULT waits for them:
+// the back-pressure described in the header; otherwise they are already available.
+void GpuTimer::collect(Slot& s) {
+    if (!s.pending) return;
+    if (!s.records.empty()) {
+        std::uint64_t first = ~0ull, final = 0;
+        for (double& v : scratch_ms_) v = 0.0;
+        for (int& c : scratch_calls_) c = 0;
+        for (const Record& r : s.records) {
+            GLuint64 t0 = 0, t1 = 0;
+            glGetQueryObjectui64v(s.queries[r.query], GL_QUERY_RESULT, &t0);
+            glGetQueryObjectui64v(s.queries[r.query + 1u], GL_QUERY_RESULT, &t1);
+            scratch_ms_[r.pass] += double(t1 >= t0 ? t1 - t0 : 0) * 1e-6;
+            scratch_calls_[r.pass] += 1;
+            first = std::min<std::uint64_t>(first, t0);
+            final = std::max<std::uint64_t>(final, t1);
+        }
+        for (std::size_t p = 0; p < passes_.size(); ++p) {
+            if (!scratch_calls_[p]) continue;
+            passes_[p].ms.push_back(scratch_ms_[p]);
+            passes_[p].calls.push_back(scratch_calls_[p]);
+        }
+        frame_ms_.push_back(double(final - first) * 1e-6);
+    }
+    s.records.clear();
+    s.pending = false;
+}
+
+void GpuTimer::begin_frame() {
+    if (in_frame_) throw Error("GpuTimer::begin_frame inside a frame");
+    current_ = std::size_t(frame_ % slots_.size());
+    collect(slots_[current_]);
+    in_frame_ = true;
+}
+
+void GpuTimer::end_frame() {
+    if (!in_frame_) throw Error("GpuTimer::end_frame outside a frame");
+    slots_[current_].pending = true;
+    in_frame_ = false;
+    ++frame_;
+}
+
+std::uint16_t GpuTimer::begin(PassId id) {
+    Slot& s = slots_[current_];
+    if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
+    if (s.records.size() >= max_calls_)
+        throw Error("more than " + std::to_string(max_calls_) + " timed passes in one frame");
+    const auto q = std::uint16_t(2 * s.records.size());
+    s.records.push_back(Record{id.index, q});
+    glQueryCounter(s.queries[q], GL_TIMESTAMP);
+    return q;
+}
+
+void GpuTimer::end(std::uint16_t begin_query) {
+    glQueryCounter(slots_[current_].queries[begin_query + 1u], GL_TIMESTAMP);
+}
+
+void GpuTimer::drain() {
+    for (std::size_t k = 1; k <= slots_.size(); ++k) collect(slots_[(current_ + k) % slots_.size()]);
+}
+
+void GpuTimer::reset_samples() {
+    for (PassSamples& p : passes_) {
+        p.ms.clear();
+        p.calls.clear();
+    }
+    frame_ms_.clear();
+}
+
+GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t) {
+    const std::string& n = t.name(id);
+    glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, id.index, GLsizei(n.size()), n.c_str());
+    query_ = timer_.begin(id);
+}
+
+GpuTimer::Scope::~Scope() {
+    timer_.end(query_);
+    glPopDebugGroup();
+}
+
+}  // namespace ranryu::profile

@@ -1,0 +1,89 @@
+#pragma once
+// Per-pass GPU timing with timestamp pairs (glQueryCounter, never nested GL_TIME_ELAPSED), kept in
+// a ring `frames_in_flight` deep. A frame's results are read when the ring comes back to its slot:
+// by then they are normally available, so reading never stalls. Only when the GPU is a whole ring
+// behind does begin_frame() wait, which bounds how far the CPU runs ahead (back-pressure, the same
+// limit every engine puts on frames in flight).
+//
+// Every pass opens a KHR_debug group of the same name, so GPU debuggers show the frame as named
+// passes too.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gl/objects.h"
+
+namespace ranryu::profile {
+
+struct PassId {
+    std::uint16_t index = 0;
+};
+
+// What one pass took, over the frames that were read back.
+struct PassSamples {
+    std::string name;
+    std::vector<double> ms;      // per frame in which the pass ran: sum of its calls' times
+    std::vector<int> calls;      // per frame in which the pass ran: number of calls
+};
+
+class GpuTimer {
+public:
+    GpuTimer(int frames_in_flight = 4, int max_calls_per_frame = 512);
+
+    // Names a pass. The same name always gives the same id; call at start-up.
+    PassId pass(std::string_view name);
+    const std::string& name(PassId id) const { return passes_[id.index].name; }
+
+    void begin_frame();
+    void end_frame();
+    std::uint16_t begin(PassId id);   // use Scope instead; returns the pair's first query
+    void end(std::uint16_t begin_query);
+
+    // Waits for every outstanding query and collects it. Shutdown and tests only.
+    void drain();
+    // Forgets all samples so far (e.g. after warm-up frames); keeps the pass names.
+    void reset_samples();
+
+    const std::vector<PassSamples>& passes() const { return passes_; }
+    const std::vector<double>& frame_ms() const { return frame_ms_; }   // GPU span of each frame read back
+    std::uint64_t frames_read() const { return frame_ms_.size(); }
+
+    // RAII scope of one pass: debug group + timestamp pair.
+    class Scope {
+    public:
+        Scope(GpuTimer& t, PassId id);
+        ~Scope();
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+
+    private:
+        GpuTimer& timer_;
+        std::uint16_t query_;
+    };
+    Scope scope(PassId id) { return Scope(*this, id); }
+
+private:
+    struct Record {
+        std::uint16_t pass;
+        std::uint16_t query;   // index of the begin query in the slot; end is query + 1
+    };
+    struct Slot {
+        gl::Queries queries;
+        std::vector<Record> records;   // reserved once; cleared, never shrunk
+        bool pending = false;
+    };
+    void collect(Slot& s);
+
+    std::vector<PassSamples> passes_;
+    std::vector<Slot> slots_;
+    std::vector<double> frame_ms_;
+    std::vector<double> scratch_ms_;   // per pass, for one frame
+    std::vector<int> scratch_calls_;
+    std::size_t current_ = 0;
+    std::size_t max_calls_;
+    std::uint64_t frame_ = 0;
+    bool in_frame_ = false;
+};
+
+}  // namespace ranryu::profile

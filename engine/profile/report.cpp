@@ -1,0 +1,136 @@
+#include "profile/report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace ranryu::profile {
+namespace {
+
+PassRow row(const std::string& name, std::vector<double> ms, double calls, double total_frame_ms) {
+    PassRow r;
+    r.name = name;
+    r.calls_per_frame = calls;
+    if (ms.empty()) return r;
+    const double sum = std::accumulate(ms.begin(), ms.end(), 0.0);
+    std::sort(ms.begin(), ms.end());
+    r.min_ms = ms.front();
+    r.max_ms = ms.back();
+    const std::size_t n = ms.size();
+    r.median_ms = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+    r.share = total_frame_ms > 0.0 ? sum / total_frame_ms : 0.0;
+    return r;
+}
+
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+}  // namespace
+
+Report summarize(const GpuTimer& timer, RunInfo info) {
+    Report r;
+    r.info = std::move(info);
+    const auto& frames = timer.frame_ms();
+    const double total = std::accumulate(frames.begin(), frames.end(), 0.0);
+    const double nframes = double(std::max<std::size_t>(frames.size(), 1));
+    for (const PassSamples& p : timer.passes()) {
+        if (p.ms.empty()) continue;
+        const double calls = std::accumulate(p.calls.begin(), p.calls.end(), 0.0) / nframes;
+        r.passes.push_back(row(p.name, p.ms, calls, total));
+    }
+    r.frame = row("frame (GPU span)", frames, 1.0, total);
+    return r;
+}
+
+std::string table(const Report& r) {
+    std::ostringstream out;
+    char line[256];
+    out << r.info.renderer << " | " << r.info.driver << " | " << r.info.date << "\n";
+    out << "scene " << r.info.scene << ": " << r.info.particles << " particles, " << r.info.width << "x"
+        << r.info.height << ", " << r.info.frames << " frames timed after " << r.info.warmup << " warm-up, "
+        << r.info.substeps << " substeps/frame\n";
+    std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
+                  "max ms", "share");
+    out << line;
+    auto print = [&](const PassRow& p) {
+        std::snprintf(line, sizeof line, "%-22s %9.2f %10.4f %10.4f %10.4f %6.1f%%\n", p.name.c_str(), p.calls_per_frame,
+                      p.min_ms, p.median_ms, p.max_ms, 100.0 * p.share);
+        out << line;
+    };
+    for (const PassRow& p : r.passes) print(p);
+    print(r.frame);
+    return out.str();
+}
+
+nlohmann::json to_json(const Report& r) {
+    auto pass = [](const PassRow& p) {
+        return nlohmann::json{{"name", p.name},       {"calls_per_frame", p.calls_per_frame},
+                              {"min_ms", p.min_ms},   {"median_ms", p.median_ms},
+                              {"max_ms", p.max_ms},   {"share", p.share}};
+    };
+    nlohmann::json passes = nlohmann::json::array();
+    for (const PassRow& p : r.passes) passes.push_back(pass(p));
+    return {{"device", r.info.renderer},
+            {"driver", r.info.driver},
+            {"platform", r.info.platform},
+            {"date", r.info.date},
+            {"scene", r.info.scene},
+            {"particles", r.info.particles},
+            {"width", r.info.width},
+            {"height", r.info.height},
+            {"frames", r.info.frames},
+            {"warmup_frames", r.info.warmup},
+            {"substeps_per_frame", r.info.substeps},
+            {"simulated_seconds_per_frame", r.info.frame_dt},
+            {"passes", passes},
+            {"frame", pass(r.frame)}};
+}
+
+std::string to_csv(const Report& r) {
+    std::ostringstream out;
+    out << "device,driver,date,scene,particles,width,height,frames,pass,calls_per_frame,min_ms,median_ms,max_ms,share\n";
+    auto line = [&](const PassRow& p) {
+        out << csv_field(r.info.renderer) << ',' << csv_field(r.info.driver) << ',' << r.info.date << ','
+            << csv_field(r.info.scene) << ',' << r.info.particles << ',' << r.info.width << ',' << r.info.height << ','
+            << r.info.frames << ',' << csv_field(p.name) << ',' << p.calls_per_frame << ',' << p.min_ms << ','
+            << p.median_ms << ',' << p.max_ms << ',' << p.share << '\n';
+    };
+    for (const PassRow& p : r.passes) line(p);
+    line(r.frame);
+    return out.str();
+}
+
+std::string utc_now_iso8601() {
+    const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buf;
+}
+
+void write_text_file(const std::filesystem::path& path, const std::string& text, const std::string& what) {
+    std::filesystem::path tmp = path;
+    tmp += ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out) throw InputError(what + ": cannot write the file");
+        out << text;
+        if (!out.flush()) throw InputError(what + ": cannot write the file");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw InputError(what + ": cannot write the file (" + ec.message() + ")");
+}
+
+}  // namespace ranryu::profile

@@ -1,0 +1,83 @@
+#pragma once
+// Recording frames to PNG without stalling the GPU pipeline.
+//
+// capture() queues an asynchronous glReadPixels into the next pixel-buffer object of a ring and
+// fences it; a later capture() finds the fence signalled, copies the pixels out (flipping rows) into
+// a preallocated CPU buffer and hands it to writer threads, which encode the PNG off the render
+// thread. The render thread waits only when the whole ring is still in flight (GPU behind) or every
+// CPU buffer is queued for encoding (encoders behind): back-pressure, never a per-frame stall.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "gl/objects.h"
+#include "profile/gpu_timer.h"
+
+namespace ranryu::record {
+
+// Makes `dir` ready for a new run: creates it if missing and checks that it can be written. If it
+// holds an earlier run (frame_*.png, frame_*.ply or run.json) it refuses with ranryu::InputError,
+// unless `force`, which removes that earlier run first. Returns the number of files removed.
+std::size_t prepare_output(const std::filesystem::path& dir, bool force);
+
+// "frame_00042.png"
+std::string frame_name(std::uint64_t index, const char* extension = "png");
+
+class Recorder {
+public:
+    // `writers` = 0 picks one per spare hardware thread.
+    Recorder(profile::GpuTimer& timer, std::filesystem::path dir, int width, int height, int ring = 3,
+             int writers = 0);
+    ~Recorder();
+    Recorder(const Recorder&) = delete;
+    Recorder& operator=(const Recorder&) = delete;
+
+    // Pass "readback": reads `target`'s colour into the ring as frame number frames_captured().
+    void capture(const gl::RenderTarget& target);
+    // Waits for every queued readback and PNG. Throws ranryu::Error if any file failed to write.
+    void finish();
+
+    std::uint64_t frames_captured() const { return captured_; }
+    std::uint64_t frames_written() const;
+
+private:
+    struct Slot {
+        gl::Buffer pbo;
+        gl::Fence fence;
+        std::uint64_t frame = 0;
+        bool busy = false;
+    };
+    struct Job {
+        std::uint64_t frame;
+        std::size_t buffer;
+    };
+    void retire(Slot& s);   // fence signalled (or waited): copy out and queue for encoding
+    void writer_loop();
+
+    profile::GpuTimer& timer_;
+    profile::PassId pass_;
+    std::filesystem::path dir_;
+    int width_, height_;
+    std::vector<Slot> ring_;
+    std::size_t next_ = 0;
+    std::uint64_t captured_ = 0;
+
+    // CPU side, shared with the writers under mutex_.
+    std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames
+    std::vector<std::size_t> free_;                   // indices into buffers_
+    std::deque<Job> jobs_;
+    mutable std::mutex mutex_;
+    std::condition_variable work_, done_;
+    std::uint64_t written_ = 0;
+    std::string error_;
+    bool stopping_ = false;
+    bool finished_ = false;
+    std::vector<std::thread> threads_;
+};
+
+}  // namespace ranryu::record

@@ -1,0 +1,97 @@
+#include "render/renderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/scene.h"
+#include "sim/particles.h"
+
+namespace ranryu::render {
+
+Camera scene_camera(const scene::Scene& s) { return Camera{s.camera_eye, s.camera_target, s.fov_deg}; }
+
+gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int width, int height) {
+    gpu::FrameParams p{};
+    const float extent = glm::length(s.tank_max - s.tank_min) + glm::length(cam.eye - cam.target);
+    p.view = glm::lookAt(cam.eye, cam.target, glm::vec3(0.0f, 1.0f, 0.0f));
+    p.proj = glm::perspective(glm::radians(cam.fov_deg), float(width) / float(height), 0.01f, 4.0f * extent);
+    p.view_proj = p.proj * p.view;
+    p.eye = glm::vec4(cam.eye, 1.0f);
+    p.light_dir = glm::vec4(glm::normalize(s.light_dir), 0.0f);
+    p.light_color = glm::vec4(1.0f, 1.0f, 1.0f, s.ambient);
+    p.material = glm::vec4(0.75f, 0.35f, 48.0f, s.particle_radius);
+    p.viewport = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+    // Colour ramp top: the speed of a fall from the tank's height, √(2·g·H).
+    const float fall = std::sqrt(2.0f * glm::length(s.gravity) * (s.tank_max.y - s.tank_min.y));
+    p.speed_scale = glm::vec4(fall > 0.0f ? fall : 1.0f, 0.0f, 0.0f, 0.0f);
+    p.tank_min = glm::vec4(s.tank_min, 0.0f);
+    p.tank_max = glm::vec4(s.tank_max, 0.0f);
+    return p;
+}
+
+Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer)
+    : timer_(timer),
+      clear_pass_(timer.pass("clear")),
+      floor_pass_(timer.pass("draw-floor")),
+      tank_pass_(timer.pass("draw-tank")),
+      particles_pass_(timer.pass("draw-particles")),
+      floor_(shader::Program::graphics(shaders, "render/floor.vert", "render/floor.frag")),
+      tank_(shader::Program::graphics(shaders, "render/tank.vert", "render/tank.frag")),
+      impostor_(shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag")),
+      frame_ubo_(sizeof(gpu::FrameParams), GL_DYNAMIC_DRAW, nullptr, "FrameParams") {
+    // Per-instance position and velocity attributes; the buffers are attached at draw time.
+    glBindVertexArray(particle_vao_.id());
+    glEnableVertexAttribArray(RANRYU_ATTR_POSITION);
+    glEnableVertexAttribArray(RANRYU_ATTR_VELOCITY);
+    glVertexAttribFormat(RANRYU_ATTR_POSITION, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexAttribFormat(RANRYU_ATTR_VELOCITY, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexAttribBinding(RANRYU_ATTR_POSITION, 0);
+    glVertexAttribBinding(RANRYU_ATTR_VELOCITY, 1);
+    glVertexBindingDivisor(0, 1);
+    glVertexBindingDivisor(1, 1);
+    glBindVertexArray(0);
+    gl::label(GL_VERTEX_ARRAY, particle_vao_.id(), "particles.vao");
+}
+
+void Renderer::set_frame(const gpu::FrameParams& p) {
+    frame_ = p;
+    frame_ubo_.upload(frame_);
+}
+
+void Renderer::draw(const gl::RenderTarget& target, const sim::Particles& particles) {
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, target.width(), target.height());
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    {
+        auto pass = timer_.scope(clear_pass_);
+        glDepthMask(GL_TRUE);
+        glClearColor(0.16f, 0.18f, 0.22f, 1.0f);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(empty_vao_.id());
+    {
+        auto pass = timer_.scope(floor_pass_);
+        floor_.use();
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    {
+        auto pass = timer_.scope(tank_pass_);
+        tank_.use();
+        glDrawArrays(GL_LINES, 0, 24);
+    }
+    {
+        auto pass = timer_.scope(particles_pass_);
+        impostor_.use();
+        glBindVertexArray(particle_vao_.id());
+        glBindVertexBuffer(0, particles.positions().id(), 0, sizeof(glm::vec4));
+        glBindVertexBuffer(1, particles.velocities().id(), 0, sizeof(glm::vec4));
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(particles.count()));
+    }
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace ranryu::render

@@ -1,0 +1,266 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/embedded.h"
+#include "core/error.h"
+
+namespace ranryu::scene {
+
+extern const EmbeddedFile kEmbeddedFiles[];
+extern const unsigned kEmbeddedFileCount;
+
+namespace {
+
+using nlohmann::json;
+
+// Largest scene a file may ask for: 64 M particles (about 2 GiB of particle state).
+constexpr double kMaxParticles = 64.0 * 1024 * 1024;
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// Reads one JSON object, remembering its dotted path for messages and which keys were used.
+class Reader {
+public:
+    Reader(const json& j, std::string path, const std::string& origin) : j_(j), path_(std::move(path)), origin_(origin) {
+        if (!j_.is_object()) fail(path_.empty() ? "the scene must be a JSON object" : "\"" + path_ + "\" must be an object");
+    }
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError("scene " + origin_ + ": " + what); }
+
+    std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
+    bool has(const std::string& k) const { return j_.contains(k); }
+
+    double number(const std::string& k, double def, double lo, double hi) {
+        used_.insert(k);
+        if (!j_.contains(k)) return def;
+        const json& v = j_.at(k);
+        if (!v.is_number()) fail("\"" + key(k) + "\" must be a number, not " + v.dump());
+        return check(key(k), v.get<double>(), lo, hi);
+    }
+    double check(const std::string& name, double x, double lo, double hi) const {
+        if (!std::isfinite(x) || x < lo || x > hi)
+            fail("\"" + name + "\" = " + fmt(x) + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
+        return x;
+    }
+    int integer(const std::string& k, int def, int lo, int hi) {
+        const double x = number(k, def, lo, hi);
+        if (x != std::floor(x)) fail("\"" + key(k) + "\" = " + fmt(x) + " must be a whole number");
+        return int(x);
+    }
+    glm::vec3 vec3(const std::string& k, glm::vec3 def, double lo, double hi) {
+        used_.insert(k);
+        if (!j_.contains(k)) return def;
+        const json& v = j_.at(k);
+        if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number(); }))
+            fail("\"" + key(k) + "\" must be an array of 3 numbers, not " + v.dump());
+        glm::vec3 r;
+        for (int i = 0; i < 3; ++i) r[i] = float(check(key(k) + "[" + std::to_string(i) + "]", v[std::size_t(i)].get<double>(), lo, hi));
+        return r;
+    }
+    std::string string(const std::string& k, const std::string& def) {
+        used_.insert(k);
+        if (!j_.contains(k)) return def;
+        if (!j_.at(k).is_string()) fail("\"" + key(k) + "\" must be a string");
+        return j_.at(k).get<std::string>();
+    }
+    Reader object(const std::string& k) {
+        used_.insert(k);
+        static const json empty = json::object();
+        return Reader(j_.contains(k) ? j_.at(k) : empty, key(k), origin_);
+    }
+    std::vector<Reader> objects(const std::string& k) {
+        used_.insert(k);
+        std::vector<Reader> out;
+        if (!j_.contains(k)) return out;
+        if (!j_.at(k).is_array()) fail("\"" + key(k) + "\" must be an array of objects");
+        for (std::size_t i = 0; i < j_.at(k).size(); ++i)
+            out.emplace_back(j_.at(k)[i], key(k) + "[" + std::to_string(i) + "]", origin_);
+        return out;
+    }
+    // Every key present must have been read: an unknown key is a typo the user needs to hear of.
+    void finish() const {
+        for (const auto& [k, v] : j_.items())
+            if (!used_.count(k)) fail("unknown key \"" + key(k) + "\"");
+    }
+
+private:
+    const json& j_;
+    std::string path_;
+    const std::string& origin_;
+    std::set<std::string> used_;
+};
+
+int lattice_count(float lo, float hi, float spacing) { return std::max(0, int(std::floor((hi - lo) / spacing + 1e-4f))); }
+
+}  // namespace
+
+int Scene::substeps() const { return std::max(1, int(std::ceil(frame_dt / substep_dt - 1e-4f))); }
+
+std::size_t Scene::particle_count() const {
+    std::size_t n = 0;
+    for (const Block& b : blocks)
+        n += std::size_t(lattice_count(b.min.x, b.max.x, spacing)) * std::size_t(lattice_count(b.min.y, b.max.y, spacing)) *
+             std::size_t(lattice_count(b.min.z, b.max.z, spacing));
+    return n;
+}
+
+std::vector<glm::vec4> Scene::initial_positions() const {
+    std::vector<glm::vec4> p;
+    p.reserve(particle_count());
+    for (const Block& b : blocks) {
+        const int nx = lattice_count(b.min.x, b.max.x, spacing), ny = lattice_count(b.min.y, b.max.y, spacing),
+                  nz = lattice_count(b.min.z, b.max.z, spacing);
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i)
+                    p.emplace_back(b.min + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * spacing, 0.0f);
+    }
+    return p;
+}
+
+std::vector<glm::vec4> Scene::initial_velocities() const {
+    std::vector<glm::vec4> v;
+    v.reserve(particle_count());
+    for (const Block& b : blocks) {
+        const std::size_t n = std::size_t(lattice_count(b.min.x, b.max.x, spacing)) *
+                              std::size_t(lattice_count(b.min.y, b.max.y, spacing)) *
+                              std::size_t(lattice_count(b.min.z, b.max.z, spacing));
+        v.insert(v.end(), n, glm::vec4(b.velocity, 0.0f));
+    }
+    return v;
+}
+
+Scene parse(const std::string& text, const std::string& origin) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // nlohmann's message carries the line and column ("... at line 3, column 5: ...").
+        std::string what = e.what();
+        const auto p = what.find("] ");
+        throw InputError("scene " + origin + ": malformed JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
+    }
+    Scene s;
+    s.origin = origin;
+    Reader r(j, "", origin);
+    s.name = r.string("name", "");
+    s.description = r.string("description", "");
+    if (s.name.empty()) s.name = std::filesystem::path(origin).stem().string();
+
+    {
+        Reader t = r.object("tank");
+        s.tank_min = t.vec3("min", s.tank_min, -1e3, 1e3);
+        s.tank_max = t.vec3("max", s.tank_max, -1e3, 1e3);
+        s.restitution = float(t.number("restitution", s.restitution, 0.0, 1.0));
+        for (int a = 0; a < 3; ++a)
+            if (!(s.tank_max[a] > s.tank_min[a])) t.fail("\"tank.max\" must exceed \"tank.min\" on every axis");
+        t.finish();
+    }
+    s.gravity = r.vec3("gravity", s.gravity, -1e3, 1e3);
+    {
+        Reader t = r.object("time");
+        s.frame_dt = float(t.number("frame_dt", s.frame_dt, 1e-4, 0.1));
+        s.substep_dt = float(t.number("substep_dt", s.substep_dt, 1e-6, 0.1));
+        if (s.substeps() > 1000) t.fail("\"time.frame_dt\" / \"time.substep_dt\" asks for over 1000 substeps a frame");
+        t.finish();
+    }
+    {
+        Reader p = r.object("particles");
+        s.spacing = float(p.number("spacing", s.spacing, 1e-4, 1.0));
+        s.particle_radius = float(p.number("radius", 0.5 * s.spacing, 1e-5, 1.0));
+        for (Reader& b : p.objects("blocks")) {
+            Block blk;
+            blk.min = b.vec3("min", blk.min, -1e3, 1e3);
+            blk.max = b.vec3("max", blk.max, -1e3, 1e3);
+            blk.velocity = b.vec3("velocity", blk.velocity, -1e3, 1e3);
+            for (int a = 0; a < 3; ++a) {
+                if (!(blk.max[a] > blk.min[a])) b.fail("\"" + b.key("max") + "\" must exceed \"" + b.key("min") + "\" on every axis");
+                if (blk.min[a] < s.tank_min[a] || blk.max[a] > s.tank_max[a])
+                    b.fail("\"" + b.key("min") + "\"..\"" + b.key("max") + "\" must lie inside the tank");
+            }
+            b.finish();
+            s.blocks.push_back(blk);
+        }
+        if (s.blocks.empty()) p.fail("\"particles.blocks\" must list at least one block");
+        double n = 0;
+        for (const Block& b : s.blocks) {
+            const glm::dvec3 d = glm::dvec3(b.max - b.min) / double(s.spacing);
+            n += std::floor(d.x) * std::floor(d.y) * std::floor(d.z);
+        }
+        if (n > kMaxParticles) p.fail("\"particles.spacing\" = " + fmt(s.spacing) + " makes " + fmt(n) + " particles; the limit is " + fmt(kMaxParticles));
+        if (s.particle_count() == 0) p.fail("\"particles.spacing\" = " + fmt(s.spacing) + " leaves no particle in any block");
+        p.finish();
+    }
+    {
+        Reader c = r.object("camera");
+        s.camera_eye = c.vec3("eye", s.camera_eye, -1e4, 1e4);
+        s.camera_target = c.vec3("target", s.camera_target, -1e4, 1e4);
+        s.fov_deg = float(c.number("fov_deg", s.fov_deg, 5.0, 150.0));
+        if (glm::length(s.camera_eye - s.camera_target) < 1e-4f) c.fail("\"camera.eye\" and \"camera.target\" coincide");
+        c.finish();
+    }
+    {
+        Reader l = r.object("light");
+        s.light_dir = l.vec3("direction", s.light_dir, -1.0, 1.0);
+        s.ambient = float(l.number("ambient", s.ambient, 0.0, 1.0));
+        if (glm::length(s.light_dir) < 1e-3f) l.fail("\"light.direction\" must not be zero");
+        s.light_dir = glm::normalize(s.light_dir);
+        l.finish();
+    }
+    {
+        Reader v = r.object("render");
+        s.width = v.integer("width", s.width, 16, 8192);
+        s.height = v.integer("height", s.height, 16, 8192);
+        v.finish();
+    }
+    r.finish();
+    return s;
+}
+
+Scene load(const std::string& name_or_path) {
+    const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
+                                 name_or_path.ends_with(".json") || std::filesystem::exists(name_or_path);
+    if (!looks_like_path) {
+        const std::string key = "scenes/" + name_or_path + ".json";
+        for (unsigned i = 0; i < kEmbeddedFileCount; ++i)
+            if (kEmbeddedFiles[i].path == key) {
+                Scene s = parse(std::string(kEmbeddedFiles[i].text), name_or_path + " (bundled)");
+                s.origin = "bundled";
+                return s;
+            }
+        std::string names;
+        for (const BundledScene& b : bundled()) names += (names.empty() ? "" : ", ") + b.name;
+        throw InputError("scene \"" + name_or_path + "\": no bundled scene of that name (bundled: " + names +
+                         "; or give a path to a .json file)");
+    }
+    std::ifstream in(name_or_path, std::ios::binary);
+    if (!in) throw InputError("scene " + name_or_path + ": cannot read the file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse(ss.str(), name_or_path);
+}
+
+std::vector<BundledScene> bundled() {
+    std::vector<BundledScene> out;
+    for (unsigned i = 0; i < kEmbeddedFileCount; ++i) {
+        const std::string path(kEmbeddedFiles[i].path);
+        if (!path.starts_with("scenes/") || !path.ends_with(".json")) continue;
+        const std::string name = path.substr(7, path.size() - 12);
+        const Scene s = parse(std::string(kEmbeddedFiles[i].text), name + " (bundled)");
+        out.push_back({name, s.description});
+    }
+    return out;
+}
+
+}  // namespace ranryu::scene

@@ -1,0 +1,95 @@
+#include "shader/program.h"
+
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+
+namespace ranryu::shader {
+namespace {
+
+std::string info_log(GLuint object, bool is_program) {
+    GLint length = 0;
+    if (is_program) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+    else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(std::size_t(length > 0 ? length : 1), '\0');
+    if (is_program) glGetProgramInfoLog(object, length, nullptr, log.data());
+    else glGetShaderInfoLog(object, length, nullptr, log.data());
+    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    return log;
+}
+
+// The first "file:line: ..." of an annotated log, for the one-line summary.
+std::string first_error(const std::string& annotated, const std::string& fallback) {
+    static const std::regex located(R"(([^\s:]+:\d+):(\d+:)?\s*(error)?:?\s*([^\n]*))");
+    std::smatch m;
+    std::istringstream lines(annotated);
+    for (std::string line; std::getline(lines, line);)
+        if (line.find("error") != std::string::npos && std::regex_search(line, m, located))
+            return m[1].str() + ": " + m[4].str();
+    return fallback;
+}
+
+gl::Name<gl::DeleteShader> compile(GLenum stage, const FileSource& src, const std::string& path,
+                                   std::string_view defines) {
+    const Preprocessed pre = preprocess(src, path, defines);
+    gl::Name<gl::DeleteShader> shader(glCreateShader(stage));
+    const char* text = pre.text.c_str();
+    glShaderSource(shader.id(), 1, &text, nullptr);
+    glCompileShader(shader.id());
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        const std::string log = annotate_log(info_log(shader.id(), false), pre.files);
+        throw Error("shader " + first_error(log, path + ": failed to compile") + "\n" + log);
+    }
+    return shader;
+}
+
+gl::Name<gl::DeleteProgram> link(const std::vector<GLuint>& shaders, const std::string& label) {
+    gl::Name<gl::DeleteProgram> program(glCreateProgram());
+    for (GLuint s : shaders) glAttachShader(program.id(), s);
+    glLinkProgram(program.id());
+    for (GLuint s : shaders) glDetachShader(program.id(), s);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) throw Error("shader program " + label + ": failed to link\n" + info_log(program.id(), true));
+    gl::label(GL_PROGRAM, program.id(), label);
+    return program;
+}
+
+}  // namespace
+
+Program Program::compute(const FileSource& src, const std::string& path, std::string_view defines) {
+    Program p;
+    auto cs = compile(GL_COMPUTE_SHADER, src, path, defines);
+    p.label_ = path;
+    p.name_ = link({cs.id()}, path);
+    GLint size[3] = {0, 0, 0};
+    glGetProgramiv(p.id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+    p.local_size_ = {GLuint(size[0]), GLuint(size[1]), GLuint(size[2])};
+    return p;
+}
+
+Program Program::graphics(const FileSource& src, const std::string& vert, const std::string& frag,
+                          std::string_view defines) {
+    Program p;
+    auto vs = compile(GL_VERTEX_SHADER, src, vert, defines);
+    auto fs = compile(GL_FRAGMENT_SHADER, src, frag, defines);
+    p.label_ = vert + "+" + frag;
+    p.name_ = link({vs.id(), fs.id()}, p.label_);
+    return p;
+}
+
+GLuint Program::groups_for(std::size_t items) const {
+    const std::size_t per = local_size_[0] ? local_size_[0] : 1;
+    return GLuint((items + per - 1) / per);
+}
+
+void Program::dispatch(std::size_t items) const {
+    use();
+    glDispatchCompute(groups_for(items), 1, 1);
+}
+
+}  // namespace ranryu::shader

@@ -1,0 +1,34 @@
+#version 430
+// Sphere impostors: one camera-facing quad per particle (instanced, 4-vertex strip), sized to
+// cover the sphere's silhouette exactly. The quad lies in the plane through the centre c
+// perpendicular to the eye ray, where the silhouette cone of a sphere of radius r at distance
+// d = |c| has radius r·d / sqrt(d² − r²).
+#include "../common/frame.glsl"
+
+layout(location = RANRYU_ATTR_POSITION) in vec4 in_position;
+layout(location = RANRYU_ATTR_VELOCITY) in vec4 in_velocity;
+
+out vec3 v_view_pos;          // this corner, view space
+flat out vec3 v_center;       // sphere centre, view space
+flat out float v_speed;
+
+void main() {
+    vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+    vec3 c = (frame.view * vec4(in_position.xyz, 1.0)).xyz;
+    float r = frame.material.w;
+    float d = length(c);
+    v_center = c;
+    v_speed = length(in_velocity.xyz);
+    if (d <= r * 1.001) {   // eye inside the sphere: draw nothing
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        v_view_pos = c;
+        return;
+    }
+    vec3 axis = c / d;
+    vec3 side = normalize(abs(axis.y) < 0.99 ? cross(axis, vec3(0.0, 1.0, 0.0)) : cross(axis, vec3(1.0, 0.0, 0.0)));
+    vec3 up = cross(side, axis);
+    float extent = r * d / sqrt(d * d - r * r);
+    vec3 p = c + extent * (corner.x * side + corner.y * up);
+    v_view_pos = p;
+    gl_Position = frame.proj * vec4(p, 1.0);
+}

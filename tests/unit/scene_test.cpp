@@ -1,0 +1,69 @@
+#include <catch2/catch.hpp>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+using ranryu::InputError;
+using namespace ranryu::scene;
+
+namespace {
+// The message of the InputError that parsing `json` raises ("" if none).
+std::string error_of(const std::string& json) {
+    try {
+        parse(json, "test.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+const std::string kBlock = R"("particles": {"spacing": 0.1, "blocks": [{"min": [0,0,0], "max": [0.5,0.5,0.5]}]})";
+}  // namespace
+
+TEST_CASE("every bundled scene parses and has particles") {
+    const auto scenes = bundled();
+    REQUIRE(!scenes.empty());
+    for (const auto& b : scenes) {
+        INFO(b.name);
+        const Scene s = load(b.name);
+        CHECK(s.particle_count() > 0);
+        CHECK(s.initial_positions().size() == s.particle_count());
+        CHECK(!s.description.empty());
+    }
+}
+
+TEST_CASE("lattice blocks place (i + 1/2)·spacing from the block's corner") {
+    const Scene s = parse("{" + kBlock + "}", "t");
+    REQUIRE(s.particle_count() == 125);
+    const auto p = s.initial_positions();
+    CHECK(p[0].x == Approx(0.05f));
+    CHECK(p[124].z == Approx(0.45f));
+}
+
+TEST_CASE("scene errors name the input and the key") {
+    CHECK_THAT(error_of("{" + kBlock + ", \"tank\": {\"restitution\": 2}}"),
+               Catch::Contains("test.json") && Catch::Contains("tank.restitution") && Catch::Contains("out of range"));
+    CHECK_THAT(error_of("{" + kBlock + ", \"colour\": 1}"), Catch::Contains("unknown key \"colour\""));
+    CHECK_THAT(error_of("{" + kBlock + ", \"camera\": {\"fov\": 1}}"), Catch::Contains("unknown key \"camera.fov\""));
+    CHECK_THAT(error_of("{\"tank\": {"), Catch::Contains("malformed JSON") && Catch::Contains("line 1"));
+    CHECK_THAT(error_of("{" + kBlock + ", \"gravity\": [0, 1]}"), Catch::Contains("array of 3 numbers"));
+    CHECK_THAT(error_of("{\"particles\": {\"spacing\": 0.1, \"blocks\": [{\"min\": [0,0,0], \"max\": [2,0.5,0.5]}]}}"),
+               Catch::Contains("inside the tank"));
+    CHECK_THAT(error_of("{}"), Catch::Contains("at least one block"));
+    CHECK_THAT(error_of("{" + kBlock + ", \"render\": {\"width\": 10.5}}"), Catch::Contains("render.width"));
+}
+
+TEST_CASE("an unknown bundled name lists the bundled scenes") {
+    try {
+        load("no-such-scene");
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK_THAT(std::string(e.what()), Catch::Contains("no-such-scene") && Catch::Contains("falling-block"));
+    }
+}
+
+TEST_CASE("substeps cover the frame exactly") {
+    Scene s = parse("{" + kBlock + ", \"time\": {\"frame_dt\": 0.02, \"substep_dt\": 0.003}}", "t");
+    CHECK(s.substeps() == 7);
+    s = parse("{" + kBlock + ", \"time\": {\"frame_dt\": 0.02, \"substep_dt\": 0.005}}", "t");
+    CHECK(s.substeps() == 4);
+}
