@@ -28,10 +28,33 @@ using mat4 = glm::mat4;
 #define RANRYU_UBO_SIM 1     // SimParams: integration and tank
 #define RANRYU_UBO_PROBE 7   // tests only: LayoutProbe
 
-// ---- shader storage binding points (std430) ----
+// ---- shader storage binding points (std430); all below 32 (llvmpipe's limit) ----
 #define RANRYU_SSBO_POSITION 0   // vec4[n]: xyz position (m), w unused
 #define RANRYU_SSBO_VELOCITY 1   // vec4[n]: xyz velocity (m/s), w unused
-#define RANRYU_SSBO_PROBE_OUT 7  // tests only
+// Sorting (engine/sim/sort.*): (key, value) pairs ping-pong between the two sets.
+#define RANRYU_SSBO_SORT_KEYS 2        // uint[n]
+#define RANRYU_SSBO_SORT_VALUES 3      // uint[n]
+#define RANRYU_SSBO_SORT_KEYS_ALT 4    // uint[n]
+#define RANRYU_SSBO_SORT_VALUES_ALT 5  // uint[n]
+#define RANRYU_SSBO_SORT_HISTOGRAM 6   // uint[]: per-workgroup digit counts, then their prefix sums
+#define RANRYU_SSBO_PROBE_OUT 7        // tests only
+// Neighbour grid and SPH (engine/sim/): per-cell ranges and per-particle fields.
+#define RANRYU_SSBO_CELL_START 8       // uint[cells]: first sorted index of the cell
+#define RANRYU_SSBO_CELL_END 9         // uint[cells]: one past the last sorted index
+#define RANRYU_SSBO_SORTED_POSITION 10 // vec4[n]
+#define RANRYU_SSBO_SORTED_VELOCITY 11 // vec4[n]
+#define RANRYU_SSBO_DENSITY 12         // vec4[n]: x density, y pressure
+#define RANRYU_SSBO_ACCEL 13           // vec4[n]: xyz acceleration
+#define RANRYU_SSBO_REDUCE 14          // uint[]: reductions (max speed, max acceleration, guard)
+#define RANRYU_SSBO_BOUNDARY 15        // vec4[m]: boundary particles, xyz position, w volume psi
+#define RANRYU_SSBO_STEP 16            // StepState: the adaptive time step, on the GPU
+#define RANRYU_SSBO_SCRATCH 17         // uint[]: pass-local scratch
+
+// ---- explicit uniform locations (small per-dispatch values; never looked up by name) ----
+#define RANRYU_LOC_COUNT 0     // uint: number of items this dispatch covers
+#define RANRYU_LOC_SHIFT 1     // uint: radix sort digit shift
+#define RANRYU_LOC_STAGE 2     // uivec2 / uint: bitonic sort (block size k, stride j)
+#define RANRYU_LOC_AUX 3       // uint: pass-specific
 
 // ---- vertex attribute locations ----
 #define RANRYU_ATTR_POSITION 0   // per-instance particle position (impostors)
