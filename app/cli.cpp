@@ -52,16 +52,23 @@ Options parse(const std::vector<std::string>& args) {
             o.help = true;
             continue;
         }
-        if (const auto eq = opt.find('='); opt.starts_with("--") && eq != std::string::npos) {
+        const auto eq = opt.find('=');
+        const bool inline_value = opt.starts_with("--") && eq != std::string::npos;
+        if (inline_value) {
             value = opt.substr(eq + 1);
             opt = opt.substr(0, eq);
-        } else if (!kFlags.count(opt) && opt.starts_with("--")) {
-            if (i + 1 >= args.size()) throw InputError(opt + ": needs a value");
-            value = args[++i];
         }
+        // Name the option's own mistake first: an unknown option is unknown wherever it stands.
         if (!opt.starts_with("--")) throw InputError("unexpected argument \"" + opt + "\" for ranryu " + first);
         if (!accepts.count(opt))
             throw InputError("unknown option " + opt + " for ranryu " + first + " (see ranryu " + first + " --help)");
+        if (kFlags.count(opt)) {
+            if (inline_value) throw InputError(opt + "=" + value + ": " + opt + " takes no value");
+        } else if (!inline_value) {
+            if (i + 1 >= args.size()) throw InputError(opt + ": needs a value");
+            value = args[++i];
+        }
+        if (!kFlags.count(opt) && value.empty()) throw InputError(opt + ": needs a value");
         if (opt == "--scene") o.scene = value;
         else if (opt == "--frames") o.frames = parse_int(opt, value, first == "run" ? 0 : 1, 1'000'000);
         else if (opt == "--size") {
@@ -85,7 +92,6 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--csv") o.csv = value;
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
-        if (!kFlags.count(opt) && value.empty()) throw InputError(opt + ": needs a value");
     }
     return o;
 }

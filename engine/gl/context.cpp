@@ -27,6 +27,9 @@ void APIENTRY on_message(GLenum source, GLenum type, GLuint id, GLenum severity,
                            const void* user) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     if (type == GL_DEBUG_TYPE_PUSH_GROUP || type == GL_DEBUG_TYPE_POP_GROUP) return;
+    // Compile errors are reported by shader::Program with file names and lines; the raw copy would
+    // carry the driver's source-string numbers instead.
+    if (source == GL_DEBUG_SOURCE_SHADER_COMPILER) return;
     const bool is_error = type == GL_DEBUG_TYPE_ERROR;
     std::fprintf(stderr, "ranryu: GL %s (%s, id %u): %s\n", is_error ? "error" : "message", source_name(source),
                  id, msg);

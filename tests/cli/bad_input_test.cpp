@@ -1,0 +1,177 @@
+// Bad input: each mistake exits 2 with exactly one line on stderr ("ranryu: ...") that names the
+// input at fault, prints nothing on stdout (it is caught before any GPU work) and leaves nothing behind.
+#include <catch2/catch.hpp>
+
+#include "run_helper.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+// Exit code 2, one "ranryu: ..." line on stderr that contains every one of `names`.
+void check_bad_input(const Result& r, const std::vector<std::string>& names, bool stdout_empty = true) {
+    INFO(r.describe());
+    CHECK(r.exit_code == 2);
+    CHECK(r.err_lines().size() == 1);
+    CHECK_THAT(r.err, StartsWith("ranryu: "));
+    CHECK_THAT(r.err, EndsWith("\n"));
+    for (const std::string& name : names) CHECK_THAT(r.err, Contains(name));
+    if (stdout_empty) CHECK(r.out.empty());
+}
+
+// `ranryu record` of `scene` into TMP/out: refused, and TMP/out never made.
+void check_bad_scene(const std::string& scene, const std::vector<std::string>& names) {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", scene, "--size", "64x48", "--frames", "1", "--out", tmp.str("out")});
+    check_bad_input(r, names);
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+}  // namespace
+
+// ---- scenes ----
+
+TEST_CASE("bad input: an unknown scene name", "[cli][bad-input]") {
+    check_bad_scene("no-such-scene", {"no-such-scene", "falling-block"});   // names the bundled ones too
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", "no-such-scene"}), {"no-such-scene"});
+}
+
+TEST_CASE("bad input: a scene file that does not exist", "[cli][bad-input]") {
+    const std::string path = scene_file("no-such-file.json").string();
+    check_bad_scene(path, {path});
+}
+
+TEST_CASE("bad input: a malformed JSON scene names the file and the line", "[cli][bad-input]") {
+    // tests/data/scenes/malformed.json: a trailing comma in "tank", on line 4.
+    const std::string path = scene_file("malformed.json").string();
+    check_bad_scene(path, {path, "line 4"});
+}
+
+TEST_CASE("bad input: an unknown key in a scene", "[cli][bad-input]") {
+    const std::string path = scene_file("unknown-key.json").string();
+    check_bad_scene(path, {path, "unknown key", "particles.spaceing"});
+}
+
+TEST_CASE("bad input: an out-of-range value in a scene", "[cli][bad-input]") {
+    const std::string path = scene_file("out-of-range.json").string();
+    check_bad_scene(path, {path, "tank.restitution", "1.5", "out of range"});
+}
+
+// ---- options ----
+
+TEST_CASE("bad input: --size 0x0 and other sizes that are not WIDTHxHEIGHT in [16, 8192]", "[cli][bad-input]") {
+    TempDir tmp;
+    for (const std::string size : {"0x0", "64", "64x", "x48", "15x48", "64x8193", "axb", "64x48x2", "-64x48"}) {
+        for (const std::string cmd : {"record", "profile"}) {
+            INFO(cmd << " --size " << size);
+            check_bad_input(run_ranryu(tmp.path(), {cmd, "--size", size, "--frames", "1", "--out", tmp.str("out")}),
+                            {"--size " + size});
+        }
+    }
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+TEST_CASE("bad input: record --frames 0 and other frame counts that are not whole numbers >= 1", "[cli][bad-input]") {
+    TempDir tmp;
+    for (const std::string frames : {"0", "-1", "abc", "2.5", "1000001"}) {
+        INFO("--frames " << frames);
+        check_bad_input(run_ranryu(tmp.path(), {"record", "--frames", frames, "--size", "64x48", "--out", tmp.str("out")}),
+                        {"--frames " + frames});
+    }
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+TEST_CASE("bad input: an unknown command", "[cli][bad-input]") {
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"frobnicate"}), {"unknown command", "frobnicate"});
+    check_bad_input(run_ranryu(tmp.path(), {"frobnicate", "--frames", "1"}), {"unknown command", "frobnicate"});
+}
+
+TEST_CASE("bad input: an unknown option", "[cli][bad-input]") {
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"record", "--bogus", "1", "--out", tmp.str("out")}), {"unknown option", "--bogus"});
+    check_bad_input(run_ranryu(tmp.path(), {"profile", "--bogus=1"}), {"unknown option", "--bogus"});
+    // An option another command takes.
+    check_bad_input(run_ranryu(tmp.path(), {"profile", "--out", tmp.str("out")}), {"unknown option", "--out"});
+    check_bad_input(run_ranryu(tmp.path(), {"record", "--warmup", "3", "--out", tmp.str("out")}), {"unknown option", "--warmup"});
+    check_bad_input(run_ranryu(tmp.path(), {"record", "stray", "--out", tmp.str("out")}), {"stray"});
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+TEST_CASE("bad input: an unknown option last on the line is reported as unknown", "[cli][bad-input]") {
+    // "ranryu record --bogus" must say that --bogus is unknown, not that it "needs a value" (which
+    // sends the user looking for a value to give an option that does not exist).
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"record", "--out", tmp.str("out"), "--bogus"}), {"unknown option", "--bogus"});
+    check_bad_input(run_ranryu(tmp.path(), {"scenes", "--bogus"}), {"unknown option", "--bogus"});
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+TEST_CASE("bad input: a flag given a value is refused and --force=no deletes nothing", "[cli][bad-input]") {
+    // --force and --gl-debug take no value. "--force=no" must not be read as --force: that would
+    // delete the earlier run the user meant to keep.
+    TempDir tmp;
+    const std::string out = tmp.str("out");
+    const std::vector<std::string> base = {"record", "--scene", scene_file("small.json").string(), "--frames", "1", "--out", out};
+    REQUIRE(run_ranryu(tmp.path(), base).exit_code == 0);
+    const std::string frame = read_file(tmp / "out" / "frame_00000.png");
+    const std::string run_json = read_file(tmp / "out" / "run.json");
+    for (const std::string flag : {"--force=no", "--force=false", "--gl-debug=0"}) {
+        INFO(flag);
+        std::vector<std::string> args = base;
+        args.push_back(flag);
+        check_bad_input(run_ranryu(tmp.path(), args), {flag.substr(0, flag.find('='))});
+        CHECK(read_file(tmp / "out" / "frame_00000.png") == frame);
+        CHECK(read_file(tmp / "out" / "run.json") == run_json);
+    }
+}
+
+TEST_CASE("bad input: an option without its value", "[cli][bad-input]") {
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"record", "--out"}), {"--out", "needs a value"});
+    check_bad_input(run_ranryu(tmp.path(), {"record", "--out="}), {"--out", "needs a value"});
+    check_bad_input(run_ranryu(tmp.path(), {"profile", "--json="}), {"--json", "needs a value"});
+}
+
+// ---- output paths ----
+
+TEST_CASE("bad input: an --out folder that cannot be made or written", "[cli][bad-input]") {
+    TempDir tmp;
+    write_file(tmp / "blocker", "a regular file\n");
+    // Tests may run as root, for whom permission bits do not block writes: use paths that no user can
+    // make, a folder under a regular file, or write into: /proc.
+    std::vector<std::string> outs = {tmp.str("blocker/sub"), tmp.str("blocker/sub/deeper"),
+                                     tmp.str("blocker")};   // the last: exists and is not a folder
+    if (fs::is_directory("/proc/self")) {
+        outs.push_back("/proc/ranryu-cli-test-out");   // cannot be created
+        outs.push_back("/proc/self");                   // exists, cannot be written
+    } else {
+        WARN("no /proc: skipping the /proc cases");
+    }
+    for (const std::string& out : outs) {
+        INFO("--out " << out);
+        check_bad_input(run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--frames", "1",
+                                                "--out", out}),
+                        {"--out " + out});
+    }
+    CHECK(read_file(tmp / "blocker") == "a regular file\n");
+    CHECK(list_dir(tmp.path()) == std::vector<std::string>{"blocker"});
+}
+
+TEST_CASE("bad input: profile --json or --csv onto a path that cannot be written", "[cli][bad-input]") {
+    TempDir tmp;
+    write_file(tmp / "blocker", "a regular file\n");
+    for (const std::string opt : {"--json", "--csv"}) {
+        const std::string path = tmp.str("blocker/report");
+        INFO(opt << " " << path);
+        // The report is written after the run, so the table is on stdout already.
+        check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", scene_file("small.json").string(), "--frames", "1",
+                                                "--warmup", "0", opt, path}),
+                        {opt + " " + path}, /*stdout_empty=*/false);
+    }
+    CHECK(list_dir(tmp.path()) == std::vector<std::string>{"blocker"});
+}

@@ -1,0 +1,242 @@
+// ranryu profile: the timing table on stdout, and the same report as --json and --csv files.
+// llvmpipe's timer queries read about 0, so timings are only checked to be numbers >= 0.
+#include <catch2/catch.hpp>
+
+#include <map>
+#include <regex>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "run_helper.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// The passes every frame of every scene runs today (renderer and particle passes).
+const std::vector<std::string> kFramePasses = {"integrate", "clear", "draw-floor", "draw-tank", "draw-particles"};
+
+struct Row {
+    std::string name;
+    double calls = -1, min = -1, median = -1, max = -1, share = -1;
+};
+
+struct Table {
+    std::vector<std::string> header;   // the column titles, as printed
+    std::vector<Row> rows;             // every row after the header, "frame (GPU span)" included
+    std::size_t particles = 0;
+    std::string scene;
+};
+
+double number(const std::string& text) {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("not a number: " + text);
+    return v;
+}
+
+// Parses the table `ranryu profile` prints: a header line starting with "pass", then one row per
+// pass: NAME (may contain spaces) and five numbers, the last a percentage.
+Table parse_table(const std::string& out) {
+    Table t;
+    const auto lines = Result::split_lines(out);
+    std::size_t i = 0;
+    static const std::regex scene_line(R"(^scene (\S+): (\d+) particles, .*)");
+    for (; i < lines.size(); ++i) {
+        std::smatch m;
+        if (std::regex_match(lines[i], m, scene_line)) {
+            t.scene = m[1].str();
+            t.particles = std::stoul(m[2].str());
+        }
+        if (lines[i].starts_with("pass ")) break;
+    }
+    if (i == lines.size()) throw std::runtime_error("no header line starting with \"pass\"");
+    // Header titles are separated by runs of 2+ spaces ("min ms" holds one).
+    static const std::regex gap(R"(\s{2,})");
+    const std::string& h = lines[i];
+    for (std::sregex_token_iterator it(h.begin(), h.end(), gap, -1), end; it != end; ++it)
+        if (it->length() > 0) t.header.push_back(*it);
+    for (++i; i < lines.size(); ++i) {
+        std::istringstream in(lines[i]);
+        std::vector<std::string> words;
+        for (std::string w; in >> w;) words.push_back(w);
+        if (words.size() < 6) throw std::runtime_error("short table row: " + lines[i]);
+        const std::size_t n = words.size();
+        if (!words[n - 1].ends_with("%")) throw std::runtime_error("share is not a percentage: " + lines[i]);
+        Row r;
+        for (std::size_t k = 0; k + 5 < n; ++k) r.name += (k ? " " : "") + words[k];
+        r.calls = number(words[n - 5]);
+        r.min = number(words[n - 4]);
+        r.median = number(words[n - 3]);
+        r.max = number(words[n - 2]);
+        r.share = number(words[n - 1].substr(0, words[n - 1].size() - 1));
+        t.rows.push_back(r);
+    }
+    return t;
+}
+
+// RFC 4180: fields separated by commas, optionally in double quotes with "" for a quote.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+    std::vector<std::vector<std::string>> rows;
+    std::vector<std::string> row;
+    std::string field;
+    bool quoted = false, any = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        any = true;
+        if (quoted) {
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += '"', ++i;
+            else if (c == '"') quoted = false;
+            else field += c;
+        } else if (c == '"') quoted = true;
+        else if (c == ',') row.push_back(field), field.clear();
+        else if (c == '\n') {
+            row.push_back(field), field.clear();
+            rows.push_back(row), row.clear();
+            any = false;
+        } else if (c != '\r') field += c;
+    }
+    if (any) row.push_back(field), rows.push_back(row);
+    return rows;
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+}  // namespace
+
+TEST_CASE("ranryu profile prints one row per pass that ran with calls, min, median, max and share", "[cli][profile]") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"profile", "--scene", scene_file("small.json").string(), "--size", "64x48",
+                                             "--frames", "4", "--warmup", "2"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.err, !Contains("GL error"));   // Debug builds report every GL error on stderr
+    const Table t = parse_table(r.out);
+
+    CHECK(t.header == std::vector<std::string>{"pass", "calls/fr", "min ms", "median ms", "max ms", "share"});
+    CHECK(t.scene == "cli-small");
+    CHECK(t.particles == 144);
+    std::vector<std::string> names;
+    for (const Row& row : t.rows) {
+        INFO("row " << row.name);
+        names.push_back(row.name);
+        CHECK(row.calls > 0.0);   // only passes that ran are listed
+        CHECK(row.min >= 0.0);
+        CHECK(row.median >= 0.0);
+        CHECK(row.max >= 0.0);
+        CHECK(row.share >= 0.0);
+    }
+    for (const std::string& pass : kFramePasses) {
+        INFO("pass " << pass);
+        CHECK(contains(names, pass));
+    }
+    // Passes of other commands do not run here.
+    CHECK_FALSE(contains(names, "readback"));
+    CHECK_FALSE(contains(names, "present"));
+    REQUIRE(!t.rows.empty());
+    CHECK(t.rows.back().name == "frame (GPU span)");
+    // Each listed pass once.
+    CHECK(std::set<std::string>(names.begin(), names.end()).size() == names.size());
+    // The draws run once a frame; the sim passes at least once.
+    for (const Row& row : t.rows) {
+        INFO("row " << row.name);
+        if (row.name == "clear" || row.name.starts_with("draw-") || row.name == "frame (GPU span)") CHECK(row.calls == 1.0);
+        if (row.name == "integrate") CHECK(row.calls >= 1.0);
+    }
+    // No report files unless asked for.
+    CHECK(list_dir(tmp.path()).empty());
+}
+
+TEST_CASE("ranryu profile --json and --csv write the same passes with device, driver, date, scene and particles",
+          "[cli][profile]") {
+    TempDir tmp;
+    // Relative paths: resolved against the working folder.
+    const Result r = run_ranryu(tmp.path(), {"profile", "--scene", scene_file("small.json").string(), "--size", "64x48",
+                                             "--frames", "3", "--warmup", "1", "--json", "report.json", "--csv", "report.csv"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    const Table t = parse_table(r.out);
+    std::vector<std::string> table_passes;
+    for (const Row& row : t.rows)
+        if (row.name != "frame (GPU span)") table_passes.push_back(row.name);
+
+    // Exactly the two files: no "*.tmp" left from the atomic write.
+    CHECK(list_dir(tmp.path()) == std::vector<std::string>{"report.csv", "report.json"});
+
+    // ---- JSON ----
+    const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "report.json"));
+    INFO(j.dump(2));
+    REQUIRE(j.is_object());
+    for (const char* key : {"device", "driver", "date", "scene"}) {
+        INFO("key " << key);
+        REQUIRE(j.contains(key));
+        REQUIRE(j[key].is_string());
+        CHECK(!j[key].get<std::string>().empty());
+    }
+    CHECK(std::regex_match(j["date"].get<std::string>(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")));
+    CHECK(j["scene"] == "cli-small");
+    REQUIRE(j.contains("particles"));
+    CHECK(j["particles"] == 144);
+    CHECK(j["width"] == 64);
+    CHECK(j["height"] == 48);
+    CHECK(j["frames"] == 3);
+    CHECK(j["warmup_frames"] == 1);
+    // The table's first line is "RENDERER | DRIVER | DATE".
+    CHECK_THAT(r.out, Contains(j["device"].get<std::string>() + " | " + j["driver"].get<std::string>()));
+
+    REQUIRE(j.contains("passes"));
+    REQUIRE(j["passes"].is_array());
+    std::vector<std::string> json_passes;
+    for (const auto& p : j["passes"]) {
+        INFO(p.dump());
+        REQUIRE(p.contains("name"));
+        json_passes.push_back(p["name"].get<std::string>());
+        for (const char* key : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "share"}) {
+            INFO("key " << key);
+            REQUIRE(p.contains(key));
+            REQUIRE(p[key].is_number());
+            CHECK(p[key].get<double>() >= 0.0);
+        }
+        CHECK(p["calls_per_frame"].get<double>() > 0.0);
+    }
+    CHECK(json_passes == table_passes);
+    for (const std::string& pass : kFramePasses) {
+        INFO("pass " << pass);
+        CHECK(contains(json_passes, pass));
+    }
+
+    // ---- CSV ----
+    const auto csv = parse_csv(read_file(tmp / "report.csv"));
+    REQUIRE(csv.size() >= 2);
+    const std::vector<std::string>& header = csv[0];
+    INFO("CSV header: " << read_file(tmp / "report.csv"));
+    std::map<std::string, std::size_t> col;
+    for (std::size_t k = 0; k < header.size(); ++k) col[header[k]] = k;
+    for (const char* name : {"device", "driver", "date", "scene", "particles", "pass", "calls_per_frame", "min_ms",
+                             "median_ms", "max_ms", "share"}) {
+        INFO("CSV column " << name);
+        REQUIRE(col.count(name));
+    }
+    std::vector<std::string> csv_passes;
+    for (std::size_t i = 1; i < csv.size(); ++i) {
+        const auto& row = csv[i];
+        INFO("CSV row " << i);
+        REQUIRE(row.size() == header.size());
+        // The run's facts on every row, the same as in the JSON (the device name holds commas: quoted).
+        CHECK(row[col["device"]] == j["device"].get<std::string>());
+        CHECK(row[col["driver"]] == j["driver"].get<std::string>());
+        CHECK(row[col["date"]] == j["date"].get<std::string>());
+        CHECK(row[col["scene"]] == "cli-small");
+        CHECK(row[col["particles"]] == "144");
+        for (const char* name : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "share"}) {
+            INFO("CSV column " << name << " = " << row[col[name]]);
+            double v = -1;
+            CHECK_NOTHROW(v = number(row[col[name]]));
+            CHECK(v >= 0.0);
+        }
+        if (row[col["pass"]] != "frame (GPU span)") csv_passes.push_back(row[col["pass"]]);
+    }
+    CHECK(csv_passes == json_passes);
+}
