@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -12,10 +13,11 @@ namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--frames", "--size", "--screenshot", "--shader-dir", "--gl-debug"}},
-    {"record", {"--scene", "--frames", "--size", "--out", "--force", "--shader-dir", "--gl-debug"}},
-    {"profile", {"--scene", "--frames", "--size", "--warmup", "--json", "--csv", "--shader-dir", "--gl-debug"}},
+    {"run", {"--scene", "--spacing", "--frames", "--size", "--screenshot", "--shader-dir", "--gl-debug"}},
+    {"record", {"--scene", "--spacing", "--frames", "--size", "--out", "--force", "--shader-dir", "--gl-debug"}},
+    {"profile", {"--scene", "--spacing", "--frames", "--size", "--warmup", "--json", "--csv", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
+    {"validate", {"--spacing", "--json", "--shader-dir", "--gl-debug"}},
 };
 const std::set<std::string> kFlags = {"--force", "--gl-debug"};
 
@@ -43,7 +45,8 @@ Options parse(const std::vector<std::string>& args) {
         o.command = "version";
         return o;
     }
-    if (!kAccepts.count(first)) throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes)");
+    if (!kAccepts.count(first))
+        throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes, validate)");
     o.command = first;
     const auto& accepts = kAccepts.at(first);
     for (std::size_t i = 1; i < args.size(); ++i) {
@@ -59,6 +62,10 @@ Options parse(const std::vector<std::string>& args) {
             opt = opt.substr(0, eq);
         }
         // Name the option's own mistake first: an unknown option is unknown wherever it stands.
+        if (first == "validate" && !opt.starts_with("--") && o.case_name.empty()) {
+            o.case_name = opt;
+            continue;
+        }
         if (!opt.starts_with("--")) throw InputError("unexpected argument \"" + opt + "\" for ranryu " + first);
         if (!accepts.count(opt))
             throw InputError("unknown option " + opt + " for ranryu " + first + " (see ranryu " + first + " --help)");
@@ -84,6 +91,12 @@ Options parse(const std::vector<std::string>& args) {
             }
             o.width = wv;
             o.height = hv;
+        } else if (opt == "--spacing") {
+            char* end = nullptr;
+            const float dx = std::strtof(value.c_str(), &end);
+            if (end != value.c_str() + value.size() || !(dx >= 1e-4f && dx <= 1.0f))
+                throw InputError("--spacing " + value + ": expected a particle spacing in metres in [0.0001, 1]");
+            o.spacing = dx;
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
         else if (opt == "--screenshot") o.screenshot = value;
@@ -93,6 +106,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
     }
+    if (o.command == "validate" && o.case_name.empty() && !o.help)
+        throw InputError("validate: name a case (dam-break, hydrostatic)");
     return o;
 }
 
@@ -106,16 +121,19 @@ commands:
   record    render a scene headless to frame_00000.png, ... and run.json
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
+  validate  run a validation case (dam-break, hydrostatic) against its reference
 
   --version   print the version
   --help      this text
 
-exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output folder)
+exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output folder),
+            3 the simulation went unstable (reported with the step and the cause)
 )";
 }
 
 std::string command_help(const std::string& cmd) {
     const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default falling-block)
+  --spacing DX        particle spacing in metres: the scene at another resolution
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages
@@ -142,6 +160,18 @@ std::string command_help(const std::string& cmd) {
   --csv FILE          also write it as CSV, one row per pass
 )";
     if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
+    if (cmd == "validate")
+        return R"(usage: ranryu validate CASE [options]
+
+Run a case headless and print the simulation next to its reference, with the error.
+  dam-break     surge front Z = z/a against T = t sqrt(2g/a), next to Martin & Moyce (1952)
+  hydrostatic   pressure against depth next to rho0 g (H - z), and the spurious velocity
+
+  --spacing DX        particle spacing in metres (default: the bundled scene's)
+  --json FILE         also write the series and errors as JSON
+  --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
+  --gl-debug          debug context; print the driver's KHR_debug messages
+)";
     return usage();
 }
 

@@ -8,7 +8,9 @@
 namespace ranryu::app {
 
 struct Options {
-    std::string command;          // run | record | profile | scenes | help | version
+    std::string command;          // run | record | profile | scenes | validate | help | version
+    std::string case_name;        // validate: dam-break | hydrostatic
+    std::optional<float> spacing; // particle spacing (m): the scene at another resolution
     bool help = false;            // COMMAND --help
 
     std::string scene = "falling-block";

@@ -15,6 +15,7 @@
 #include "record/recorder.h"
 #include "scene/scene.h"
 #include "shader/source.h"
+#include "sim/guard.h"
 #ifdef RANRYU_HAVE_GLFW
 #include "gl/window.h"
 #endif
@@ -28,6 +29,8 @@ constexpr bool kDebugBuild = false;
 constexpr bool kDebugBuild = true;
 #endif
 
+}  // namespace
+
 shader::FileSource shader_source(const Options& o) {
     std::string dir = o.shader_dir;
     if (dir.empty())
@@ -36,6 +39,8 @@ shader::FileSource shader_source(const Options& o) {
     if (!std::filesystem::is_directory(dir)) throw InputError("--shader-dir " + dir + ": not a folder");
     return shader::FileSource::directory(dir);
 }
+
+namespace {
 
 glm::ivec2 image_size(const Options& o, const scene::Scene& s) {
     return {o.width.value_or(s.width), o.height.value_or(s.height)};
@@ -54,15 +59,17 @@ profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int
     info.platform = d.platform;
     info.date = profile::utc_now_iso8601();
     info.scene = p.scene().name;
-    info.particles = p.particles().count();
+    info.particles = p.particle_count();
     info.width = p.target().width();
     info.height = p.target().height();
     info.frames = frames;
     info.warmup = warmup;
-    info.substeps = p.scene().substeps();
+    info.substeps = p.scene().model == scene::Model::sph ? 0 : p.scene().substeps();
     info.frame_dt = p.scene().frame_dt;
     return info;
 }
+
+}  // namespace
 
 // Headless context, with the debug callback in Debug builds or with --gl-debug.
 std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
@@ -73,7 +80,11 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
     return ctx;
 }
 
-}  // namespace
+scene::Scene load_scene(const Options& o) {
+    scene::Scene s = scene::load(o.scene);
+    if (o.spacing) s = scene::with_spacing(s, *o.spacing, "--spacing");
+    return s;
+}
 
 int scenes(const Options&) {
     for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
@@ -81,7 +92,7 @@ int scenes(const Options&) {
 }
 
 int record(const Options& o) {
-    const scene::Scene scene = scene::load(o.scene);
+    const scene::Scene scene = load_scene(o);
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(120);
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
@@ -89,49 +100,69 @@ int record(const Options& o) {
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
 
+    const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
-    record::Recorder recorder(pipeline.timer(), out, size.x, size.y);
-    for (int f = 0; f < frames; ++f) {
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
+    // SPH frames are written only once the guard's record of them has arrived and is sound.
+    std::unique_ptr<record::Recorder> recorder;
+    auto validate = [&] {
+        if (const auto sound = pipeline.poll()) recorder->validate_through(*sound);
+        if (const auto& bad = pipeline.instability()) recorder->discard_from(bad->frame);
+    };
+    recorder = std::make_unique<record::Recorder>(pipeline.timer(), out, size.x, size.y,
+                                                  scene.model == scene::Model::sph, validate);
+    for (int f = 0; f < frames && !pipeline.instability(); ++f) {
         pipeline.begin_frame();
         pipeline.simulate();
         pipeline.draw();
-        recorder.capture(pipeline.target());
+        recorder->capture(pipeline.target());
         pipeline.end_frame();
+        validate();
     }
-    recorder.finish();
-    pipeline.timer().drain();
+    pipeline.drain();
+    validate();
+    recorder->finish();
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0));
     nlohmann::json run = profile::to_json(report);
     run["scene_origin"] = scene.origin;
-    run["frames_written"] = recorder.frames_written();
+    run["frames_written"] = recorder->frames_written();
     run["frame_pattern"] = "frame_%05d.png";
     run["simulated_seconds"] = pipeline.simulated_time();
+    if (const auto& bad = pipeline.instability())
+        run["instability"] = {{"frame", bad->frame}, {"step", bad->step}, {"time", bad->time},
+                              {"criterion", bad->criterion}, {"particle", bad->particle},
+                              {"value", bad->value}, {"limit", bad->limit}};
     profile::write_text_file(out / "run.json", run.dump(2) + "\n", "run.json in --out " + out.string());
-    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(recorder.frames_written()),
+    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(recorder->frames_written()),
                 size.x, size.y, out.string().c_str());
     std::printf("%s", profile::table(report).c_str());
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     return 0;
 }
 
 int profile_cmd(const Options& o) {
-    const scene::Scene scene = scene::load(o.scene);
+    const scene::Scene scene = load_scene(o);
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(300);
+    const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
     auto one_frame = [&] {
         pipeline.begin_frame();
         pipeline.simulate();
         pipeline.draw();
         pipeline.end_frame();
+        pipeline.poll();
+        if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     };
     for (int f = 0; f < o.warmup; ++f) one_frame();
-    pipeline.timer().drain();
+    pipeline.drain();
     pipeline.timer().reset_samples();
     for (int f = 0; f < frames; ++f) one_frame();
-    pipeline.timer().drain();
+    pipeline.drain();
+    pipeline.poll();
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup));
     std::printf("%s", profile::table(report).c_str());
@@ -145,7 +176,7 @@ int run(const Options& o) {
     (void)o;
     throw Error("this build has no window (GLFW was not found at configure time); use `ranryu record` or `ranryu profile`");
 #else
-    const scene::Scene scene = scene::load(o.scene);
+    const scene::Scene scene = load_scene(o);
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(0);
     if (!o.screenshot.empty()) {
@@ -155,11 +186,12 @@ int run(const Options& o) {
         const auto parent = shot.parent_path().empty() ? std::filesystem::path(".") : shot.parent_path();
         if (!std::filesystem::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
     }
+    const shader::FileSource shaders = shader_source(o);
     const bool debug = kDebugBuild || o.gl_debug;
     gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
     if (debug) gl::install_debug_callback();
     print_device(window.info());
-    frame::Pipeline pipeline(scene, shader_source(o), size.x, size.y);
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
     const profile::PassId present = pipeline.timer().pass("present");
 
     // Orbit camera: spherical coordinates around the scene's target.
@@ -190,6 +222,8 @@ int run(const Options& o) {
             glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         }
         pipeline.end_frame();
+        pipeline.poll();
+        if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
         const bool last = frames != 0 && pipeline.frames() == std::uint64_t(frames);
         if (last && !o.screenshot.empty()) {
             // Once, at exit: read the window's back buffer, which is what the swap shows.
@@ -206,7 +240,7 @@ int run(const Options& o) {
         }
         window.swap();
     }
-    pipeline.timer().drain();
+    pipeline.drain();
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0));
     std::printf("%s", profile::table(report).c_str());
     return 0;

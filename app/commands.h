@@ -1,5 +1,10 @@
 #pragma once
+#include <memory>
+
 #include "cli.h"
+#include "gl/context.h"
+#include "scene/scene.h"
+#include "shader/source.h"
 
 namespace ranryu::app {
 // Each returns the process exit code or throws ranryu::Error (see core/error.h).
@@ -7,4 +12,11 @@ int run(const Options& o);
 int record(const Options& o);
 int profile_cmd(const Options& o);
 int scenes(const Options& o);
+int validate(const Options& o);
+
+// Shared by the commands: the shader files (embedded, or --shader-dir), a headless context that
+// prints the device line, and the scene at --spacing.
+shader::FileSource shader_source(const Options& o);
+std::unique_ptr<gl::HeadlessContext> headless(const Options& o);
+scene::Scene load_scene(const Options& o);
 }  // namespace ranryu::app

@@ -1,4 +1,4 @@
-// ranryu: run | record | profile | scenes. Errors end here: one line on stderr, and the exit code
+// ranryu: run | record | profile | scenes | validate. Errors end here: one line on stderr, and the exit code
 // of their kind (0 ok, 1 failure, 2 bad input, 3 unstable simulation).
 #include <cstdio>
 #include <exception>
@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
         if (o.command == "record") return app::record(o);
         if (o.command == "profile") return app::profile_cmd(o);
         if (o.command == "scenes") return app::scenes(o);
+        if (o.command == "validate") return app::validate(o);
         return 1;
     } catch (const Error& e) {
         std::fflush(stdout);

@@ -4,27 +4,63 @@ namespace ranryu::frame {
 
 Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height)
     : scene_(scene),
-      timer_(),
-      particles_(shaders, timer_),
+      // Timestamp pairs a frame may need: ~24 passes a substep (grid, sort digits, SPH) for SPH.
+      timer_(4, scene.model == scene::Model::sph ? 64 + 24 * scene.sph.max_substeps : 64 + scene.substeps()),
       renderer_(shaders, timer_),
       target_(width, height, "frame"),
       camera_(render::scene_camera(scene)),
       substeps_(scene.substeps()) {
-    particles_.reset(scene_.initial_positions(), scene_.initial_velocities());
-    particles_.set_params(sim::sim_params(scene_, particles_.count()));
+    if (scene_.model == scene::Model::sph) {
+        sph_ = std::make_unique<sim::Sph>(shaders, timer_, scene_);
+    } else {
+        ballistic_ = std::make_unique<sim::Particles>(shaders, timer_);
+        ballistic_->reset(scene_.initial_positions(), scene_.initial_velocities());
+        ballistic_->set_params(sim::sim_params(scene_, ballistic_->count()));
+    }
     renderer_.set_frame(render::frame_params(scene_, camera_, width, height));
 }
 
 void Pipeline::simulate() {
-    for (int s = 0; s < substeps_; ++s) particles_.integrate();
-    sim_time_ += double(particles_.params().dt) * substeps_;
+    if (sph_) {
+        sph_->begin_frame(frames_);
+        for (int s = 0; s < sph_->substeps_this_frame(); ++s) sph_->substep();
+        sph_->end_frame();
+        return;
+    }
+    for (int s = 0; s < substeps_; ++s) ballistic_->integrate();
 }
 
-void Pipeline::draw() { renderer_.draw(target_, particles_); }
+void Pipeline::draw() { renderer_.draw(target_, positions(), velocities(), particle_count()); }
 
 void Pipeline::end_frame() {
     timer_.end_frame();
     ++frames_;
+}
+
+std::optional<std::uint64_t> Pipeline::poll() {
+    if (!sph_) return frames_ ? std::optional<std::uint64_t>(frames_ - 1) : std::nullopt;
+    sph_->poll_records();
+    if (!sph_->last_record() || sph_->instability()) return std::nullopt;
+    return sph_->last_record()->frame;
+}
+
+const std::optional<sim::Instability>& Pipeline::instability() const {
+    static const std::optional<sim::Instability> none;
+    return sph_ ? sph_->instability() : none;
+}
+
+void Pipeline::drain() {
+    timer_.drain();
+    if (sph_) sph_->drain_records();
+}
+
+std::size_t Pipeline::particle_count() const { return sph_ ? sph_->count() : ballistic_->count(); }
+const gl::Buffer& Pipeline::positions() const { return sph_ ? sph_->positions() : ballistic_->positions(); }
+const gl::Buffer& Pipeline::velocities() const { return sph_ ? sph_->velocities() : ballistic_->velocities(); }
+
+double Pipeline::simulated_time() const {
+    if (sph_) return sph_->last_record() ? double(sph_->last_record()->time) : 0.0;
+    return double(frames_) * double(ballistic_->params().dt) * substeps_;
 }
 
 void Pipeline::set_camera(const render::Camera& cam) {

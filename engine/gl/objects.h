@@ -69,8 +69,9 @@ public:
 
     // Replaces [offset, offset + bytes). Never reallocates.
     void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
+    // Replaces sizeof(T) bytes at `offset` with one value (a parameter struct).
     template <class T>
-    void upload(const T& value, std::size_t offset = 0) { upload(&value, sizeof(T), offset); }
+    void upload_value(const T& value, std::size_t offset = 0) { upload(&value, sizeof(T), offset); }
 
     void bind_base(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
     void bind_range(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {

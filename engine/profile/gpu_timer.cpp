@@ -65,18 +65,18 @@ void GpuTimer::end_frame() {
     ++frame_;
 }
 
-std::uint16_t GpuTimer::begin(PassId id) {
+std::uint32_t GpuTimer::begin(PassId id) {
     Slot& s = slots_[current_];
     if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
     if (s.records.size() >= max_calls_)
-        throw Error("more than " + std::to_string(max_calls_) + " timed passes in one frame");
-    const auto q = std::uint16_t(2 * s.records.size());
+        throw Error("more than " + std::to_string(max_calls_) + " timed passes in one frame (GpuTimer's capacity)");
+    const auto q = std::uint32_t(2 * s.records.size());
     s.records.push_back(Record{id.index, q});
     glQueryCounter(s.queries[q], GL_TIMESTAMP);
     return q;
 }
 
-void GpuTimer::end(std::uint16_t begin_query) {
+void GpuTimer::end(std::uint32_t begin_query) {
     glQueryCounter(slots_[current_].queries[begin_query + 1u], GL_TIMESTAMP);
 }
 

@@ -37,8 +37,8 @@ public:
 
     void begin_frame();
     void end_frame();
-    std::uint16_t begin(PassId id);   // use Scope instead; returns the pair's first query
-    void end(std::uint16_t begin_query);
+    std::uint32_t begin(PassId id);   // use Scope instead; returns the pair's first query
+    void end(std::uint32_t begin_query);
 
     // Waits for every outstanding query and collects it. Shutdown and tests only.
     void drain();
@@ -59,14 +59,14 @@ public:
 
     private:
         GpuTimer& timer_;
-        std::uint16_t query_;
+        std::uint32_t query_;
     };
     Scope scope(PassId id) { return Scope(*this, id); }
 
 private:
     struct Record {
         std::uint16_t pass;
-        std::uint16_t query;   // index of the begin query in the slot; end is query + 1
+        std::uint32_t query;   // index of the begin query in the slot; end is query + 1
     };
     struct Slot {
         gl::Queries queries;

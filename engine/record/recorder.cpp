@@ -1,6 +1,7 @@
 #include "record/recorder.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -59,15 +60,18 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
     return earlier.size();
 }
 
-Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, int ring, int writers)
-    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height) {
+Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
+                   std::function<void()> pump, int ring, int writers)
+    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
+      validated_end_(gated ? 0 : ~0ull), gated_(gated), pump_(std::move(pump)) {
     const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
     ring_.resize(std::size_t(std::max(ring, 1)));
     for (std::size_t i = 0; i < ring_.size(); ++i)
         ring_[i].pbo = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
     if (writers <= 0) writers = std::max(1, int(std::thread::hardware_concurrency()) - 1);
-    // Enough CPU frames that every writer can be busy while the ring retires more.
-    buffers_.resize(std::size_t(writers) + ring_.size());
+    // Enough CPU frames that every writer can be busy while the ring retires more, plus the frames a
+    // gated recorder holds until their records arrive (those arrive a few frames late).
+    buffers_.resize(std::size_t(writers) + ring_.size() + (gated ? 8 : 0));
     for (std::size_t i = 0; i < buffers_.size(); ++i) {
         buffers_[i].resize(bytes);
         free_.push_back(i);
@@ -118,7 +122,14 @@ void Recorder::retire(Slot& s) {
     std::size_t buffer;
     {
         std::unique_lock lock(mutex_);
-        done_.wait(lock, [&] { return !free_.empty(); });   // encoders behind: back-pressure
+        while (free_.empty()) {   // encoders, or the records that validate frames, are behind
+            if (pump_) {
+                lock.unlock();
+                pump_();
+                lock.lock();
+            }
+            done_.wait_for(lock, std::chrono::milliseconds(1));
+        }
         buffer = free_.back();
         free_.pop_back();
     }
@@ -152,8 +163,23 @@ void Recorder::writer_loop() {
         Job job;
         {
             std::unique_lock lock(mutex_);
-            work_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
-            if (jobs_.empty()) return;
+            // Jobs are in frame order: the front one waits for validation, or is dropped.
+            for (;;) {
+                while (!jobs_.empty() && jobs_.front().frame >= discard_from_) {
+                    free_.push_back(jobs_.front().buffer);
+                    jobs_.pop_front();
+                    done_.notify_all();
+                }
+                if (!jobs_.empty() && jobs_.front().frame < validated_end_) break;
+                if (stopping_ && (jobs_.empty() || !gated_)) return;
+                if (stopping_) {   // finish() after the last validation: the rest never will be
+                    for (const Job& j : jobs_) free_.push_back(j.buffer);
+                    jobs_.clear();
+                    done_.notify_all();
+                    return;
+                }
+                work_.wait(lock);
+            }
             job = jobs_.front();
             jobs_.pop_front();
         }
@@ -171,6 +197,22 @@ void Recorder::writer_loop() {
         }
         done_.notify_all();
     }
+}
+
+void Recorder::validate_through(std::uint64_t frame) {
+    {
+        std::lock_guard lock(mutex_);
+        validated_end_ = std::max(validated_end_, frame + 1);
+    }
+    work_.notify_all();
+}
+
+void Recorder::discard_from(std::uint64_t frame) {
+    {
+        std::lock_guard lock(mutex_);
+        discard_from_ = std::min(discard_from_, frame);
+    }
+    work_.notify_all();
 }
 
 void Recorder::finish() {

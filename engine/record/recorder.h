@@ -6,10 +6,15 @@
 // a preallocated CPU buffer and hands it to writer threads, which encode the PNG off the render
 // thread. The render thread waits only when the whole ring is still in flight (GPU behind) or every
 // CPU buffer is queued for encoding (encoders behind): back-pressure, never a per-frame stall.
+//
+// A frame is written only once the caller says it is sound (validate_through), so that nothing drawn
+// after an instability reaches disk; discard_from() drops such frames. A recorder whose frames need
+// no check is made with `gated` false.
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -31,15 +36,22 @@ std::string frame_name(std::uint64_t index, const char* extension = "png");
 class Recorder {
 public:
     // `writers` = 0 picks one per spare hardware thread.
-    Recorder(profile::GpuTimer& timer, std::filesystem::path dir, int width, int height, int ring = 3,
-             int writers = 0);
+    // `pump` is called while the render thread waits for a free CPU buffer, so that the caller can
+    // collect the records that validate frames (which frees buffers) instead of deadlocking.
+    Recorder(profile::GpuTimer& timer, std::filesystem::path dir, int width, int height, bool gated,
+             std::function<void()> pump = {}, int ring = 3, int writers = 0);
     ~Recorder();
     Recorder(const Recorder&) = delete;
     Recorder& operator=(const Recorder&) = delete;
 
     // Pass "readback": reads `target`'s colour into the ring as frame number frames_captured().
     void capture(const gl::RenderTarget& target);
-    // Waits for every queued readback and PNG. Throws ranryu::Error if any file failed to write.
+    // Frames up to and including `frame` may be written.
+    void validate_through(std::uint64_t frame);
+    // Frames from `frame` on are never written (they show an unstable simulation).
+    void discard_from(std::uint64_t frame);
+    // Waits for every queued readback and PNG of validated frames and drops the rest. Throws
+    // ranryu::Error if any file failed to write.
     void finish();
 
     std::uint64_t frames_captured() const { return captured_; }
@@ -74,6 +86,10 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable work_, done_;
     std::uint64_t written_ = 0;
+    std::uint64_t validated_end_ = 0;   // frames below this may be written
+    std::uint64_t discard_from_ = ~0ull;
+    bool gated_;
+    std::function<void()> pump_;
     std::string error_;
     bool stopping_ = false;
     bool finished_ = false;

@@ -3,7 +3,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene.h"
-#include "sim/particles.h"
 
 namespace ranryu::render {
 
@@ -54,10 +53,11 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer)
 
 void Renderer::set_frame(const gpu::FrameParams& p) {
     frame_ = p;
-    frame_ubo_.upload(frame_);
+    frame_ubo_.upload_value(frame_);
 }
 
-void Renderer::draw(const gl::RenderTarget& target, const sim::Particles& particles) {
+void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
+                    std::size_t count) {
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
     glViewport(0, 0, target.width(), target.height());
     frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
@@ -85,9 +85,9 @@ void Renderer::draw(const gl::RenderTarget& target, const sim::Particles& partic
         auto pass = timer_.scope(particles_pass_);
         impostor_.use();
         glBindVertexArray(particle_vao_.id());
-        glBindVertexBuffer(0, particles.positions().id(), 0, sizeof(glm::vec4));
-        glBindVertexBuffer(1, particles.velocities().id(), 0, sizeof(glm::vec4));
-        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(particles.count()));
+        glBindVertexBuffer(0, positions.id(), 0, sizeof(glm::vec4));
+        glBindVertexBuffer(1, velocities.id(), 0, sizeof(glm::vec4));
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
     }
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);

@@ -8,7 +8,6 @@
 #include "shared/bindings.h"
 
 namespace ranryu::scene { struct Scene; }
-namespace ranryu::sim { class Particles; }
 
 namespace ranryu::render {
 
@@ -29,8 +28,10 @@ public:
     void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO
     const gpu::FrameParams& frame() const { return frame_; }
 
-    // Passes "clear", "draw-floor", "draw-tank", "draw-particles" into `target`.
-    void draw(const gl::RenderTarget& target, const sim::Particles& particles);
+    // Passes "clear", "draw-floor", "draw-tank", "draw-particles" into `target`: `count` particles
+    // whose positions and velocities are vec4 arrays.
+    void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
+              std::size_t count);
 
 private:
     profile::GpuTimer& timer_;

@@ -105,39 +105,66 @@ int lattice_count(float lo, float hi, float spacing) { return std::max(0, int(st
 
 }  // namespace
 
+bool Obstacle::contains(glm::vec3 p, float margin) const {
+    if (kind == Kind::sphere) return glm::length(p - center) < radius + margin;
+    return glm::all(glm::greaterThan(p, min - margin)) && glm::all(glm::lessThan(p, max + margin));
+}
+
+float Scene::fluid_height() const {
+    float top = tank_min.y;
+    for (const Block& b : blocks) top = std::max(top, b.max.y);
+    return top - tank_min.y;
+}
+
+float Scene::speed_estimate() const {
+    float v0 = 0.0f;
+    for (const Block& b : blocks) v0 = std::max(v0, glm::length(b.velocity));
+    return std::sqrt(2.0f * glm::length(gravity) * (tank_max.y - tank_min.y)) + v0;
+}
+
+float Scene::sound_speed() const {
+    if (sph.speed_of_sound > 0.0f) return sph.speed_of_sound;
+    float v0 = 0.0f;
+    for (const Block& b : blocks) v0 = std::max(v0, glm::length(b.velocity));
+    return 10.0f * std::max(std::sqrt(2.0f * glm::length(gravity) * fluid_height()) + v0, 0.1f);
+}
+
 int Scene::substeps() const { return std::max(1, int(std::ceil(frame_dt / substep_dt - 1e-4f))); }
+
+namespace {
+// Calls f(position, block) for every lattice site of every block that no obstacle covers.
+template <class F>
+void for_each_site(const Scene& s, F&& f) {
+    for (const Block& b : s.blocks) {
+        const int nx = lattice_count(b.min.x, b.max.x, s.spacing), ny = lattice_count(b.min.y, b.max.y, s.spacing),
+                  nz = lattice_count(b.min.z, b.max.z, s.spacing);
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) {
+                    const glm::vec3 p = b.min + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * s.spacing;
+                    if (std::none_of(s.obstacles.begin(), s.obstacles.end(),
+                                     [&](const Obstacle& o) { return o.contains(p, 0.5f * s.spacing); }))
+                        f(p, b);
+                }
+    }
+}
+}  // namespace
 
 std::size_t Scene::particle_count() const {
     std::size_t n = 0;
-    for (const Block& b : blocks)
-        n += std::size_t(lattice_count(b.min.x, b.max.x, spacing)) * std::size_t(lattice_count(b.min.y, b.max.y, spacing)) *
-             std::size_t(lattice_count(b.min.z, b.max.z, spacing));
+    for_each_site(*this, [&](glm::vec3, const Block&) { ++n; });
     return n;
 }
 
 std::vector<glm::vec4> Scene::initial_positions() const {
     std::vector<glm::vec4> p;
-    p.reserve(particle_count());
-    for (const Block& b : blocks) {
-        const int nx = lattice_count(b.min.x, b.max.x, spacing), ny = lattice_count(b.min.y, b.max.y, spacing),
-                  nz = lattice_count(b.min.z, b.max.z, spacing);
-        for (int k = 0; k < nz; ++k)
-            for (int j = 0; j < ny; ++j)
-                for (int i = 0; i < nx; ++i)
-                    p.emplace_back(b.min + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * spacing, 0.0f);
-    }
+    for_each_site(*this, [&](glm::vec3 x, const Block&) { p.emplace_back(x, 0.0f); });
     return p;
 }
 
 std::vector<glm::vec4> Scene::initial_velocities() const {
     std::vector<glm::vec4> v;
-    v.reserve(particle_count());
-    for (const Block& b : blocks) {
-        const std::size_t n = std::size_t(lattice_count(b.min.x, b.max.x, spacing)) *
-                              std::size_t(lattice_count(b.min.y, b.max.y, spacing)) *
-                              std::size_t(lattice_count(b.min.z, b.max.z, spacing));
-        v.insert(v.end(), n, glm::vec4(b.velocity, 0.0f));
-    }
+    for_each_site(*this, [&](glm::vec3, const Block& b) { v.emplace_back(b.velocity, 0.0f); });
     return v;
 }
 
@@ -169,11 +196,50 @@ Scene parse(const std::string& text, const std::string& origin) {
     }
     s.gravity = r.vec3("gravity", s.gravity, -1e3, 1e3);
     {
+        const std::string model = r.string("model", "ballistic");
+        if (model == "sph") s.model = Model::sph;
+        else if (model != "ballistic") r.fail("\"model\" = \"" + model + "\" is not one of \"ballistic\", \"sph\"");
+    }
+    {
+        Reader p = r.object("sph");
+        SphSettings& h = s.sph;
+        h.rest_density = float(p.number("rest_density", h.rest_density, 1.0, 1e5));
+        h.viscosity = float(p.number("viscosity", h.viscosity, 0.0, 10.0));
+        h.speed_of_sound = float(p.number("speed_of_sound", h.speed_of_sound, 0.0, 1e4));
+        h.cfl = float(p.number("cfl", h.cfl, 0.01, 1.0));
+        h.force_factor = float(p.number("force_factor", h.force_factor, 0.01, 1.0));
+        const std::string keys = p.string("neighbour_keys", "linear");
+        if (keys != "linear" && keys != "morton") p.fail("\"sph.neighbour_keys\" = \"" + keys + "\" is not one of \"linear\", \"morton\"");
+        h.morton = keys == "morton";
+        h.sort = p.string("sort", h.sort);
+        if (h.sort != "radix" && h.sort != "bitonic") p.fail("\"sph.sort\" = \"" + h.sort + "\" is not one of \"radix\", \"bitonic\"");
+        h.max_substeps = p.integer("max_substeps", h.max_substeps, 1, 10000);
+        h.density_limit = float(p.number("density_limit", h.density_limit, 1.01, 100.0));
+        h.speed_limit = float(p.number("speed_limit", h.speed_limit, 0.0, 1e5));
+        p.finish();
+    }
+    {
         Reader t = r.object("time");
         s.frame_dt = float(t.number("frame_dt", s.frame_dt, 1e-4, 0.1));
         s.substep_dt = float(t.number("substep_dt", s.substep_dt, 1e-6, 0.1));
         if (s.substeps() > 1000) t.fail("\"time.frame_dt\" / \"time.substep_dt\" asks for over 1000 substeps a frame");
         t.finish();
+    }
+    for (Reader& o : r.objects("obstacles")) {
+        Obstacle ob;
+        if (o.has("radius") || o.has("center")) {
+            ob.kind = Obstacle::Kind::sphere;
+            ob.center = o.vec3("center", ob.center, -1e3, 1e3);
+            ob.radius = float(o.number("radius", 0.0, 1e-4, 1e3));
+            if (ob.radius <= 0.0f) o.fail("\"" + o.key("radius") + "\" must be given for a sphere");
+        } else {
+            ob.min = o.vec3("min", ob.min, -1e3, 1e3);
+            ob.max = o.vec3("max", ob.max, -1e3, 1e3);
+            for (int a = 0; a < 3; ++a)
+                if (!(ob.max[a] > ob.min[a])) o.fail("\"" + o.key("max") + "\" must exceed \"" + o.key("min") + "\" on every axis");
+        }
+        o.finish();
+        s.obstacles.push_back(ob);
     }
     {
         Reader p = r.object("particles");
@@ -249,6 +315,23 @@ Scene load(const std::string& name_or_path) {
     std::ostringstream ss;
     ss << in.rdbuf();
     return parse(ss.str(), name_or_path);
+}
+
+Scene with_spacing(Scene s, float dx, const std::string& what) {
+    if (!(dx >= 1e-4f && dx <= 1.0f)) throw InputError(what + ": spacing " + fmt(dx) + " m is out of range [0.0001, 1]");
+    s.spacing = dx;
+    s.particle_radius = 0.5f * dx;
+    const std::size_t n = s.particle_count();
+    if (n == 0) throw InputError(what + ": spacing " + fmt(dx) + " m leaves no particle in scene " + s.name);
+    if (double(n) > kMaxParticles)
+        throw InputError(what + ": spacing " + fmt(dx) + " m makes " + std::to_string(n) + " particles; the limit is " + fmt(kMaxParticles));
+    return s;
+}
+
+std::string bundled_file(const std::string& path) {
+    for (unsigned i = 0; i < kEmbeddedFileCount; ++i)
+        if (kEmbeddedFiles[i].path == path) return std::string(kEmbeddedFiles[i].text);
+    throw Error("no bundled file " + path);
 }
 
 std::vector<BundledScene> bundled() {

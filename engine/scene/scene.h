@@ -16,6 +16,32 @@ struct Block {
     glm::vec3 velocity{0.0f};   // initial velocity (m/s)
 };
 
+// A static solid in the tank, sampled with boundary particles (docs/SPH.md eq. (8)).
+struct Obstacle {
+    enum class Kind { box, sphere } kind = Kind::box;
+    glm::vec3 min{0.0f}, max{0.0f};   // box
+    glm::vec3 center{0.0f};           // sphere
+    float radius = 0.0f;
+    bool contains(glm::vec3 p, float margin = 0.0f) const;
+};
+
+// What moves the particles: "ballistic" (gravity and bouncing walls only, the seed's opening
+// example) or "sph" (docs/SPH.md).
+enum class Model { ballistic, sph };
+
+struct SphSettings {
+    float rest_density = 1000.0f;   // rho0 (kg/m^3)
+    float viscosity = 1e-4f;        // kinematic nu (m^2/s), eq. (5)
+    float speed_of_sound = 0.0f;    // c (m/s); 0: 10 * sqrt(2 g H), H the fluid's height
+    float cfl = 0.4f;               // eq. (7)
+    float force_factor = 0.25f;     // eq. (7)
+    bool morton = false;            // neighbour-grid keys: Morton order instead of linear
+    std::string sort = "radix";     // "radix" | "bitonic"
+    int max_substeps = 200;         // per frame, the most the CPU will issue
+    float density_limit = 1.5f;     // guard: rho/rho0 bound
+    float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
+};
+
 struct Scene {
     std::string name;          // file stem, or "name" key
     std::string description;
@@ -33,6 +59,10 @@ struct Scene {
     float spacing = 0.02f;          // particle spacing (m): the resolution
     float particle_radius = 0.01f;  // drawn radius (m); default spacing / 2
     std::vector<Block> blocks;
+    std::vector<Obstacle> obstacles;
+
+    Model model = Model::ballistic;
+    SphSettings sph;
 
     glm::vec3 camera_eye{2.0f, 1.5f, 2.5f};
     glm::vec3 camera_target{0.5f, 0.3f, 0.3f};
@@ -43,7 +73,10 @@ struct Scene {
     int width = 960, height = 540;   // default image size; --size overrides
 
     int substeps() const;
-    // Particle positions on the lattice of every block, in block order.
+    float fluid_height() const;        // highest block top above the tank floor (m)
+    float speed_estimate() const;      // sqrt(2 g H_tank) + the largest initial speed (m/s)
+    float sound_speed() const;         // sph.speed_of_sound, or 10 sqrt(2 g H) (docs/SPH.md)
+    // Particle positions on the lattice of every block, in block order, less those inside obstacles.
     std::vector<glm::vec4> initial_positions() const;
     std::vector<glm::vec4> initial_velocities() const;
     std::size_t particle_count() const;
@@ -54,6 +87,13 @@ Scene parse(const std::string& json_text, const std::string& origin);
 
 // `name_or_path`: a bundled scene's name ("falling-block") or a path to a .json file.
 Scene load(const std::string& name_or_path);
+
+// The same scene at another resolution: particle spacing `dx` (m), radius dx/2. Throws
+// ranryu::InputError (naming `what`) when that leaves no particle or too many.
+Scene with_spacing(Scene s, float dx, const std::string& what);
+
+// A bundled data file (media/validation/*.csv), by its path under media/.
+std::string bundled_file(const std::string& path);
 
 struct BundledScene {
     std::string name;

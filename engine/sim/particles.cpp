@@ -17,13 +17,13 @@ void Particles::reset(const std::vector<glm::vec4>& positions, const std::vector
     position_ = gl::Buffer::from<glm::vec4>(positions, GL_DYNAMIC_COPY, "particles.position");
     velocity_ = gl::Buffer::from<glm::vec4>(velocities, GL_DYNAMIC_COPY, "particles.velocity");
     params_.particle_count = gpu::uint(count_);
-    params_ubo_.upload(params_);
+    params_ubo_.upload_value(params_);
 }
 
 void Particles::set_params(const gpu::SimParams& p) {
     params_ = p;
     params_.particle_count = gpu::uint(count_);
-    params_ubo_.upload(params_);
+    params_ubo_.upload_value(params_);
 }
 
 void Particles::integrate() {

@@ -25,7 +25,9 @@ using mat4 = glm::mat4;
 
 // ---- uniform buffer binding points (std140) ----
 #define RANRYU_UBO_FRAME 0   // FrameParams: camera, light, viewport
-#define RANRYU_UBO_SIM 1     // SimParams: integration and tank
+#define RANRYU_UBO_SIM 1     // SimParams: integration and tank (ballistic model)
+#define RANRYU_UBO_GRID 2    // GridParams: the uniform neighbour grid
+#define RANRYU_UBO_SPH 3     // SphParams: the SPH model (docs/SPH.md)
 #define RANRYU_UBO_PROBE 7   // tests only: LayoutProbe
 
 // ---- shader storage binding points (std430); all below 32 (llvmpipe's limit) ----
@@ -49,6 +51,8 @@ using mat4 = glm::mat4;
 #define RANRYU_SSBO_BOUNDARY 15        // vec4[m]: boundary particles, xyz position, w volume psi
 #define RANRYU_SSBO_STEP 16            // StepState: the adaptive time step, on the GPU
 #define RANRYU_SSBO_SCRATCH 17         // uint[]: pass-local scratch
+#define RANRYU_SSBO_BOUNDARY_CELL_START 18  // uint[cells]: boundary particles' cell ranges
+#define RANRYU_SSBO_BOUNDARY_CELL_END 19
 
 // ---- explicit uniform locations (small per-dispatch values; never looked up by name) ----
 #define RANRYU_LOC_COUNT 0     // uint: number of items this dispatch covers
@@ -88,6 +92,68 @@ RANRYU_STRUCT(FrameParams) {
 }
 RANRYU_STRUCT_END(FrameParams, 320)
 
+// The uniform grid of the neighbour search (METHOD.md §1): cells of size h cover the domain.
+RANRYU_STRUCT(GridParams) {
+    vec4 origin;        // xyz: lower corner of cell (0,0,0) (m); w: cell size (m) = kernel support h
+    uvec4 dims;         // xyz: cells per axis; w: number of keys (cells, or the Morton code range)
+    uint count;         // particles to hash
+    uint morton;        // 1: Morton (Z-order) keys; 0: linear keys i + j*nx + k*nx*ny (the seed's)
+    uint key_max;       // largest key any particle can get
+    uint pad0;
+}
+RANRYU_STRUCT_END(GridParams, 48)
+
+// The SPH model's constants; docs/SPH.md gives every equation these enter.
+RANRYU_STRUCT(SphParams) {
+    vec4 gravity;         // xyz (m/s^2)
+    vec4 domain_min;      // xyz: the guard's bounds; a fluid particle outside has escaped (m)
+    vec4 domain_max;
+    float h;              // kernel support (m), eq. (1)
+    float mass;           // particle mass m = rho0 * dx^3 (kg)
+    float rest_density;   // rho0 (kg/m^3)
+    float stiffness;      // Tait B = rho0 c^2 / 7 (Pa), eq. (3)
+    float viscosity;      // kinematic nu (m^2/s), eq. (5)
+    float sound_speed;    // c (m/s)
+    float spacing;        // dx (m)
+    float cfl;            // Courant number of eq. (7), 0.4
+    float force_factor;   // factor of the force condition of eq. (7), 0.25
+    float dt_max;         // largest substep (s)
+    float dt_floor;       // guard: a substep below this has collapsed (s)
+    float density_limit;  // guard: rho / rho0 above this is exploding
+    float speed_limit;    // guard: |v| above this is exploding (m/s)
+    uint particle_count;
+    uint boundary_count;
+    float front_band;     // surge front: particles below floor + this count (m)
+}
+RANRYU_STRUCT_END(SphParams, 112)
+
+// The adaptive time step and the instability guard's findings, kept on the GPU (std430 SSBO at
+// RANRYU_SSBO_STEP). Maxima of non-negative floats are kept as their bits: for x, y >= 0,
+// floatBitsToUint orders like the floats, so atomicMax on uint finds the float maximum.
+RANRYU_STRUCT(StepState) {
+    float dt;                 // this substep's dt (s)
+    float time;               // simulated time (s)
+    float frame_left;         // simulated time this frame still has to cover (s)
+    uint substeps_left;       // substeps issued for this frame that have not run yet
+    uint max_speed;           // bits of max |v| over the last substep (input of eq. (7))
+    uint max_accel;           // bits of max |a| over the last substep
+    uint frame_max_speed;     // bits of max |v| over this frame
+    uint frame_max_density;   // bits of max rho/rho0 over this frame
+    float frame_min_dt;       // smallest stable dt (CFL and force conditions) this frame (s)
+    uint frame_substeps;      // substeps run this frame
+    uint nan_count;           // particle updates with a non-finite value this frame
+    uint nan_index;           // lowest index among them (sorted order), or 0xFFFFFFFF
+    uint escaped_count;       // particles outside the domain this frame
+    uint escaped_index;       // lowest index among them, or 0xFFFFFFFF
+    uint speed_index;         // a particle at the frame's max speed
+    uint density_index;       // a particle at the frame's max density
+    uint front;               // bits of the surge front: max (x - domain_min.x) of particles within front_band of domain_min.y
+    uint frame;               // frame number these findings belong to
+    uint steps;               // substeps since the start
+    uint pad0;
+}
+RANRYU_STRUCT_END(StepState, 80)
+
 // Tests only: one of each member kind, to pin the layout rules both sides rely on.
 RANRYU_STRUCT(LayoutProbe) {
     mat4 m;
@@ -99,6 +165,72 @@ RANRYU_STRUCT(LayoutProbe) {
     uint u1;
 }
 RANRYU_STRUCT_END(LayoutProbe, 112)
+
+// ---- sort (engine/sim/sort.*, glsl/sim/sort/): the one place for the constants both sides use ----
+// Workgroup sizes stay in GLSL; C++ reads them from the programs and multiplies by these.
+#define RANRYU_SORT_RADIX_BITS 8              // bits per LSD radix digit: 256 buckets, 4 passes for 32 bits
+#define RANRYU_SORT_RADIX_ITEMS_PER_THREAD 8  // radix tile = local_size_x(count/scatter) * this
+#define RANRYU_SORT_BITONIC_ITEMS_PER_THREAD 8  // bitonic shared-memory tile = local_size_x * this
+// ---- end sort
+
+// ---- surface (engine/surface/, glsl/surface/): level set and marching cubes ----
+// The φ grid: nodes x = origin + spacing·(i, j, k); φ[i + nx·(j + ny·k)], φ > 0 inside the liquid.
+// Cells are the (nx-1)(ny-1)(nz-1) cubes between nodes, indexed the same way with (nx-1, ny-1).
+#define RANRYU_UBO_SURFACE 4             // SurfaceParams: the level set's constants
+#define RANRYU_SSBO_SURFACE_GRID 20      // SurfaceGrid: where the φ grid lies this frame (GPU-written)
+#define RANRYU_SSBO_SURFACE_PHI 21       // float[nodes]: φ at the grid nodes
+#define RANRYU_SSBO_MC_STATE 22          // MeshState: marching cubes' indirect arguments and totals
+#define RANRYU_SSBO_MC_CELL_VERTICES 23  // uint[cells]: vertices each cell emits (0, 3, ..., 15)
+#define RANRYU_SSBO_MC_BLOCKS 24         // uvec2[blocks]: (active cells, vertices) per classify workgroup, then their exclusive prefix sums
+#define RANRYU_SSBO_MC_ACTIVE 25         // uvec2[]: compacted active cells: (cell index, first vertex)
+#define RANRYU_SSBO_MC_VERTICES 26       // MeshVertex[]: the mesh, non-indexed triangles
+#define RANRYU_LOC_SURFACE_CAPACITY 4    // uvec4 uniform: x vertices, y active cells, z cells (MC buffer capacities)
+#define RANRYU_LOC_SURFACE_GROUP 5       // uvec4 uniform: workgroup size of the pass whose indirect arguments this pass writes
+
+// Level set constants (METHOD.md §7): φ(x) = volume · Σ_i W(|x - x_i|, kernel_radius) - iso, with W the
+// cubic spline of glsl/sim/kernel.glsl. engine/surface/level_set.h explains the defaults.
+RANRYU_STRUCT(SurfaceParams) {
+    uvec4 max_dims;        // xyz: most nodes per axis (the grid coarsens to fit); w: unused
+    float node_spacing;    // finest node spacing (m)
+    float kernel_radius;   // R: support of W (m)
+    float volume;          // V: particle volume dx^3 (m^3); V·ΣW is ≈ 1 inside liquid at rest
+    float iso;             // the level: φ = 0 where V·ΣW = iso
+    uint particle_count;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+}
+RANRYU_STRUCT_END(SurfaceParams, 48)
+
+// Where the φ grid lies (std430 SSBO). The level set writes it on the GPU each frame; any other
+// producer of φ fills origin and dims, which is all marching cubes reads.
+RANRYU_STRUCT(SurfaceGrid) {
+    vec4 origin;         // xyz: node (0,0,0) (m); w: node spacing (m)
+    uvec4 dims;          // xyz: nodes per axis (0 when there is nothing to mesh); w: nodes in all
+    uvec4 bounds_min;    // xyz: the particles' lower corner as order-preserving bits (see surface/bounds.glsl)
+    uvec4 bounds_max;    // xyz: upper corner, likewise
+    uvec4 dispatch;      // xyz: glDispatchComputeIndirect groups of the level-set pass; w: 1 if coarsened to fit max_dims
+}
+RANRYU_STRUCT_END(SurfaceGrid, 80)
+
+// Marching cubes' GPU-side state (std430 SSBO), written by its own passes; also the indirect
+// argument buffer: cell_dispatch at byte 0, emit_dispatch at 16, draw at 32.
+RANRYU_STRUCT(MeshState) {
+    uvec4 cell_dispatch;   // xyz: classify/compact groups; w: cells in all
+    uvec4 emit_dispatch;   // xyz: emit groups; w: active cells listed
+    uvec4 draw;            // glDrawArraysIndirect: count, instanceCount, first, baseInstance
+    uvec4 totals;          // x: active cells, y: vertices wanted, z: 1 if vertices were cut to capacity,
+                           // w: 1 if the grid had more cells than the capacity (nothing meshed)
+}
+RANRYU_STRUCT_END(MeshState, 64)
+
+// One mesh vertex; three consecutive vertices are a triangle, counter-clockwise seen from outside.
+RANRYU_STRUCT(MeshVertex) {
+    vec4 position;   // xyz (m), w = 1
+    vec4 normal;     // xyz: unit outward normal (-∇φ/|∇φ|), w = 0
+}
+RANRYU_STRUCT_END(MeshVertex, 32)
+// ---- end surface
 
 #ifdef __cplusplus
 }  // namespace ranryu::gpu

@@ -1,0 +1,46 @@
+#pragma once
+// Asynchronous GPU -> CPU copies of small records (diagnostics, counters): copy() queues a
+// glCopyBufferSubData into the next buffer of a ring and fences it; poll() hands over, oldest first,
+// the records whose fences have signalled. Nothing waits on the GPU unless the whole ring is still
+// in flight when copy() needs a slot (back-pressure; with depth ≥ 3 only a GPU frames behind does
+// that). Records arrive in the order they were queued, frames late.
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <vector>
+
+#include "gl/objects.h"
+
+namespace ranryu::gl {
+
+class AsyncReadback {
+public:
+    // `on_record(tag, bytes)` receives every record, oldest first, from poll(), drain() or copy().
+    using Consumer = std::function<void(std::uint64_t tag, const void* bytes)>;
+    AsyncReadback(std::size_t record_bytes, int depth, std::string_view name, Consumer on_record);
+
+    // Queues a copy of [offset, offset + record_bytes) of `src`, tagged with `tag`.
+    void copy(const Buffer& src, std::size_t offset, std::uint64_t tag);
+    // Hands over every finished record; returns how many.
+    std::size_t poll();
+    // Waits for every queued record and hands them over. Shutdown and tests only.
+    std::size_t drain();
+
+private:
+    struct Slot {
+        Buffer buffer;
+        Fence fence;
+        std::uint64_t tag = 0;
+        bool busy = false;
+    };
+    void hand_over(Slot& s);
+    Consumer on_record_;
+
+    std::size_t bytes_;
+    std::vector<Slot> ring_;
+    std::size_t next_ = 0;     // slot the next copy() uses
+    std::size_t oldest_ = 0;   // slot the next poll() looks at
+    std::vector<std::uint8_t> scratch_;
+};
+
+}  // namespace ranryu::gl

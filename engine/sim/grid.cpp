@@ -1,0 +1,120 @@
+#include "sim/grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace ranryu::sim {
+namespace {
+
+std::uint32_t spread_bits(std::uint32_t v) {   // as in glsl/sim/grid.glsl
+    v &= 0x3FFu;
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+}  // namespace
+
+GridLayout GridLayout::covering(glm::vec3 min, glm::vec3 max, float cell, bool morton) {
+    GridLayout g;
+    g.origin = min;
+    g.cell = cell;
+    g.dims = glm::max(glm::uvec3(glm::ceil((max - min) / cell)), glm::uvec3(1u));
+    g.morton = morton;
+    if (morton) {
+        if (glm::any(glm::greaterThan(g.dims, glm::uvec3(1024u))))
+            throw InputError("neighbour grid of " + std::to_string(g.dims.x) + "x" + std::to_string(g.dims.y) + "x" +
+                             std::to_string(g.dims.z) + " cells is too large for Morton keys (1024 per axis at most)");
+        const glm::uvec3 top = g.dims - 1u;
+        g.key_count = (spread_bits(top.x) | (spread_bits(top.y) << 1) | (spread_bits(top.z) << 2)) + 1u;
+    } else {
+        const double cells = double(g.dims.x) * g.dims.y * g.dims.z;
+        if (cells > double(1u << 30))
+            throw InputError("neighbour grid of " + std::to_string(cells) + " cells is too large (2^30 at most)");
+        g.key_count = g.dims.x * g.dims.y * g.dims.z;
+    }
+    return g;
+}
+
+gpu::GridParams GridLayout::params(std::uint32_t count) const {
+    gpu::GridParams p{};
+    p.origin = glm::vec4(origin, cell);
+    p.dims = glm::uvec4(dims, key_count);
+    p.count = count;
+    p.morton = morton ? 1u : 0u;
+    p.key_max = key_count - 1u;
+    return p;
+}
+
+NeighbourGrid::NeighbourGrid(const shader::FileSource& shaders, profile::GpuTimer& timer, const GridLayout& layout,
+                             std::size_t capacity, SortMethod method)
+    : timer_(timer),
+      hash_pass_(timer.pass("hash")),
+      ranges_pass_(timer.pass("cell-ranges")),
+      reorder_pass_(timer.pass("reorder")),
+      hash_(shader::Program::compute(shaders, "sim/grid/hash_particles.comp")),
+      ranges_(shader::Program::compute(shaders, "sim/grid/find_cell_ranges.comp")),
+      reorder_(shader::Program::compute(shaders, "sim/grid/reorder_particles.comp")),
+      sort_(shaders, timer, capacity),
+      layout_(layout),
+      method_(method),
+      params_(sizeof(gpu::GridParams), GL_DYNAMIC_DRAW, nullptr, "GridParams") {}
+
+CellRanges NeighbourGrid::make_ranges(std::string_view name) const {
+    const std::size_t bytes = std::size_t(layout_.key_count) * sizeof(std::uint32_t);
+    return CellRanges{gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".start"),
+                      gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".end")};
+}
+
+void NeighbourGrid::bind_params(std::size_t count) {
+    if (params_count_ != count) {   // a changed count only: the layout is fixed
+        params_.upload_value(layout_.params(std::uint32_t(count)));
+        params_count_ = std::uint32_t(count);
+    }
+    params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
+}
+
+void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
+                          gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count) {
+    bind_params(count);
+    {
+        auto pass = timer_.scope(hash_pass_);
+        position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
+        sort_.keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
+        sort_.values().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
+        hash_.dispatch(count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    sort_.sort(method_, count, layout_.key_count - 1u);
+    params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
+    {
+        auto pass = timer_.scope(ranges_pass_);
+        const GLuint zero = 0;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.start.id());
+        glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.end.id());
+        glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        sort_.sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
+        ranges.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
+        ranges.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
+        ranges_.dispatch(count);
+    }
+    {
+        auto pass = timer_.scope(reorder_pass_);
+        sort_.sorted_values().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
+        position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
+        velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
+        sorted_position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_POSITION);
+        sorted_velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_VELOCITY);
+        reorder_.dispatch(count);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+}  // namespace ranryu::sim

@@ -1,0 +1,62 @@
+#pragma once
+// The uniform-grid neighbour search (METHOD.md §1; Green 2008): hash -> sort -> cell ranges ->
+// reorder. After build(), the particles are in cell order and a cell's particles are the run
+// [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, "cell-ranges",
+// "reorder".
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "profile/gpu_timer.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+#include "sim/sort.h"
+
+namespace ranryu::sim {
+
+// Cells of size `cell` covering [min, max]; keys linear (the seed's) or Morton.
+struct GridLayout {
+    glm::vec3 origin{0.0f};
+    float cell = 1.0f;
+    glm::uvec3 dims{1u};
+    bool morton = false;
+    std::uint32_t key_count = 1;   // cell_start/cell_end entries
+    static GridLayout covering(glm::vec3 min, glm::vec3 max, float cell, bool morton);
+    gpu::GridParams params(std::uint32_t count) const;
+};
+
+// The cell ranges of one particle set.
+struct CellRanges {
+    gl::Buffer start, end;
+};
+
+class NeighbourGrid {
+public:
+    NeighbourGrid(const shader::FileSource& shaders, profile::GpuTimer& timer, const GridLayout& layout,
+                  std::size_t capacity, SortMethod method);
+
+    const GridLayout& layout() const { return layout_; }
+    CellRanges make_ranges(std::string_view name) const;
+    void set_method(SortMethod m) { method_ = m; }
+
+    // Sorts `count` particles of `position`/`velocity` by cell into `sorted_position`/`sorted_velocity`
+    // and fills `ranges`. Leaves RANRYU_UBO_GRID bound to this grid.
+    void build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
+               gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count);
+
+    const KeySort& sort() const { return sort_; }
+    void bind_params(std::size_t count);
+
+private:
+    profile::GpuTimer& timer_;
+    profile::PassId hash_pass_, ranges_pass_, reorder_pass_;
+    shader::Program hash_, ranges_, reorder_;
+    KeySort sort_;
+    GridLayout layout_;
+    SortMethod method_;
+    gl::Buffer params_;
+    std::uint32_t params_count_ = ~0u;
+};
+
+}  // namespace ranryu::sim

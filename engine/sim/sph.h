@@ -1,0 +1,106 @@
+#pragma once
+// Weakly compressible SPH on the GPU (docs/SPH.md). A frame:
+//
+//     begin_frame()                       "begin-frame"       opens the frame's StepState record
+//     substep() × N                       "choose-time-step"  eq. (7), on the GPU
+//                                         "hash", "sort.*", "cell-ranges", "reorder"   (NeighbourGrid)
+//                                         "density"           eqs. (2), (3)
+//                                         "forces"            eqs. (4), (5) and gravity
+//                                         "integrate"         eq. (6) and the guard's records
+//     end_frame()                         "diagnostics"       queues the record's readback
+//
+// The CPU never waits: N comes from records that arrive frames late (enough substeps at the
+// smallest stable dt seen), and the dt each substep uses is chosen on the GPU. A record that breaks
+// a guard criterion is kept as instability(); the caller stops the run.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "gl/readback.h"
+#include "profile/gpu_timer.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+#include "sim/grid.h"
+#include "sim/guard.h"
+
+namespace ranryu::scene { struct Scene; }
+
+namespace ranryu::sim {
+
+// SphParams for a scene (docs/SPH.md symbols table), with `count` fluid and `boundary` particles.
+gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);
+GuardLimits guard_limits(const scene::Scene& s);
+
+class Sph {
+public:
+    Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene);
+
+    void begin_frame(std::uint64_t frame_index);
+    void substep();   // the five stages below, in order
+    void end_frame();
+
+    // A substep's stages, public for tests that compare each with the CPU reference.
+    void choose_time_step();   // "choose-time-step"
+    void rebuild_grid();       // "hash", "sort.*", "cell-ranges", "reorder": state now in cell order
+    void compute_density();    // "density"
+    void compute_forces();     // "forces"
+    void integrate();          // "integrate"
+    int substeps_this_frame() const { return substeps_; }
+
+    // Fluid state, in the cell order of the last substep.
+    const gl::Buffer& positions() const { return position_[current_]; }
+    const gl::Buffer& velocities() const { return velocity_[current_]; }
+    const gl::Buffer& densities() const { return density_; }
+    const gl::Buffer& accelerations() const { return accel_; }
+    const gl::Buffer& boundary() const { return boundary_; }
+    const gl::Buffer& step_state() const { return step_; }
+    const CellRanges& cell_ranges() const { return ranges_; }
+    NeighbourGrid& grid() { return grid_; }
+    std::size_t count() const { return count_; }
+    std::size_t boundary_count() const { return boundary_count_; }
+    const gpu::SphParams& params() const { return params_; }
+
+    // Latest StepState record read back (frames late), and the first instability seen, if any.
+    const std::optional<gpu::StepState>& last_record() const { return last_; }
+    const std::optional<Instability>& instability() const { return instability_; }
+    // Every record, as it arrives (validation series). Set before the first frame.
+    void set_record_sink(std::function<void(const gpu::StepState&)> sink) { sink_ = std::move(sink); }
+    // Collects the records that have arrived (never waits); waits for every queued one (end of a run).
+    void poll_records() { readback_.poll(); }
+    void drain_records() { readback_.drain(); }
+
+    // Tests: frames of `frame_dt_override` made of substeps of exactly `dt` when stable allows.
+    void set_fixed_dt(float dt);
+
+private:
+    void on_record(std::uint64_t frame, const void* bytes);
+    void bind_fields();
+
+    profile::GpuTimer& timer_;
+    profile::PassId begin_pass_, step_pass_, density_pass_, forces_pass_, integrate_pass_, diag_pass_,
+        boundary_pass_;
+    shader::Program begin_, choose_, density_prog_, forces_, integrate_, boundary_volume_;
+    gpu::SphParams params_{};
+    GuardLimits limits_;
+    float frame_dt_;
+    int max_substeps_;
+    NeighbourGrid grid_;
+    std::size_t count_ = 0, boundary_count_ = 0;
+    gl::Buffer position_[2], velocity_[2];
+    int current_ = 0;
+    gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
+    CellRanges ranges_, boundary_ranges_;
+    gl::AsyncReadback readback_;
+    std::optional<gpu::StepState> last_;
+    std::optional<Instability> instability_;
+    std::function<void(const gpu::StepState&)> sink_;
+    int substeps_ = 1;
+    float dt_estimate_;
+    std::optional<float> fixed_dt_;
+};
+
+}  // namespace ranryu::sim

@@ -1,0 +1,36 @@
+#pragma once
+// Validation cases: the simulation run headless against a published experiment or an analytic
+// solution, with the error. `ranryu validate` prints them; tests assert bounds on them.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shader/source.h"
+
+namespace ranryu::validation {
+
+// Martin & Moyce (1952), n^2 = 2: surge front Z = z/a against T = t sqrt(2g/a).
+struct DamBreakResult {
+    double a = 0.0, wall = 0.0, spacing = 0.0;
+    std::size_t particles = 0;
+    std::vector<std::pair<double, double>> simulated;   // (T, Z) per frame, from the GPU's records
+    struct Point { double t, measured, simulated; };
+    std::vector<Point> compared;                        // at the experiment's times
+    double rms_error = 0.0, max_error = 0.0;            // in Z
+};
+DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders);
+
+// A tank at rest after `settle_s` seconds: mean pressure in layers one spacing thick against
+// rho0 g (H - z), and the spurious velocity.
+struct HydrostaticResult {
+    double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H, dx, rho0 g H
+    std::size_t particles = 0;
+    struct Layer { double z, pressure, reference; int particles; };
+    std::vector<Layer> layers;
+    double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) below the top kernel support
+    double max_speed = 0.0, rms_speed = 0.0;
+};
+HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s);
+
+}  // namespace ranryu::validation

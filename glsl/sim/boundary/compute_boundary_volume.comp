@@ -1,0 +1,21 @@
+#version 430
+// Boundary particle weights (docs/SPH.md eq. (2); Akinci et al. 2012 eqs. 4-5), once at start:
+//     psi_b = rho0 V_b,   V_b = 1 / sum_b' W(x_b - x_b')   over boundary neighbours b', b included.
+// Input: boundary particles sorted by cell, with their cell ranges. Output: weighted[b] = (x_b, psi_b),
+// which the caller copies over the boundary array.
+#include "../sph/sph_common.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430, binding = RANRYU_SSBO_SCRATCH) writeonly buffer Weighted { vec4 weighted[]; };   // (x_b, psi_b)
+
+void main() {
+    uint b = gl_GlobalInvocationID.x;
+    if (b >= sph.boundary_count) return;
+    vec3 xb = boundary[b].xyz;
+    float sum = 0.0;
+    ivec3 c = grid_cell(xb);
+    FOR_EACH_NEIGHBOUR_CELL(c, key) {
+        for (uint k = boundary_start[key]; k < boundary_end[key]; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
+    }
+    weighted[b] = vec4(xb, sph.rest_density / sum);
+}

@@ -1,0 +1,28 @@
+// Cells and keys of the uniform neighbour grid (METHOD.md §1). Needs grid (GridParams) in scope.
+//
+// Linear keys are the seed's i + j*nx + k*nx*ny. Morton keys interleave the bits of (i, j, k)
+// (bit b of i goes to bit 3b): cells close in space get close keys, so the sorted particles of
+// neighbouring cells sit closer in memory. Either way every cell has one key, and a key's particles
+// are the run [cell_start[key], cell_end[key]) of the sorted arrays.
+
+ivec3 grid_cell(vec3 x) {
+    ivec3 c = ivec3(floor((x - grid.origin.xyz) / grid.origin.w));
+    return clamp(c, ivec3(0), ivec3(grid.dims.xyz) - 1);   // the guard reports particles outside
+}
+
+uint spread_bits(uint v) {   // 10 bits -> every third of 30
+    v &= 0x3FFu;
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+uint cell_key(ivec3 c) {
+    uvec3 u = uvec3(c);
+    if (grid.morton != 0u) return spread_bits(u.x) | (spread_bits(u.y) << 1) | (spread_bits(u.z) << 2);
+    return u.x + grid.dims.x * (u.y + grid.dims.y * u.z);
+}
+
+bool cell_inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(grid.dims.xyz))); }

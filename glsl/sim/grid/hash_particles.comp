@@ -1,0 +1,18 @@
+#version 430
+// Grid hash (METHOD.md §1 step 1): key[i] = the key of particle i's cell, value[i] = i.
+#include "../../shared/bindings.h"
+
+layout(local_size_x = 256) in;
+layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
+layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
+layout(std430, binding = RANRYU_SSBO_SORT_KEYS) writeonly buffer Keys { uint keys[]; };
+layout(std430, binding = RANRYU_SSBO_SORT_VALUES) writeonly buffer Values { uint values[]; };
+
+#include "../grid.glsl"
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= grid.count) return;
+    keys[i] = cell_key(grid_cell(position[i].xyz));
+    values[i] = i;
+}

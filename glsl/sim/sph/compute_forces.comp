@@ -1,0 +1,46 @@
+#version 430
+// Acceleration of every fluid particle (docs/SPH.md eqs. (4), (5)) plus gravity:
+//     a_i = g - sum_j m (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij - sum_b psi_b (p_i/rho_i^2) gradW_ib
+//           + 10 nu sum_j (m/rho_j) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
+// Input: sorted positions, velocities, density (rho, p). Output: accel[i].xyz.
+// Records the substep's max |a| for the time step (eq. (7)).
+#include "sph_common.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
+layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430, binding = RANRYU_SSBO_DENSITY) readonly buffer Density { vec4 density[]; };
+layout(std430, binding = RANRYU_SSBO_ACCEL) writeonly buffer Accel { vec4 accel[]; };
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= sph.particle_count) return;
+    vec3 xi = position[i].xyz;
+    vec3 vi = velocity[i].xyz;
+    vec2 di = density[i].xy;
+    float pi_term = di.y / (di.x * di.x);
+    float h = sph.h;
+    float eps = 0.01 * h * h;
+    vec3 a_pressure = vec3(0.0), a_viscous = vec3(0.0);
+    ivec3 c = grid_cell(xi);
+    FOR_EACH_NEIGHBOUR_CELL(c, key) {
+        for (uint j = cell_start[key]; j < cell_end[key]; ++j) {
+            vec3 d = xi - position[j].xyz;
+            float r = length(d);
+            if (r >= h || j == i) continue;
+            vec3 g = kernel_grad(d, r, h);
+            vec2 dj = density[j].xy;
+            a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
+            a_viscous += (dot(vi - velocity[j].xyz, d) / ((r * r + eps) * dj.x)) * g;
+        }
+        for (uint b = boundary_start[key]; b < boundary_end[key]; ++b) {
+            vec3 d = xi - boundary[b].xyz;
+            float r = length(d);
+            if (r >= h) continue;
+            a_pressure -= (boundary[b].w * pi_term / sph.mass) * kernel_grad(d, r, h);
+        }
+    }
+    vec3 a = sph.gravity.xyz + sph.mass * (a_pressure + 10.0 * sph.viscosity * a_viscous);
+    accel[i] = vec4(a, 0.0);
+    atomicMax(step.max_accel, max_bits(length(a)));
+}

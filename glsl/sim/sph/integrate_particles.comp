@@ -1,0 +1,36 @@
+#version 430
+// Symplectic Euler (docs/SPH.md eq. (6)) with the substep's dt from the GPU (choose_time_step):
+//     v_i += dt a_i,   x_i += dt v_i.
+// Guard records (StepState): non-finite values, particles outside the domain, the frame's and the
+// substep's max |v|; and the surge front, the largest x - domain_min.x among particles within
+// sph.front_band of the floor.
+#include "sph_common.glsl"
+
+layout(local_size_x = 256) in;
+layout(std430, binding = RANRYU_SSBO_POSITION) buffer Positions { vec4 position[]; };
+layout(std430, binding = RANRYU_SSBO_VELOCITY) buffer Velocities { vec4 velocity[]; };
+layout(std430, binding = RANRYU_SSBO_ACCEL) readonly buffer Accel { vec4 accel[]; };
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= sph.particle_count) return;
+    float dt = step.dt;
+    vec3 v = velocity[i].xyz + dt * accel[i].xyz;
+    vec3 x = position[i].xyz + dt * v;
+    position[i] = vec4(x, position[i].w);
+    velocity[i] = vec4(v, velocity[i].w);
+
+    if (any(isnan(x)) || any(isinf(x)) || any(isnan(v)) || any(isinf(v))) {
+        atomicAdd(step.nan_count, 1u);
+        atomicMin(step.nan_index, i);
+        return;
+    }
+    if (any(lessThan(x, sph.domain_min.xyz)) || any(greaterThan(x, sph.domain_max.xyz))) {
+        atomicAdd(step.escaped_count, 1u);
+        atomicMin(step.escaped_index, i);
+    }
+    uint speed = max_bits(length(v));
+    atomicMax(step.max_speed, speed);
+    if (speed > atomicMax(step.frame_max_speed, speed)) step.speed_index = i;
+    if (x.y - sph.domain_min.y < sph.front_band) atomicMax(step.front, max_bits(x.x - sph.domain_min.x));
+}
