@@ -1,6 +1,8 @@
 #version 430
 // Boundary particle weights (docs/SPH.md eq. (2); Akinci et al. 2012 eqs. 4-5), once at start:
-//     psi_b = rho0 V_b,   V_b = 1 / sum_b' W(x_b - x_b')   over boundary neighbours b', b included.
+//     psi_b = rho0 V_b,   V_b = min(1 / sum_b' W(x_b - x_b'), dx^3)   over boundary neighbours b', b included.
+// The cap: boundary particles sit on the fluid's lattice, where a surface particle's half-empty
+// neighbourhood would make V_b = 1.18 dx^3 and the fluid beside the wall 2.6 % too dense.
 // Input: boundary particles sorted by cell, with their cell ranges. Output: weighted[b] = (x_b, psi_b),
 // which the caller copies over the boundary array.
 #include "../sph/sph_common.glsl"
@@ -17,5 +19,6 @@ void main() {
     FOR_EACH_NEIGHBOUR_CELL(c, key) {
         for (uint k = boundary_start[key]; k < boundary_end[key]; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
     }
-    weighted[b] = vec4(xb, sph.rest_density / sum);
+    float cell = sph.spacing * sph.spacing * sph.spacing;
+    weighted[b] = vec4(xb, sph.rest_density * min(1.0 / sum, cell));
 }

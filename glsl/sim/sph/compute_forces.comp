@@ -1,7 +1,7 @@
 #version 430
 // Acceleration of every fluid particle (docs/SPH.md eqs. (4), (5)) plus gravity:
 //     a_i = g - sum_j m (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij - sum_b psi_b (p_i/rho_i^2) gradW_ib
-//           + 10 nu sum_j (m/rho_j) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
+//           + 10 nu sum_j (2m/(rho_i + rho_j)) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
 // Input: sorted positions, velocities, density (rho, p). Output: accel[i].xyz.
 // Records the substep's max |a| for the time step (eq. (7)).
 #include "sph_common.glsl"
@@ -31,7 +31,7 @@ void main() {
             vec3 g = kernel_grad(d, r, h);
             vec2 dj = density[j].xy;
             a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
-            a_viscous += (dot(vi - velocity[j].xyz, d) / ((r * r + eps) * dj.x)) * g;
+            a_viscous += (2.0 * dot(vi - velocity[j].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
         }
         for (uint b = boundary_start[key]; b < boundary_end[key]; ++b) {
             vec3 d = xi - boundary[b].xyz;
