@@ -45,10 +45,13 @@ Report summarize(const GpuTimer& timer, RunInfo info) {
     const double nframes = double(std::max<std::size_t>(frames.size(), 1));
     for (const PassSamples& p : timer.passes()) {
         if (p.ms.empty()) continue;
-        const double calls = std::accumulate(p.calls.begin(), p.calls.end(), 0.0) / nframes;
-        r.passes.push_back(row(p.name, p.ms, calls, total));
+        const double all_calls = std::accumulate(p.calls.begin(), p.calls.end(), 0.0);
+        PassRow pr = row(p.name, p.ms, all_calls / nframes, total);
+        pr.ms_per_call = std::accumulate(p.ms.begin(), p.ms.end(), 0.0) / std::max(all_calls, 1.0);
+        r.passes.push_back(pr);
     }
     r.frame = row("frame (GPU span)", frames, 1.0, total);
+    r.frame.ms_per_call = total / nframes;
     return r;
 }
 
@@ -59,12 +62,12 @@ std::string table(const Report& r) {
     out << "scene " << r.info.scene << ": " << r.info.particles << " particles, " << r.info.width << "x"
         << r.info.height << ", " << r.info.frames << " frames timed after " << r.info.warmup << " warm-up, "
         << r.info.substeps << " substeps/frame\n";
-    std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
-                  "max ms", "share");
+    std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
+                  "max ms", "ms/call", "share");
     out << line;
     auto print = [&](const PassRow& p) {
-        std::snprintf(line, sizeof line, "%-22s %9.2f %10.4f %10.4f %10.4f %6.1f%%\n", p.name.c_str(), p.calls_per_frame,
-                      p.min_ms, p.median_ms, p.max_ms, 100.0 * p.share);
+        std::snprintf(line, sizeof line, "%-22s %9.2f %10.4f %10.4f %10.4f %10.4f %6.1f%%\n", p.name.c_str(),
+                      p.calls_per_frame, p.min_ms, p.median_ms, p.max_ms, p.ms_per_call, 100.0 * p.share);
         out << line;
     };
     for (const PassRow& p : r.passes) print(p);
@@ -76,7 +79,8 @@ nlohmann::json to_json(const Report& r) {
     auto pass = [](const PassRow& p) {
         return nlohmann::json{{"name", p.name},       {"calls_per_frame", p.calls_per_frame},
                               {"min_ms", p.min_ms},   {"median_ms", p.median_ms},
-                              {"max_ms", p.max_ms},   {"share", p.share}};
+                              {"max_ms", p.max_ms},   {"ms_per_call", p.ms_per_call},
+                              {"share", p.share}};
     };
     nlohmann::json passes = nlohmann::json::array();
     for (const PassRow& p : r.passes) passes.push_back(pass(p));
@@ -98,12 +102,12 @@ nlohmann::json to_json(const Report& r) {
 
 std::string to_csv(const Report& r) {
     std::ostringstream out;
-    out << "device,driver,date,scene,particles,width,height,frames,pass,calls_per_frame,min_ms,median_ms,max_ms,share\n";
+    out << "device,driver,date,scene,particles,width,height,frames,pass,calls_per_frame,min_ms,median_ms,max_ms,ms_per_call,share\n";
     auto line = [&](const PassRow& p) {
         out << csv_field(r.info.renderer) << ',' << csv_field(r.info.driver) << ',' << r.info.date << ','
             << csv_field(r.info.scene) << ',' << r.info.particles << ',' << r.info.width << ',' << r.info.height << ','
             << r.info.frames << ',' << csv_field(p.name) << ',' << p.calls_per_frame << ',' << p.min_ms << ','
-            << p.median_ms << ',' << p.max_ms << ',' << p.share << '\n';
+            << p.median_ms << ',' << p.max_ms << ',' << p.ms_per_call << ',' << p.share << '\n';
     };
     for (const PassRow& p : r.passes) line(p);
     line(r.frame);

@@ -28,6 +28,7 @@ struct PassRow {
     std::string name;
     double calls_per_frame = 0.0;
     double min_ms = 0.0, median_ms = 0.0, max_ms = 0.0;   // per frame, the pass's calls summed
+    double ms_per_call = 0.0;                             // all its time over all its calls
     double share = 0.0;                                   // of the summed GPU frame spans
 };
 

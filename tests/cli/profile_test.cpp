@@ -20,7 +20,7 @@ const std::vector<std::string> kFramePasses = {"integrate", "clear", "draw-floor
 
 struct Row {
     std::string name;
-    double calls = -1, min = -1, median = -1, max = -1, share = -1;
+    double calls = -1, min = -1, median = -1, max = -1, per_call = -1, share = -1;
 };
 
 struct Table {
@@ -62,15 +62,16 @@ Table parse_table(const std::string& out) {
         std::istringstream in(lines[i]);
         std::vector<std::string> words;
         for (std::string w; in >> w;) words.push_back(w);
-        if (words.size() < 6) throw std::runtime_error("short table row: " + lines[i]);
+        if (words.size() < 7) throw std::runtime_error("short table row: " + lines[i]);
         const std::size_t n = words.size();
         if (!words[n - 1].ends_with("%")) throw std::runtime_error("share is not a percentage: " + lines[i]);
         Row r;
-        for (std::size_t k = 0; k + 5 < n; ++k) r.name += (k ? " " : "") + words[k];
-        r.calls = number(words[n - 5]);
-        r.min = number(words[n - 4]);
-        r.median = number(words[n - 3]);
-        r.max = number(words[n - 2]);
+        for (std::size_t k = 0; k + 6 < n; ++k) r.name += (k ? " " : "") + words[k];
+        r.calls = number(words[n - 6]);
+        r.min = number(words[n - 5]);
+        r.median = number(words[n - 4]);
+        r.max = number(words[n - 3]);
+        r.per_call = number(words[n - 2]);
         r.share = number(words[n - 1].substr(0, words[n - 1].size() - 1));
         t.rows.push_back(r);
     }
@@ -115,7 +116,7 @@ TEST_CASE("ranryu profile prints one row per pass that ran with calls, min, medi
     CHECK_THAT(r.err, !Contains("GL error"));   // Debug builds report every GL error on stderr
     const Table t = parse_table(r.out);
 
-    CHECK(t.header == std::vector<std::string>{"pass", "calls/fr", "min ms", "median ms", "max ms", "share"});
+    CHECK(t.header == std::vector<std::string>{"pass", "calls/fr", "min ms", "median ms", "max ms", "ms/call", "share"});
     CHECK(t.scene == "cli-small");
     CHECK(t.particles == 144);
     std::vector<std::string> names;
@@ -193,7 +194,7 @@ TEST_CASE("ranryu profile --json and --csv write the same passes with device, dr
         INFO(p.dump());
         REQUIRE(p.contains("name"));
         json_passes.push_back(p["name"].get<std::string>());
-        for (const char* key : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "share"}) {
+        for (const char* key : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "ms_per_call", "share"}) {
             INFO("key " << key);
             REQUIRE(p.contains(key));
             REQUIRE(p[key].is_number());
@@ -215,7 +216,7 @@ TEST_CASE("ranryu profile --json and --csv write the same passes with device, dr
     std::map<std::string, std::size_t> col;
     for (std::size_t k = 0; k < header.size(); ++k) col[header[k]] = k;
     for (const char* name : {"device", "driver", "date", "scene", "particles", "pass", "calls_per_frame", "min_ms",
-                             "median_ms", "max_ms", "share"}) {
+                             "median_ms", "max_ms", "ms_per_call", "share"}) {
         INFO("CSV column " << name);
         REQUIRE(col.count(name));
     }
@@ -230,7 +231,7 @@ TEST_CASE("ranryu profile --json and --csv write the same passes with device, dr
         CHECK(row[col["date"]] == j["date"].get<std::string>());
         CHECK(row[col["scene"]] == "cli-small");
         CHECK(row[col["particles"]] == "144");
-        for (const char* name : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "share"}) {
+        for (const char* name : {"calls_per_frame", "min_ms", "median_ms", "max_ms", "ms_per_call", "share"}) {
             INFO("CSV column " << name << " = " << row[col[name]]);
             double v = -1;
             CHECK_NOTHROW(v = number(row[col[name]]));
