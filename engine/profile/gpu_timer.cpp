@@ -1,5 +1,7 @@
 #include "profile/gpu_timer.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace ranryu::profile {
@@ -35,6 +37,9 @@ void GpuTimer::collect(Slot& s) {
             GLuint64 t0 = 0, t1 = 0;
             glGetQueryObjectui64v(s.queries[r.query], GL_QUERY_RESULT, &t0);
             glGetQueryObjectui64v(s.queries[r.query + 1u], GL_QUERY_RESULT, &t1);
+            if (passes_[r.pass].ms.empty() && scratch_calls_[r.pass] == 0 &&
+                std::find(order_.begin(), order_.end(), r.pass) == order_.end())
+                order_.push_back(r.pass);
             scratch_ms_[r.pass] += double(t1 >= t0 ? t1 - t0 : 0) * 1e-6;
             scratch_calls_[r.pass] += 1;
             first = std::min<std::uint64_t>(first, t0);
@@ -89,13 +94,14 @@ void GpuTimer::reset_samples() {
         p.ms.clear();
         p.calls.clear();
     }
+    order_.clear();
     frame_ms_.clear();
 }
 
 GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t) {
+    query_ = timer_.begin(id);   // throws before anything needs undoing
     const std::string& n = t.name(id);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, id.index, GLsizei(n.size()), n.c_str());
-    query_ = timer_.begin(id);
 }
 
 GpuTimer::Scope::~Scope() {

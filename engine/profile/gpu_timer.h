@@ -46,6 +46,8 @@ public:
     void reset_samples();
 
     const std::vector<PassSamples>& passes() const { return passes_; }
+    // Pass indices in the order their first samples came back: the order they run in a frame.
+    const std::vector<std::uint16_t>& first_use_order() const { return order_; }
     const std::vector<double>& frame_ms() const { return frame_ms_; }   // GPU span of each frame read back
     std::uint64_t frames_read() const { return frame_ms_.size(); }
 
@@ -76,6 +78,7 @@ private:
     void collect(Slot& s);
 
     std::vector<PassSamples> passes_;
+    std::vector<std::uint16_t> order_;
     std::vector<Slot> slots_;
     std::vector<double> frame_ms_;
     std::vector<double> scratch_ms_;   // per pass, for one frame

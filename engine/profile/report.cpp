@@ -43,7 +43,8 @@ Report summarize(const GpuTimer& timer, RunInfo info) {
     const auto& frames = timer.frame_ms();
     const double total = std::accumulate(frames.begin(), frames.end(), 0.0);
     const double nframes = double(std::max<std::size_t>(frames.size(), 1));
-    for (const PassSamples& p : timer.passes()) {
+    for (const std::uint16_t index : timer.first_use_order()) {
+        const PassSamples& p = timer.passes()[index];
         if (p.ms.empty()) continue;
         const double all_calls = std::accumulate(p.calls.begin(), p.calls.end(), 0.0);
         PassRow pr = row(p.name, p.ms, all_calls / nframes, total);

@@ -61,6 +61,13 @@ std::string FileSource::describe() const {
 
 namespace {
 
+// Source string k's line L is emitted as line k·kLineStride + L, so the file is known from the
+// line number alone: Mesa reports many errors in source string 0 whatever #line said.
+constexpr long kLineStride = 1000000;
+std::string line_directive(int line, int id) {
+    return "#line " + std::to_string(long(id) * kLineStride + line) + " " + std::to_string(id) + "\n";
+}
+
 std::string normalise(const std::filesystem::path& p) { return p.lexically_normal().generic_string(); }
 
 std::vector<std::string_view> split_lines(std::string_view text) {
@@ -135,9 +142,9 @@ struct Expander {
             const int child = int(out.files.size());
             out.files.push_back(target);
             // GLSL 4.30 §3.3: after "#line L S" the next line is line L of source string S.
-            out.text += "#line 1 " + std::to_string(child) + "\n";
+            out.text += line_directive(1, child);
             expand(target, *body, child, 1);
-            out.text += "#line " + std::to_string(n + 1) + " " + std::to_string(id) + "\n";
+            out.text += line_directive(n + 1, id);
         }
     }
 };
@@ -165,25 +172,31 @@ Preprocessed preprocess(const FileSource& source, const std::string& path, std::
         ex.out.text.append(defines);
         if (defines.back() != '\n') ex.out.text.push_back('\n');
     }
-    ex.out.text += "#line " + std::to_string(version_line + 1) + " 0\n";
+    ex.out.text += line_directive(version_line + 1, 0);
     ex.expand(path, *text, 0, version_line + 1);
     return std::move(ex.out);
 }
 
 std::string annotate_log(std::string_view log, const std::vector<std::string>& files) {
-    // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C1008: ...".
+    // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C1008: ...". A line number of
+    // k·kLineStride + L is line L of file k, whatever source string the driver names.
     static const std::regex mesa(R"((^|\n)(\d+):(\d+)\((\d+)\))");
     static const std::regex nvidia(R"((^|\n)(\d+)\((\d+)\) ?:)");
-    auto name = [&](const std::string& id) {
-        const std::size_t k = std::stoul(id);
-        return k < files.size() ? files[k] : "source string " + id;
+    auto where = [&](const std::string& id, const std::string& line) {
+        std::size_t k = std::stoul(id);
+        unsigned long n = std::stoul(line);
+        if (n > static_cast<unsigned long>(kLineStride)) {
+            k = n / kLineStride;
+            n %= kLineStride;
+        }
+        return (k < files.size() ? files[k] : "source string " + std::to_string(k)) + ":" + std::to_string(n);
     };
     std::string text(log);
     std::string result;
     std::smatch m;
     std::string rest = text;
     while (std::regex_search(rest, m, mesa)) {
-        result += m.prefix().str() + m[1].str() + name(m[2].str()) + ":" + m[3].str() + ":" + m[4].str();
+        result += m.prefix().str() + m[1].str() + where(m[2].str(), m[3].str()) + ":" + m[4].str();
         rest = m.suffix().str();
     }
     result += rest;
@@ -191,7 +204,7 @@ std::string annotate_log(std::string_view log, const std::vector<std::string>& f
     result.clear();
     rest = text;
     while (std::regex_search(rest, m, nvidia)) {
-        result += m.prefix().str() + m[1].str() + name(m[2].str()) + ":" + m[3].str() + ":";
+        result += m.prefix().str() + m[1].str() + where(m[2].str(), m[3].str()) + ":";
         rest = m.suffix().str();
     }
     result += rest;

@@ -1,0 +1,74 @@
+#version 430
+// Tests only (tests/gl/interop_test.cpp). Declares the shared parameter structs as the engine's
+// shaders do (std140 uniform blocks; StepState a std430 storage block) at their shared binding
+// points and copies every member, as raw 32-bit words, into RANRYU_SSBO_PROBE_OUT in the order
+// below, followed by the values of the shared macros as GLSL sees them. The test builds the same
+// sequence from the C++ structs and macros and compares bits.
+//
+// Output words, in order (a matrix is 16 words, column-major; a vec4/uvec4 is 4):
+//   LayoutProbe:  m, v, u, f0, f1, u0, u1                                            28 words
+//   SimParams:    gravity, domain_min, domain_max, dt, restitution, particle_radius,
+//                 particle_count                                                     16 words
+//   FrameParams:  view, proj, view_proj, eye, light_dir, light_color, material,
+//                 viewport, speed_scale, tank_min, tank_max                          80 words
+//   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
+//   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
+//   StepState:    its 20 scalars in order                                            20 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               34 words
+#include "../shared/bindings.h"
+
+layout(local_size_x = 1) in;
+
+layout(std140, binding = RANRYU_UBO_PROBE) uniform ProbeBlock { LayoutProbe probe; };
+layout(std140, binding = RANRYU_UBO_SIM) uniform SimBlock { SimParams sim; };
+layout(std140, binding = RANRYU_UBO_FRAME) uniform FrameBlock { FrameParams frame; };
+layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
+layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
+layout(std430, binding = RANRYU_SSBO_STEP) readonly buffer Step { StepState step; };
+layout(std430, binding = RANRYU_SSBO_PROBE_OUT) buffer ProbeOut { uint words[]; };
+
+const uint kMacros[34] = uint[34](
+    RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
+    RANRYU_SSBO_POSITION, RANRYU_SSBO_VELOCITY,
+    RANRYU_SSBO_SORT_KEYS, RANRYU_SSBO_SORT_VALUES, RANRYU_SSBO_SORT_KEYS_ALT, RANRYU_SSBO_SORT_VALUES_ALT,
+    RANRYU_SSBO_SORT_HISTOGRAM, RANRYU_SSBO_PROBE_OUT,
+    RANRYU_SSBO_CELL_START, RANRYU_SSBO_CELL_END, RANRYU_SSBO_SORTED_POSITION, RANRYU_SSBO_SORTED_VELOCITY,
+    RANRYU_SSBO_DENSITY, RANRYU_SSBO_ACCEL, RANRYU_SSBO_REDUCE, RANRYU_SSBO_BOUNDARY, RANRYU_SSBO_STEP,
+    RANRYU_SSBO_SCRATCH, RANRYU_SSBO_BOUNDARY_CELL_START, RANRYU_SSBO_BOUNDARY_CELL_END,
+    RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
+    RANRYU_ATTR_POSITION, RANRYU_ATTR_VELOCITY,
+    RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD);
+
+uint k = 0u;
+void put(float x) { words[k++] = floatBitsToUint(x); }
+void put(uint x) { words[k++] = x; }
+void put(vec4 x) { for (int i = 0; i < 4; ++i) put(x[i]); }
+void put(uvec4 x) { for (int i = 0; i < 4; ++i) put(x[i]); }
+void put(mat4 x) { for (int c = 0; c < 4; ++c) put(x[c]); }
+
+void main() {
+    put(probe.m); put(probe.v); put(probe.u); put(probe.f0); put(probe.f1); put(probe.u0); put(probe.u1);
+
+    put(sim.gravity); put(sim.domain_min); put(sim.domain_max);
+    put(sim.dt); put(sim.restitution); put(sim.particle_radius); put(sim.particle_count);
+
+    put(frame.view); put(frame.proj); put(frame.view_proj);
+    put(frame.eye); put(frame.light_dir); put(frame.light_color); put(frame.material);
+    put(frame.viewport); put(frame.speed_scale); put(frame.tank_min); put(frame.tank_max);
+
+    put(grid.origin); put(grid.dims); put(grid.count); put(grid.morton); put(grid.key_max); put(grid.pad0);
+
+    put(sph.gravity); put(sph.domain_min); put(sph.domain_max);
+    put(sph.h); put(sph.mass); put(sph.rest_density); put(sph.stiffness); put(sph.viscosity);
+    put(sph.sound_speed); put(sph.spacing); put(sph.cfl); put(sph.force_factor); put(sph.dt_max);
+    put(sph.dt_floor); put(sph.density_limit); put(sph.speed_limit); put(sph.particle_count);
+    put(sph.boundary_count); put(sph.front_band);
+
+    put(step.dt); put(step.time); put(step.frame_left); put(step.substeps_left); put(step.max_speed);
+    put(step.max_accel); put(step.frame_max_speed); put(step.frame_max_density); put(step.frame_min_dt);
+    put(step.frame_substeps); put(step.nan_count); put(step.nan_index); put(step.escaped_count);
+    put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
+    put(step.frame); put(step.steps); put(step.pad0);
+
+    for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
+}

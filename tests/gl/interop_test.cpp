@@ -1,0 +1,425 @@
+// glsl/shared/bindings.h is compiled by C++ and by GLSL. These cases hold the two readings equal:
+// (a) every member the driver reports in the blocks (std140 uniform blocks; StepState a std430
+//     storage block, as the SPH passes declare it) sits at the C++ offsetof and has the C++ type,
+//     and each block is sizeof bytes;
+// (b) random values written through the C++ structs come back bit for bit through the shader;
+// (c) the shared macros (binding points, locations, sort constants) agree in both languages.
+// The probe shader is glsl/test/probe_layout.comp; its header comment gives the output order.
+#include "support/gl_fixture.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "gl/gl.h"
+#include "gl/objects.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+
+using ranryu::gl::Buffer;
+using ranryu::shader::FileSource;
+using ranryu::shader::Program;
+namespace gpu = ranryu::gpu;
+
+namespace {
+
+// What C++ says about one member: its byte offset in the struct and the GLSL type it must have.
+struct Member {
+    std::size_t offset;
+    GLenum type;
+};
+
+// Every member of the three shared structs, by the name the driver gives it (instance.member).
+// offsetof on the glm-member structs is conditionally supported; GCC and Clang give the layout.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Winvalid-offsetof"
+const std::map<std::string, Member>& cpp_members() {
+    static const std::map<std::string, Member> table = {
+        {"probe.m", {offsetof(gpu::LayoutProbe, m), GL_FLOAT_MAT4}},
+        {"probe.v", {offsetof(gpu::LayoutProbe, v), GL_FLOAT_VEC4}},
+        {"probe.u", {offsetof(gpu::LayoutProbe, u), GL_UNSIGNED_INT_VEC4}},
+        {"probe.f0", {offsetof(gpu::LayoutProbe, f0), GL_FLOAT}},
+        {"probe.f1", {offsetof(gpu::LayoutProbe, f1), GL_FLOAT}},
+        {"probe.u0", {offsetof(gpu::LayoutProbe, u0), GL_UNSIGNED_INT}},
+        {"probe.u1", {offsetof(gpu::LayoutProbe, u1), GL_UNSIGNED_INT}},
+
+        {"sim.gravity", {offsetof(gpu::SimParams, gravity), GL_FLOAT_VEC4}},
+        {"sim.domain_min", {offsetof(gpu::SimParams, domain_min), GL_FLOAT_VEC4}},
+        {"sim.domain_max", {offsetof(gpu::SimParams, domain_max), GL_FLOAT_VEC4}},
+        {"sim.dt", {offsetof(gpu::SimParams, dt), GL_FLOAT}},
+        {"sim.restitution", {offsetof(gpu::SimParams, restitution), GL_FLOAT}},
+        {"sim.particle_radius", {offsetof(gpu::SimParams, particle_radius), GL_FLOAT}},
+        {"sim.particle_count", {offsetof(gpu::SimParams, particle_count), GL_UNSIGNED_INT}},
+
+        {"frame.view", {offsetof(gpu::FrameParams, view), GL_FLOAT_MAT4}},
+        {"frame.proj", {offsetof(gpu::FrameParams, proj), GL_FLOAT_MAT4}},
+        {"frame.view_proj", {offsetof(gpu::FrameParams, view_proj), GL_FLOAT_MAT4}},
+        {"frame.eye", {offsetof(gpu::FrameParams, eye), GL_FLOAT_VEC4}},
+        {"frame.light_dir", {offsetof(gpu::FrameParams, light_dir), GL_FLOAT_VEC4}},
+        {"frame.light_color", {offsetof(gpu::FrameParams, light_color), GL_FLOAT_VEC4}},
+        {"frame.material", {offsetof(gpu::FrameParams, material), GL_FLOAT_VEC4}},
+        {"frame.viewport", {offsetof(gpu::FrameParams, viewport), GL_FLOAT_VEC4}},
+        {"frame.speed_scale", {offsetof(gpu::FrameParams, speed_scale), GL_FLOAT_VEC4}},
+        {"frame.tank_min", {offsetof(gpu::FrameParams, tank_min), GL_FLOAT_VEC4}},
+        {"frame.tank_max", {offsetof(gpu::FrameParams, tank_max), GL_FLOAT_VEC4}},
+
+        {"grid.origin", {offsetof(gpu::GridParams, origin), GL_FLOAT_VEC4}},
+        {"grid.dims", {offsetof(gpu::GridParams, dims), GL_UNSIGNED_INT_VEC4}},
+        {"grid.count", {offsetof(gpu::GridParams, count), GL_UNSIGNED_INT}},
+        {"grid.morton", {offsetof(gpu::GridParams, morton), GL_UNSIGNED_INT}},
+        {"grid.key_max", {offsetof(gpu::GridParams, key_max), GL_UNSIGNED_INT}},
+        {"grid.pad0", {offsetof(gpu::GridParams, pad0), GL_UNSIGNED_INT}},
+
+        {"sph.gravity", {offsetof(gpu::SphParams, gravity), GL_FLOAT_VEC4}},
+        {"sph.domain_min", {offsetof(gpu::SphParams, domain_min), GL_FLOAT_VEC4}},
+        {"sph.domain_max", {offsetof(gpu::SphParams, domain_max), GL_FLOAT_VEC4}},
+        {"sph.h", {offsetof(gpu::SphParams, h), GL_FLOAT}},
+        {"sph.mass", {offsetof(gpu::SphParams, mass), GL_FLOAT}},
+        {"sph.rest_density", {offsetof(gpu::SphParams, rest_density), GL_FLOAT}},
+        {"sph.stiffness", {offsetof(gpu::SphParams, stiffness), GL_FLOAT}},
+        {"sph.viscosity", {offsetof(gpu::SphParams, viscosity), GL_FLOAT}},
+        {"sph.sound_speed", {offsetof(gpu::SphParams, sound_speed), GL_FLOAT}},
+        {"sph.spacing", {offsetof(gpu::SphParams, spacing), GL_FLOAT}},
+        {"sph.cfl", {offsetof(gpu::SphParams, cfl), GL_FLOAT}},
+        {"sph.force_factor", {offsetof(gpu::SphParams, force_factor), GL_FLOAT}},
+        {"sph.dt_max", {offsetof(gpu::SphParams, dt_max), GL_FLOAT}},
+        {"sph.dt_floor", {offsetof(gpu::SphParams, dt_floor), GL_FLOAT}},
+        {"sph.density_limit", {offsetof(gpu::SphParams, density_limit), GL_FLOAT}},
+        {"sph.speed_limit", {offsetof(gpu::SphParams, speed_limit), GL_FLOAT}},
+        {"sph.particle_count", {offsetof(gpu::SphParams, particle_count), GL_UNSIGNED_INT}},
+        {"sph.boundary_count", {offsetof(gpu::SphParams, boundary_count), GL_UNSIGNED_INT}},
+        {"sph.front_band", {offsetof(gpu::SphParams, front_band), GL_FLOAT}},
+
+        {"step.dt", {offsetof(gpu::StepState, dt), GL_FLOAT}},
+        {"step.time", {offsetof(gpu::StepState, time), GL_FLOAT}},
+        {"step.frame_left", {offsetof(gpu::StepState, frame_left), GL_FLOAT}},
+        {"step.substeps_left", {offsetof(gpu::StepState, substeps_left), GL_UNSIGNED_INT}},
+        {"step.max_speed", {offsetof(gpu::StepState, max_speed), GL_UNSIGNED_INT}},
+        {"step.max_accel", {offsetof(gpu::StepState, max_accel), GL_UNSIGNED_INT}},
+        {"step.frame_max_speed", {offsetof(gpu::StepState, frame_max_speed), GL_UNSIGNED_INT}},
+        {"step.frame_max_density", {offsetof(gpu::StepState, frame_max_density), GL_UNSIGNED_INT}},
+        {"step.frame_min_dt", {offsetof(gpu::StepState, frame_min_dt), GL_FLOAT}},
+        {"step.frame_substeps", {offsetof(gpu::StepState, frame_substeps), GL_UNSIGNED_INT}},
+        {"step.nan_count", {offsetof(gpu::StepState, nan_count), GL_UNSIGNED_INT}},
+        {"step.nan_index", {offsetof(gpu::StepState, nan_index), GL_UNSIGNED_INT}},
+        {"step.escaped_count", {offsetof(gpu::StepState, escaped_count), GL_UNSIGNED_INT}},
+        {"step.escaped_index", {offsetof(gpu::StepState, escaped_index), GL_UNSIGNED_INT}},
+        {"step.speed_index", {offsetof(gpu::StepState, speed_index), GL_UNSIGNED_INT}},
+        {"step.density_index", {offsetof(gpu::StepState, density_index), GL_UNSIGNED_INT}},
+        {"step.front", {offsetof(gpu::StepState, front), GL_UNSIGNED_INT}},
+        {"step.frame", {offsetof(gpu::StepState, frame), GL_UNSIGNED_INT}},
+        {"step.steps", {offsetof(gpu::StepState, steps), GL_UNSIGNED_INT}},
+        {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+    };
+    return table;
+}
+#pragma GCC diagnostic pop
+
+// The probe's blocks: GLSL block name, instance prefix, C++ size, binding point, and the program
+// interfaces of the block and of its members (uniform block or shader storage block).
+struct Block {
+    const char* name;
+    const char* prefix;
+    std::size_t size;
+    GLuint binding;
+    GLenum block_interface;
+    GLenum member_interface;
+};
+const Block kBlocks[] = {
+    {"ProbeBlock", "probe.", sizeof(gpu::LayoutProbe), RANRYU_UBO_PROBE, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"SimBlock", "sim.", sizeof(gpu::SimParams), RANRYU_UBO_SIM, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"FrameBlock", "frame.", sizeof(gpu::FrameParams), RANRYU_UBO_FRAME, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"GridBlock", "grid.", sizeof(gpu::GridParams), RANRYU_UBO_GRID, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"SphBlock", "sph.", sizeof(gpu::SphParams), RANRYU_UBO_SPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"Step", "step.", sizeof(gpu::StepState), RANRYU_SSBO_STEP, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+};
+
+// The binding macros in the order of kMacros in probe_layout.comp.
+const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
+    {"RANRYU_UBO_FRAME", RANRYU_UBO_FRAME},
+    {"RANRYU_UBO_SIM", RANRYU_UBO_SIM},
+    {"RANRYU_UBO_GRID", RANRYU_UBO_GRID},
+    {"RANRYU_UBO_SPH", RANRYU_UBO_SPH},
+    {"RANRYU_UBO_PROBE", RANRYU_UBO_PROBE},
+    {"RANRYU_SSBO_POSITION", RANRYU_SSBO_POSITION},
+    {"RANRYU_SSBO_VELOCITY", RANRYU_SSBO_VELOCITY},
+    {"RANRYU_SSBO_SORT_KEYS", RANRYU_SSBO_SORT_KEYS},
+    {"RANRYU_SSBO_SORT_VALUES", RANRYU_SSBO_SORT_VALUES},
+    {"RANRYU_SSBO_SORT_KEYS_ALT", RANRYU_SSBO_SORT_KEYS_ALT},
+    {"RANRYU_SSBO_SORT_VALUES_ALT", RANRYU_SSBO_SORT_VALUES_ALT},
+    {"RANRYU_SSBO_SORT_HISTOGRAM", RANRYU_SSBO_SORT_HISTOGRAM},
+    {"RANRYU_SSBO_PROBE_OUT", RANRYU_SSBO_PROBE_OUT},
+    {"RANRYU_SSBO_CELL_START", RANRYU_SSBO_CELL_START},
+    {"RANRYU_SSBO_CELL_END", RANRYU_SSBO_CELL_END},
+    {"RANRYU_SSBO_SORTED_POSITION", RANRYU_SSBO_SORTED_POSITION},
+    {"RANRYU_SSBO_SORTED_VELOCITY", RANRYU_SSBO_SORTED_VELOCITY},
+    {"RANRYU_SSBO_DENSITY", RANRYU_SSBO_DENSITY},
+    {"RANRYU_SSBO_ACCEL", RANRYU_SSBO_ACCEL},
+    {"RANRYU_SSBO_REDUCE", RANRYU_SSBO_REDUCE},
+    {"RANRYU_SSBO_BOUNDARY", RANRYU_SSBO_BOUNDARY},
+    {"RANRYU_SSBO_STEP", RANRYU_SSBO_STEP},
+    {"RANRYU_SSBO_SCRATCH", RANRYU_SSBO_SCRATCH},
+    {"RANRYU_SSBO_BOUNDARY_CELL_START", RANRYU_SSBO_BOUNDARY_CELL_START},
+    {"RANRYU_SSBO_BOUNDARY_CELL_END", RANRYU_SSBO_BOUNDARY_CELL_END},
+    {"RANRYU_LOC_COUNT", RANRYU_LOC_COUNT},
+    {"RANRYU_LOC_SHIFT", RANRYU_LOC_SHIFT},
+    {"RANRYU_LOC_STAGE", RANRYU_LOC_STAGE},
+    {"RANRYU_LOC_AUX", RANRYU_LOC_AUX},
+    {"RANRYU_ATTR_POSITION", RANRYU_ATTR_POSITION},
+    {"RANRYU_ATTR_VELOCITY", RANRYU_ATTR_VELOCITY},
+    {"RANRYU_SORT_RADIX_BITS", RANRYU_SORT_RADIX_BITS},
+    {"RANRYU_SORT_RADIX_ITEMS_PER_THREAD", RANRYU_SORT_RADIX_ITEMS_PER_THREAD},
+    {"RANRYU_SORT_BITONIC_ITEMS_PER_THREAD", RANRYU_SORT_BITONIC_ITEMS_PER_THREAD},
+};
+
+const Program& probe() {
+    static const Program p = Program::compute(FileSource::embedded(), "test/probe_layout.comp");
+    return p;
+}
+
+std::uint32_t bits(float x) {
+    std::uint32_t u;
+    std::memcpy(&u, &x, 4);
+    return u;
+}
+
+// Distinct random values, so that a member read from a neighbour's slot cannot match by chance.
+class Distinct {
+public:
+    explicit Distinct(ranryu::test::Random& r) : r_(r) {}
+    float f() {   // a normal float of either sign, 1e-3 ≤ |x| < 1e3 (no denormals, NaNs or zeros)
+        for (;;) {
+            const float x = (r_.below(2) ? -1.0f : 1.0f) * std::exp2(r_.uniform(-9.9f, 9.9f));
+            if (used_.insert(bits(x)).second) return x;
+        }
+    }
+    std::uint32_t u() {
+        for (;;) {
+            const std::uint32_t x = std::uint32_t(r_.engine()());
+            if (used_.insert(x).second) return x;
+        }
+    }
+    glm::vec4 v4() { return {f(), f(), f(), f()}; }
+    glm::uvec4 u4() { return {u(), u(), u(), u()}; }
+    glm::mat4 m4() { return {v4(), v4(), v4(), v4()}; }
+
+private:
+    ranryu::test::Random& r_;
+    std::set<std::uint32_t> used_;
+};
+
+// Appends the words of a value in the probe's order (matrices column-major, as glm stores them).
+struct Words {
+    std::vector<std::uint32_t> w;
+    void put(float x) { w.push_back(bits(x)); }
+    void put(std::uint32_t x) { w.push_back(x); }
+    void put(const glm::vec4& x) { for (int i = 0; i < 4; ++i) put(x[i]); }
+    void put(const glm::uvec4& x) { for (int i = 0; i < 4; ++i) put(x[i]); }
+    void put(const glm::mat4& x) { for (int c = 0; c < 4; ++c) put(x[c]); }
+};
+
+GLint resource(GLuint program, GLenum interface, GLuint index, GLenum prop) {
+    GLint v = -1;
+    glGetProgramResourceiv(program, interface, index, 1, &prop, 1, nullptr, &v);
+    return v;
+}
+
+std::string resource_name(GLuint program, GLenum interface, GLuint index) {
+    char name[256] = {};
+    GLsizei length = 0;
+    glGetProgramResourceName(program, interface, index, GLsizei(sizeof name), &length, name);
+    return std::string(name, std::size_t(length));
+}
+
+}  // namespace
+
+TEST_CASE("every member of the shared structs sits where C++ puts it") {
+    ranryu::test::context();
+    const GLuint prog = probe().id();
+    std::set<std::string> seen;
+    for (const Block& b : kBlocks) {
+        INFO("block " << b.name);
+        const GLuint block = glGetProgramResourceIndex(prog, b.block_interface, b.name);
+        REQUIRE(block != GL_INVALID_INDEX);
+        CHECK(std::size_t(resource(prog, b.block_interface, block, GL_BUFFER_DATA_SIZE)) == b.size);
+        CHECK(GLuint(resource(prog, b.block_interface, block, GL_BUFFER_BINDING)) == b.binding);
+
+        // All members GL reports, not just the ones C++ knows: a GLSL-only member fails the lookup.
+        // (std140 blocks have every member active; the probe reads every member of the others.)
+        const GLint count = resource(prog, b.block_interface, block, GL_NUM_ACTIVE_VARIABLES);
+        REQUIRE(count > 0);
+        std::vector<GLint> vars(std::size_t(count), -1);
+        const GLenum prop = GL_ACTIVE_VARIABLES;
+        glGetProgramResourceiv(prog, b.block_interface, block, 1, &prop, count, nullptr, vars.data());
+        for (const GLint var : vars) {
+            REQUIRE(var >= 0);
+            const GLenum mi = b.member_interface;
+            const std::string name = resource_name(prog, mi, GLuint(var));
+            INFO("member " << name);
+            CHECK(name.rfind(b.prefix, 0) == 0);
+            const auto it = cpp_members().find(name);
+            REQUIRE(it != cpp_members().end());
+            seen.insert(name);
+            CHECK(resource(prog, mi, GLuint(var), GL_BLOCK_INDEX) == GLint(block));
+            CHECK(std::size_t(resource(prog, mi, GLuint(var), GL_OFFSET)) == it->second.offset);
+            CHECK(GLenum(resource(prog, mi, GLuint(var), GL_TYPE)) == it->second.type);
+            CHECK(resource(prog, mi, GLuint(var), GL_ARRAY_SIZE) == 1);
+            if (it->second.type == GL_FLOAT_MAT4) {
+                // glm::mat4: four column vec4s, packed.
+                CHECK(resource(prog, mi, GLuint(var), GL_MATRIX_STRIDE) == GLint(sizeof(glm::vec4)));
+                CHECK(resource(prog, mi, GLuint(var), GL_IS_ROW_MAJOR) == 0);
+            }
+        }
+    }
+    // And every member C++ knows was reported by GL.
+    CHECK(seen.size() == cpp_members().size());
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the macros agree") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Distinct d(rng);
+
+    gpu::LayoutProbe lp{};
+    lp.m = d.m4();
+    lp.v = d.v4();
+    lp.u = d.u4();
+    lp.f0 = d.f();
+    lp.f1 = d.f();
+    lp.u0 = d.u();
+    lp.u1 = d.u();
+
+    gpu::SimParams sp{};
+    sp.gravity = d.v4();
+    sp.domain_min = d.v4();
+    sp.domain_max = d.v4();
+    sp.dt = d.f();
+    sp.restitution = d.f();
+    sp.particle_radius = d.f();
+    sp.particle_count = d.u();
+
+    gpu::FrameParams fp{};
+    fp.view = d.m4();
+    fp.proj = d.m4();
+    fp.view_proj = d.m4();
+    fp.eye = d.v4();
+    fp.light_dir = d.v4();
+    fp.light_color = d.v4();
+    fp.material = d.v4();
+    fp.viewport = d.v4();
+    fp.speed_scale = d.v4();
+    fp.tank_min = d.v4();
+    fp.tank_max = d.v4();
+
+    gpu::GridParams gp{};
+    gp.origin = d.v4();
+    gp.dims = d.u4();
+    gp.count = d.u();
+    gp.morton = d.u();
+    gp.key_max = d.u();
+    gp.pad0 = d.u();
+
+    gpu::SphParams hp{};
+    hp.gravity = d.v4();
+    hp.domain_min = d.v4();
+    hp.domain_max = d.v4();
+    for (float* f : {&hp.h, &hp.mass, &hp.rest_density, &hp.stiffness, &hp.viscosity, &hp.sound_speed, &hp.spacing,
+                     &hp.cfl, &hp.force_factor, &hp.dt_max, &hp.dt_floor, &hp.density_limit, &hp.speed_limit})
+        *f = d.f();
+    hp.particle_count = d.u();
+    hp.boundary_count = d.u();
+    hp.front_band = d.f();
+
+    gpu::StepState st{};
+    st.dt = d.f();
+    st.time = d.f();
+    st.frame_left = d.f();
+    for (std::uint32_t* u : {&st.substeps_left, &st.max_speed, &st.max_accel, &st.frame_max_speed, &st.frame_max_density})
+        *u = d.u();
+    st.frame_min_dt = d.f();
+    for (std::uint32_t* u : {&st.frame_substeps, &st.nan_count, &st.nan_index, &st.escaped_count, &st.escaped_index,
+                             &st.speed_index, &st.density_index, &st.front, &st.frame, &st.steps, &st.pad0})
+        *u = d.u();
+
+    Words expect;
+    expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
+    expect.put(lp.u0); expect.put(lp.u1);
+    const std::size_t probe_end = expect.w.size();
+    expect.put(sp.gravity); expect.put(sp.domain_min); expect.put(sp.domain_max); expect.put(sp.dt);
+    expect.put(sp.restitution); expect.put(sp.particle_radius); expect.put(sp.particle_count);
+    const std::size_t sim_end = expect.w.size();
+    expect.put(fp.view); expect.put(fp.proj); expect.put(fp.view_proj); expect.put(fp.eye);
+    expect.put(fp.light_dir); expect.put(fp.light_color); expect.put(fp.material); expect.put(fp.viewport);
+    expect.put(fp.speed_scale); expect.put(fp.tank_min); expect.put(fp.tank_max);
+    const std::size_t frame_end = expect.w.size();
+    expect.put(gp.origin); expect.put(gp.dims); expect.put(gp.count); expect.put(gp.morton); expect.put(gp.key_max);
+    expect.put(gp.pad0);
+    const std::size_t grid_end = expect.w.size();
+    expect.put(hp.gravity); expect.put(hp.domain_min); expect.put(hp.domain_max); expect.put(hp.h); expect.put(hp.mass);
+    expect.put(hp.rest_density); expect.put(hp.stiffness); expect.put(hp.viscosity); expect.put(hp.sound_speed);
+    expect.put(hp.spacing); expect.put(hp.cfl); expect.put(hp.force_factor); expect.put(hp.dt_max);
+    expect.put(hp.dt_floor); expect.put(hp.density_limit); expect.put(hp.speed_limit); expect.put(hp.particle_count);
+    expect.put(hp.boundary_count); expect.put(hp.front_band);
+    const std::size_t sph_end = expect.w.size();
+    expect.put(st.dt); expect.put(st.time); expect.put(st.frame_left); expect.put(st.substeps_left);
+    expect.put(st.max_speed); expect.put(st.max_accel); expect.put(st.frame_max_speed); expect.put(st.frame_max_density);
+    expect.put(st.frame_min_dt); expect.put(st.frame_substeps); expect.put(st.nan_count); expect.put(st.nan_index);
+    expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
+    expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.pad0);
+    const std::size_t step_end = expect.w.size();
+    for (const auto& [name, value] : kMacros) expect.put(value);
+    // The word counts of probe_layout.comp's header: every member of each struct was put.
+    REQUIRE(probe_end == 28);
+    REQUIRE(sim_end - probe_end == sizeof(gpu::SimParams) / 4);
+    REQUIRE(frame_end - sim_end == sizeof(gpu::FrameParams) / 4);
+    REQUIRE(grid_end - frame_end == sizeof(gpu::GridParams) / 4);
+    REQUIRE(sph_end - grid_end == sizeof(gpu::SphParams) / 4);
+    REQUIRE(step_end - sph_end == sizeof(gpu::StepState) / 4);
+
+    // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
+    // keep it, so the shader wrote exactly expect.w.size() words.
+    constexpr std::uint32_t kSentinel = 0xDEADBEEFu;
+    const std::size_t total = expect.w.size() + 8;
+    const std::vector<std::uint32_t> fill(total, kSentinel);
+    Buffer out = Buffer::from<std::uint32_t>(fill, GL_DYNAMIC_COPY, "probe.out");
+    Buffer ubo_probe(sizeof lp, GL_DYNAMIC_DRAW, &lp, "probe.LayoutProbe");
+    Buffer ubo_sim(sizeof sp, GL_DYNAMIC_DRAW, &sp, "probe.SimParams");
+    Buffer ubo_frame(sizeof fp, GL_DYNAMIC_DRAW, &fp, "probe.FrameParams");
+    Buffer ubo_grid(sizeof gp, GL_DYNAMIC_DRAW, &gp, "probe.GridParams");
+    Buffer ubo_sph(sizeof hp, GL_DYNAMIC_DRAW, &hp, "probe.SphParams");
+    Buffer ssbo_step(sizeof st, GL_DYNAMIC_DRAW, &st, "probe.StepState");
+    ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
+    ubo_sim.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SIM);
+    ubo_frame.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    ubo_grid.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
+    ubo_sph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+    ssbo_step.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_STEP);
+    out.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_PROBE_OUT);
+    probe().use();
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::vector<std::uint32_t> got = out.read<std::uint32_t>(total);
+
+    auto what = [&](std::size_t i) -> std::string {
+        if (i < probe_end) return "LayoutProbe word " + std::to_string(i);
+        if (i < sim_end) return "SimParams word " + std::to_string(i - probe_end);
+        if (i < frame_end) return "FrameParams word " + std::to_string(i - sim_end);
+        if (i < grid_end) return "GridParams word " + std::to_string(i - frame_end);
+        if (i < sph_end) return "SphParams word " + std::to_string(i - grid_end);
+        if (i < step_end) return "StepState word " + std::to_string(i - sph_end);
+        if (i < expect.w.size()) return kMacros[i - step_end].first;
+        return "past the end, word " + std::to_string(i);
+    };
+    for (std::size_t i = 0; i < total; ++i) {
+        INFO(what(i));
+        CHECK(got[i] == (i < expect.w.size() ? expect.w[i] : kSentinel));
+    }
+    ranryu::test::require_no_gl_errors();
+}
