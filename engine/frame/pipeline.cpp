@@ -4,8 +4,8 @@ namespace ranryu::frame {
 
 Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height)
     : scene_(scene),
-      // Timestamp pairs a frame may need: ~24 passes a substep (grid, sort digits, SPH) for SPH.
-      timer_(4, scene.model == scene::Model::sph ? 64 + 24 * scene.sph.max_substeps : 64 + scene.substeps()),
+      timer_(4, scene.model == scene::Model::sph ? 64 + sim::timed_passes_per_substep(scene) * scene.sph.max_substeps
+                                                 : 64 + scene.substeps()),
       renderer_(shaders, timer_),
       target_(width, height, "frame"),
       camera_(render::scene_camera(scene)),

@@ -79,7 +79,7 @@ void NeighbourGrid::bind_params(std::size_t count) {
 }
 
 void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
-                          gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count) {
+                          gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear) {
     bind_params(count);
     {
         auto pass = timer_.scope(hash_pass_);
@@ -93,13 +93,15 @@ void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity
     params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
     {
         auto pass = timer_.scope(ranges_pass_);
-        const GLuint zero = 0;
-        glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.start.id());
-        glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.end.id());
-        glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        if (clear) {
+            const GLuint zero = 0;
+            glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.start.id());
+            glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+            glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.end.id());
+            glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+            glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
         sort_.sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
         ranges.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
         ranges.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);

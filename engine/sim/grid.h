@@ -41,9 +41,13 @@ public:
     void set_method(SortMethod m) { method_ = m; }
 
     // Sorts `count` particles of `position`/`velocity` by cell into `sorted_position`/`sorted_velocity`
-    // and fills `ranges`. Leaves RANRYU_UBO_GRID bound to this grid.
+    // and fills `ranges` for the cells that have particles. With `clear`, every other cell reads as
+    // the empty run 0, 0; without it (the per-substep case: clearing every cell costs more than the
+    // sort), other cells keep stale entries, which readers reject by checking that the sorted key
+    // at an entry's start is the cell's own (glsl/sim/sph/sph_common.glsl, fluid_run). Leaves
+    // RANRYU_UBO_GRID bound to this grid.
     void build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
-               gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count);
+               gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear);
 
     const KeySort& sort() const { return sort_; }
     void bind_params(std::size_t count);

@@ -56,6 +56,8 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     return p;
 }
 
+int timed_passes_per_substep(const scene::Scene& s) { return s.sph.sort == "bitonic" ? 110 : 24; }
+
 GuardLimits guard_limits(const scene::Scene& s) {
     GuardLimits g;
     g.density_ratio = s.sph.density_limit;
@@ -129,7 +131,7 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     gl::Buffer weighted(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "sph.boundary.weighted");
     timer_.begin_frame();
     if (boundary_count_ > 0) {
-        grid_.build(raw, zeros, boundary_, zeros_sorted, boundary_ranges_, boundary_count_);
+        grid_.build(raw, zeros, boundary_, zeros_sorted, boundary_ranges_, boundary_count_, /*clear=*/true);
         auto pass = timer_.scope(boundary_pass_);
         params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
         boundary_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY);
@@ -150,6 +152,13 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
 }
 
 void Sph::set_fixed_dt(float dt) { fixed_dt_ = dt; }
+
+// Tests: the next rebuild_grid() sorts these into cell order.
+void Sph::upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v) {
+    if (x.size() != count_ || v.size() != count_) throw Error("Sph::upload_state: expected " + std::to_string(count_) + " particles");
+    position_[current_].upload(x.data(), x.size() * sizeof(glm::vec4));
+    velocity_[current_].upload(v.data(), v.size() * sizeof(glm::vec4));
+}
 
 void Sph::begin_frame(std::uint64_t frame_index) {
     readback_.poll();
@@ -181,6 +190,7 @@ void Sph::bind_fields() {
     accel_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_ACCEL);
     step_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_STEP);
     ranges_.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
+    grid_.sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);   // validates ranges
     ranges_.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
     boundary_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY);
     boundary_ranges_.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_CELL_START);
@@ -205,7 +215,7 @@ void Sph::choose_time_step() {
 
 void Sph::rebuild_grid() {
     const int next = 1 - current_;
-    grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_);
+    grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_, /*clear=*/false);
     current_ = next;
 }
 

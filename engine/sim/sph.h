@@ -34,6 +34,9 @@ namespace ranryu::sim {
 // SphParams for a scene (docs/SPH.md symbols table), with `count` fluid and `boundary` particles.
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);
 GuardLimits guard_limits(const scene::Scene& s);
+// Timed passes one substep can make (the GpuTimer's capacity): radix sorts make 3 a key digit,
+// bitonic sorts up to ~100 at 16M pairs.
+int timed_passes_per_substep(const scene::Scene& s);
 
 class Sph {
 public:
@@ -75,6 +78,8 @@ public:
 
     // Tests: frames of `frame_dt_override` made of substeps of exactly `dt` when stable allows.
     void set_fixed_dt(float dt);
+    // Tests: replaces the fluid state (count() positions and velocities, any order) before a substep.
+    void upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v);
 
 private:
     void on_record(std::uint64_t frame, const void* bytes);

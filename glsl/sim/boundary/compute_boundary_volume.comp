@@ -16,9 +16,7 @@ void main() {
     vec3 xb = boundary[b].xyz;
     float sum = 0.0;
     ivec3 c = grid_cell(xb);
-    FOR_EACH_NEIGHBOUR_CELL(c, key) {
-        for (uint k = boundary_start[key]; k < boundary_end[key]; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
-    }
+    FOR_EACH_NEIGHBOUR(c, false, k) sum += kernel_w(length(xb - boundary[k.x].xyz), sph.h);
     float cell = sph.spacing * sph.spacing * sph.spacing;
     weighted[b] = vec4(xb, sph.rest_density * min(1.0 / sum, cell));
 }

@@ -1,7 +1,7 @@
 #version 430
 // Density and pressure of every fluid particle (docs/SPH.md eqs. (2), (3)):
 //     rho_i = sum_j m W(x_i - x_j) + sum_b psi_b W(x_i - x_b),   p_i = max(0, B((rho_i/rho0)^7 - 1)).
-// Input: sorted positions and cell ranges of this substep. Output: density[i] = (rho_i, p_i, 0, 0).
+// Input: sorted positions and keys, cell ranges of this substep. Output: density[i] = (rho_i, p_i, 0, 0).
 // Guard: the frame's largest rho/rho0 and a particle that has it.
 #include "sph_common.glsl"
 
@@ -11,21 +11,20 @@ layout(std430, binding = RANRYU_SSBO_DENSITY) writeonly buffer Density { vec4 de
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= sph.particle_count) return;
-    vec3 xi = position[i].xyz;
-    ivec3 c = grid_cell(xi);
-    float h = sph.h;
-    float fluid = 0.0, wall = 0.0;
-    FOR_EACH_NEIGHBOUR_CELL(c, key) {
-        for (uint j = cell_start[key]; j < cell_end[key]; ++j) fluid += kernel_w(length(xi - position[j].xyz), h);
-        for (uint b = boundary_start[key]; b < boundary_end[key]; ++b)
-            wall += boundary[b].w * kernel_w(length(xi - boundary[b].xyz), h);
+    bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
+    float ratio = 0.0;
+    if (live) {
+        vec3 xi = position[i].xyz;
+        ivec3 c = grid_cell(xi);
+        float h = sph.h;
+        float fluid = 0.0, wall = 0.0;
+        FOR_EACH_NEIGHBOUR(c, true, j) fluid += kernel_w(length(xi - position[j.x].xyz), h);
+        FOR_EACH_NEIGHBOUR(c, false, b) wall += boundary[b.x].w * kernel_w(length(xi - boundary[b.x].xyz), h);
+        float rho = sph.mass * fluid + wall;
+        ratio = rho / sph.rest_density;
+        float p = max(0.0, sph.stiffness * (pow(ratio, 7.0) - 1.0));
+        density[i] = vec4(rho, p, 0.0, 0.0);
     }
-    float rho = sph.mass * fluid + wall;
-    float ratio = rho / sph.rest_density;
-    float p = max(0.0, sph.stiffness * (pow(ratio, 7.0) - 1.0));
-    density[i] = vec4(rho, p, 0.0, 0.0);
-
-    uint bits = max_bits(ratio);
-    if (bits > atomicMax(step.frame_max_density, bits)) step.density_index = i;
+    uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
+    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) step.density_index = m.y;
 }

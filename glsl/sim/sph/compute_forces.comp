@@ -14,33 +14,36 @@ layout(std430, binding = RANRYU_SSBO_ACCEL) writeonly buffer Accel { vec4 accel[
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= sph.particle_count) return;
-    vec3 xi = position[i].xyz;
-    vec3 vi = velocity[i].xyz;
-    vec2 di = density[i].xy;
-    float pi_term = di.y / (di.x * di.x);
-    float h = sph.h;
-    float eps = 0.01 * h * h;
-    vec3 a_pressure = vec3(0.0), a_viscous = vec3(0.0);
-    ivec3 c = grid_cell(xi);
-    FOR_EACH_NEIGHBOUR_CELL(c, key) {
-        for (uint j = cell_start[key]; j < cell_end[key]; ++j) {
-            vec3 d = xi - position[j].xyz;
+    bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
+    float magnitude = 0.0;
+    if (live) {
+        vec3 xi = position[i].xyz;
+        vec3 vi = velocity[i].xyz;
+        vec2 di = density[i].xy;
+        float pi_term = di.y / (di.x * di.x);
+        float h = sph.h;
+        float eps = 0.01 * h * h;
+        vec3 a_pressure = vec3(0.0), a_viscous = vec3(0.0), a_wall = vec3(0.0);
+        ivec3 c = grid_cell(xi);
+        FOR_EACH_NEIGHBOUR(c, true, j) {
+            vec3 d = xi - position[j.x].xyz;
             float r = length(d);
-            if (r >= h || j == i) continue;
+            if (r >= h || j.x == i) continue;
             vec3 g = kernel_grad(d, r, h);
-            vec2 dj = density[j].xy;
+            vec2 dj = density[j.x].xy;
             a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
-            a_viscous += (2.0 * dot(vi - velocity[j].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
+            a_viscous += (2.0 * dot(vi - velocity[j.x].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
         }
-        for (uint b = boundary_start[key]; b < boundary_end[key]; ++b) {
-            vec3 d = xi - boundary[b].xyz;
+        FOR_EACH_NEIGHBOUR(c, false, b) {
+            vec3 d = xi - boundary[b.x].xyz;
             float r = length(d);
             if (r >= h) continue;
-            a_pressure -= (boundary[b].w * pi_term / sph.mass) * kernel_grad(d, r, h);
+            a_wall -= boundary[b.x].w * kernel_grad(d, r, h);
         }
+        vec3 a = sph.gravity.xyz + sph.mass * (a_pressure + 10.0 * sph.viscosity * a_viscous) + pi_term * a_wall;
+        accel[i] = vec4(a, 0.0);
+        magnitude = length(a);
     }
-    vec3 a = sph.gravity.xyz + sph.mass * (a_pressure + 10.0 * sph.viscosity * a_viscous);
-    accel[i] = vec4(a, 0.0);
-    atomicMax(step.max_accel, max_bits(length(a)));
+    uvec2 m = workgroup_max(live ? max_bits(magnitude) : 0u, i);
+    if (gl_LocalInvocationIndex == 0u) atomicMax(step.max_accel, m.x);
 }
