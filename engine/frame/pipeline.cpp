@@ -4,8 +4,7 @@ namespace ranryu::frame {
 
 Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height)
     : scene_(scene),
-      timer_(4, scene.model == scene::Model::sph ? 64 + sim::timed_passes_per_substep(scene) * scene.sph.max_substeps
-                                                 : 64 + scene.substeps()),
+      timer_(4, scene.model == scene::Model::sph ? 64 + sim::timed_passes_per_substep(scene) * 64 : 64 + scene.substeps()),
       renderer_(shaders, timer_),
       target_(width, height, "frame"),
       camera_(render::scene_camera(scene)),

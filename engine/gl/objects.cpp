@@ -81,6 +81,12 @@ VertexArray::VertexArray() {
 Queries::Queries(std::size_t count) : names_(count) {
     if (count) glGenQueries(GLsizei(count), names_.data());
 }
+void Queries::grow(std::size_t count) {
+    const std::size_t old = names_.size();
+    names_.resize(old + count);
+    glGenQueries(GLsizei(count), names_.data() + old);
+}
+
 Queries& Queries::operator=(Queries&& o) noexcept {
     if (this != &o) {
         if (!names_.empty()) glDeleteQueries(GLsizei(names_.size()), names_.data());

@@ -138,6 +138,7 @@ public:
     explicit Queries(std::size_t count);
     GLuint operator[](std::size_t i) const { return names_[i]; }
     std::size_t size() const { return names_.size(); }
+    void grow(std::size_t count);   // appends `count` new names
     Queries(const Queries&) = delete;
     Queries& operator=(const Queries&) = delete;
     Queries(Queries&& o) noexcept : names_(std::move(o.names_)) {}

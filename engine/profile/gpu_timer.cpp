@@ -73,8 +73,11 @@ void GpuTimer::end_frame() {
 std::uint32_t GpuTimer::begin(PassId id) {
     Slot& s = slots_[current_];
     if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
-    if (s.records.size() >= max_calls_)
-        throw Error("more than " + std::to_string(max_calls_) + " timed passes in one frame (GpuTimer's capacity)");
+    if (2 * s.records.size() + 2 > s.queries.size()) {
+        if (s.queries.size() >= (std::size_t(1) << 24)) throw Error("over 8 million timed passes in one frame");
+        s.queries.grow(s.queries.size());   // a frame with more passes than any before: double the pool
+        s.records.reserve(s.queries.size() / 2);
+    }
     const auto q = std::uint32_t(2 * s.records.size());
     s.records.push_back(Record{id.index, q});
     glQueryCounter(s.queries[q], GL_TIMESTAMP);

@@ -29,7 +29,9 @@ struct PassSamples {
 
 class GpuTimer {
 public:
-    GpuTimer(int frames_in_flight = 4, int max_calls_per_frame = 512);
+    // `calls_per_frame`: timed passes a frame is expected to make. A frame that makes more doubles its
+    // slot's query pool (an allocation when a new maximum is reached, never once a run has settled).
+    GpuTimer(int frames_in_flight = 4, int calls_per_frame = 512);
 
     // Names a pass. The same name always gives the same id; call at start-up.
     PassId pass(std::string_view name);
@@ -84,7 +86,7 @@ private:
     std::vector<double> scratch_ms_;   // per pass, for one frame
     std::vector<int> scratch_calls_;
     std::size_t current_ = 0;
-    std::size_t max_calls_;
+    std::size_t max_calls_;   // initial pool per slot, in timestamp pairs
     std::uint64_t frame_ = 0;
     bool in_frame_ = false;
 };

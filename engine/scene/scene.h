@@ -37,7 +37,7 @@ struct SphSettings {
     float force_factor = 0.25f;     // eq. (7)
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     std::string sort = "radix";     // "radix" | "bitonic"
-    int max_substeps = 200;         // per frame, the most the CPU will issue
+    int max_substeps = 2000;        // per frame, the most the CPU will issue (a runaway bound; the guard's dt floor stops collapse)
     float density_limit = 1.5f;     // guard: rho/rho0 bound
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
 };

@@ -73,7 +73,7 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     const double t_end = (data.back().first + 0.1) / time_scale;
     const int frames = int(std::ceil(t_end / scene.frame_dt)) + 1;
 
-    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * scene.sph.max_substeps);
+    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * 64);
     sim::Sph sph(shaders, timer, scene);
     r.particles = sph.count();
     const float origin_x = sph.params().domain_min.x;
@@ -102,7 +102,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     HydrostaticResult r;
     r.height = scene.blocks.front().max.y - scene.tank_min.y;
     r.spacing = scene.spacing;
-    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * scene.sph.max_substeps);
+    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * 64);
     sim::Sph sph(shaders, timer, scene);
     r.particles = sph.count();
     run_sph(sph, timer, int(std::ceil(settle_s / scene.frame_dt)));

@@ -1,0 +1,157 @@
+#include "surface/level_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+
+namespace ranryu::surface {
+
+LevelSetSettings LevelSetSettings::for_spacing(float dx) {
+    LevelSetSettings s;
+    s.particle_spacing = dx;
+    s.kernel_radius = 1.5f * dx;
+    s.iso = iso_for_radius(dx, s.kernel_radius, 0.5f * dx);
+    s.node_spacing = 0.5f * dx;
+    s.max_dims = glm::uvec3(160u);
+    s.search_margin = 0.5f * dx;
+    return s;
+}
+
+double kernel_w(double r, double R) {   // glsl/sim/kernel.glsl, kernel_w
+    const double pi = 3.14159265358979323846;
+    const double q = r / R, k = 8.0 / (pi * R * R * R);
+    if (q <= 0.5) return k * (6.0 * q * q * (q - 1.0) + 1.0);
+    if (q <= 1.0) {
+        const double t = 1.0 - q;
+        return k * 2.0 * t * t * t;
+    }
+    return 0.0;
+}
+
+float iso_for_radius(float dx, float R, float r) { return float(double(dx) * dx * dx * kernel_w(r, R)); }
+
+gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particle_count) {
+    gpu::SurfaceParams p{};
+    p.max_dims = glm::uvec4(s.max_dims, 0u);
+    p.node_spacing = s.node_spacing;
+    p.kernel_radius = s.kernel_radius;
+    p.volume = s.particle_spacing * s.particle_spacing * s.particle_spacing;
+    p.iso = s.iso;
+    p.particle_count = std::uint32_t(particle_count);
+    p.search_margin = s.search_margin;
+    return p;
+}
+
+std::uint32_t ordered_bits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+float from_ordered_bits(std::uint32_t u) {
+    u = (u & 0x80000000u) ? (u & 0x7FFFFFFFu) : ~u;
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s) {   // place_grid.comp
+    lo -= s.kernel_radius;
+    hi += s.kernel_radius;
+    const glm::vec3 fit = (hi - lo) / (glm::vec3(s.max_dims) - 3.0f);
+    const float h = std::max(s.node_spacing, std::max(fit.x, std::max(fit.y, fit.z)));
+    PhiGrid g;
+    g.spacing = h;
+    g.origin = h * glm::floor(lo / h);
+    g.dims = glm::min(glm::uvec3(glm::ceil((hi - g.origin) / h)) + 1u, s.max_dims);
+    return g;
+}
+
+void level_set_cpu(std::span<const glm::vec4> positions, const LevelSetSettings& s, PhiGrid& grid) {
+    const double R = s.kernel_radius, V = double(s.particle_spacing) * s.particle_spacing * s.particle_spacing;
+    grid.phi.assign(grid.nodes(), 0.0f);
+    for (std::uint32_t k = 0; k < grid.dims.z; ++k)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t i = 0; i < grid.dims.x; ++i) {
+                const glm::dvec3 x(grid.node({i, j, k}));
+                double sum = 0.0;
+                for (const glm::vec4& p : positions) {
+                    const glm::dvec3 d = x - glm::dvec3(glm::vec3(p));
+                    const double r2 = glm::dot(d, d);
+                    if (r2 < R * R) sum += kernel_w(std::sqrt(r2), R);
+                }
+                grid.phi[grid.index({i, j, k})] = float(V * sum - s.iso);
+            }
+}
+
+LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings)
+    : timer_(timer),
+      bounds_pass_(timer.pass("surface.bounds")),
+      level_set_pass_(timer.pass("level-set")),
+      find_bounds_(shader::Program::compute(shaders, "surface/find_bounds.comp")),
+      place_grid_(shader::Program::compute(shaders, "surface/place_grid.comp")),
+      compute_(shader::Program::compute(shaders, "surface/compute_level_set.comp")),
+      settings_(settings),
+      max_nodes_(std::size_t(settings.max_dims.x) * settings.max_dims.y * settings.max_dims.z) {
+    const auto& s = settings;
+    if (!(s.particle_spacing > 0.0f) || !(s.kernel_radius > 0.0f) || !(s.node_spacing > 0.0f) || !std::isfinite(s.iso) ||
+        !(s.search_margin >= 0.0f))
+        throw InputError("surface: particle spacing, kernel radius and node spacing must be positive, iso finite, "
+                         "search margin not negative");
+    if (glm::any(glm::lessThan(s.max_dims, glm::uvec3(4u))) || max_nodes_ > (std::size_t(1) << 30))
+        throw InputError("surface: the level set grid needs 4 to 1024^3 nodes in all, at least 4 per axis (max dims " +
+                         std::to_string(s.max_dims.x) + "x" + std::to_string(s.max_dims.y) + "x" +
+                         std::to_string(s.max_dims.z) + ")");
+    params_ = gl::Buffer(sizeof(gpu::SurfaceParams), GL_DYNAMIC_DRAW, nullptr, "SurfaceParams");
+    const gpu::SurfaceGrid empty{};
+    grid_ = gl::Buffer(sizeof(gpu::SurfaceGrid), GL_DYNAMIC_COPY, &empty, "surface.grid");
+    phi_ = gl::Buffer(max_nodes_ * sizeof(float), GL_DYNAMIC_COPY, nullptr, "surface.phi");
+    const auto group = compute_.local_size();
+    glProgramUniform4ui(place_grid_.id(), RANRYU_LOC_SURFACE_GROUP, group[0], group[1], group[2], 0u);
+}
+
+void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_position, const sim::CellRanges& ranges,
+                       std::size_t count) {
+    if (params_count_ != count) {   // the settings are fixed; only the count changes
+        params_.upload_value(surface_params(settings_, count));
+        params_count_ = count;
+    }
+    grid.bind_params(count);
+    params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SURFACE);
+    sorted_position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_POSITION);
+    grid_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_GRID);
+    {
+        auto pass = timer_.scope(bounds_pass_);
+        // bounds_min = identity of min, bounds_max = identity of max (bytes 32..63 of SurfaceGrid).
+        const GLuint all_ones = 0xFFFFFFFFu, zero = 0u;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, grid_.id());
+        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32UI, offsetof(gpu::SurfaceGrid, bounds_min),
+                             sizeof(glm::uvec4), GL_RED_INTEGER, GL_UNSIGNED_INT, &all_ones);
+        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32UI, offsetof(gpu::SurfaceGrid, bounds_max),
+                             sizeof(glm::uvec4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        find_bounds_.dispatch(count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        place_grid_.use();
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(level_set_pass_);
+        ranges.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
+        ranges.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
+        grid.sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);   // validates ranges
+        phi_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_PHI);
+        compute_.use();
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid_.id());
+        glDispatchComputeIndirect(GLintptr(offsetof(gpu::SurfaceGrid, dispatch)));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+}
+
+}  // namespace ranryu::surface

@@ -1,0 +1,106 @@
+#pragma once
+// The liquid's level set on a grid, from the particles, on the GPU (METHOD.md §7):
+//
+//     φ(x) = V · Σ_i W(|x - x_i|, R) - iso          φ > 0 inside, φ = 0 on the surface
+//
+// W is the SPH cubic spline of glsl/sim/kernel.glsl (Monaghan 1992) with support R, and V = dx^3 the
+// volume of one particle (dx the particle spacing), so c(x) = V·ΣW is a smoothed volume fraction:
+// ≈ 1 inside liquid at rest, 0 farther than R from every particle.
+//
+// The defaults (LevelSetSettings::for_spacing) put the surface about a particle radius r = dx/2 from
+// the outermost particle centres, both for a lone particle and for a flat free surface:
+//   - iso = V·W(r, R), so a lone particle's surface is the sphere of radius r exactly;
+//   - R = 1.5 dx, the support for which a flat lattice surface, at the same iso, lies at r too.
+//     For a block of particles on a cubic lattice, the 0-level lies 0.53 dx (above the middle of
+//     four particles) to 0.57 dx (above a particle) over the top layer's centres; c is 1.09 at
+//     particles and 0.91 at the centre of a lattice cube inside, well above iso = 0.419 (the inside
+//     stays inside, no holes). The SPH kernel support h = 2 dx would need iso = 0.229 for the lone
+//     particle and would then place a flat surface 0.86 dx above the top layer: R = 1.5 dx balances
+//     the two. A smaller R makes the surface bumpy (c dips toward iso between particles).
+// (Numbers: tests/gl/surface_test.cpp checks the lone particle and the flat slab.)
+//
+// Passes (named in the GpuTimer):
+//   "surface.bounds"  find_bounds.comp   box of the particle centres: a workgroup reduction and
+//                                        one uint atomicMin/Max per workgroup and axis (exact)
+//                     place_grid.comp    origin and dims of the φ grid and the level set's
+//                                        indirect dispatch arguments, on the GPU (1 invocation)
+//   "level-set"       compute_level_set.comp   φ at every node: a gather over the neighbour
+//                                        grid's cells, glDispatchComputeIndirect
+// Nothing is read back; compute() allocates and compiles nothing.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "profile/gpu_timer.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+#include "sim/grid.h"
+#include "surface/phi_grid.h"
+
+namespace ranryu::surface {
+
+struct LevelSetSettings {
+    float particle_spacing = 0.02f;   // dx (m): V = dx^3
+    float kernel_radius = 0.03f;      // R (m): support of W
+    float iso = 0.4192f;              // the level of V·ΣW that is the surface
+    float node_spacing = 0.01f;       // finest node spacing of the φ grid (m)
+    glm::uvec3 max_dims{160u};        // most nodes per axis (>= 4); a larger box coarsens the grid
+    float search_margin = 0.01f;      // (m) how far particles may have moved since the neighbour grid
+                                      // sorted them (the gather searches R + margin; exact for any value
+                                      // at least the largest displacement, slower for larger ones)
+
+    // R = 1.5 dx, iso = iso_for_radius(dx, R, dx/2), nodes dx/2 apart, at most 160 per axis, margin
+    // dx/2: R + margin = 2 dx = h, one SPH cell, so the search spans at most 3 cells per axis as it
+    // does with no margin, and covers a substep's displacement (CFL: |v| dt < 0.4 dx).
+    static LevelSetSettings for_spacing(float dx);
+};
+
+// W(r) with support R: the cubic spline of glsl/sim/kernel.glsl, in double.
+double kernel_w(double r, double R);
+// The iso at which one lone particle's surface is the sphere of radius r: V·W(r, R), V = dx^3.
+float iso_for_radius(float dx, float R, float r);
+
+gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particle_count);
+
+// Order-preserving float bits, as glsl/surface/ordered_float.glsl.
+std::uint32_t ordered_bits(float f);
+float from_ordered_bits(std::uint32_t u);
+
+// CPU reference of place_grid.comp: the grid for particle centres in [lo, hi], phi left empty.
+PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s);
+// CPU reference of the level set: φ at every node of `grid` (already placed), a brute-force sum over
+// all particles in double. Slow: tests only.
+void level_set_cpu(std::span<const glm::vec4> positions, const LevelSetSettings& s, PhiGrid& grid);
+
+class LevelSet {
+public:
+    // Builds the programs and allocates φ for max_dims nodes. Throws InputError on bad settings.
+    LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings);
+
+    // φ of `count` particles whose positions are in cell order in `sorted_position`, with the
+    // cell ranges `ranges` and the sorted keys of `grid`'s last build() (cleared or not); the
+    // particles may have moved by up to search_margin since. Binds the grid's GridParams. Runs
+    // inside a GpuTimer frame; ends with a shader-storage barrier, so marching cubes may read φ and
+    // grid().
+    void compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_position, const sim::CellRanges& ranges,
+                 std::size_t count);
+
+    const gl::Buffer& phi() const { return phi_; }     // float[max nodes], first grid().dims.w used
+    const gl::Buffer& grid() const { return grid_; }   // SurfaceGrid, written on the GPU
+    const LevelSetSettings& settings() const { return settings_; }
+    std::size_t max_nodes() const { return max_nodes_; }
+
+private:
+    profile::GpuTimer& timer_;
+    profile::PassId bounds_pass_, level_set_pass_;
+    shader::Program find_bounds_, place_grid_, compute_;
+    LevelSetSettings settings_;
+    std::size_t max_nodes_;
+    gl::Buffer params_, grid_, phi_;
+    std::size_t params_count_ = ~std::size_t(0);
+};
+
+}  // namespace ranryu::surface

@@ -1,0 +1,151 @@
+#include "surface/marching_cubes.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+#include "surface/mc_tables.h"
+
+namespace ranryu::surface {
+namespace {
+
+constexpr int kTriangles[4096] = {RANRYU_MC_TRIANGLES};
+constexpr int kCorners[24] = {RANRYU_MC_CORNERS};
+constexpr int kEdges[24] = {RANRYU_MC_EDGES};
+
+constexpr std::size_t kMaxGroups = 65535;   // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] guaranteed by GL 4.3
+
+glm::ivec3 corner(int c) { return {kCorners[3 * c], kCorners[3 * c + 1], kCorners[3 * c + 2]}; }
+
+// ∇φ at a node, as gradient() in mc_emit.comp.
+glm::vec3 gradient(const PhiGrid& g, glm::ivec3 n) {
+    const glm::ivec3 top = glm::ivec3(g.dims) - 1;
+    glm::vec3 out;
+    for (int a = 0; a < 3; ++a) {
+        glm::ivec3 e(0);
+        e[a] = 1;
+        const glm::ivec3 lo = glm::max(n - e, glm::ivec3(0)), hi = glm::min(n + e, top);
+        out[a] = (g.at(glm::uvec3(hi)) - g.at(glm::uvec3(lo))) / (float(hi[a] - lo[a]) * g.spacing);
+    }
+    return out;
+}
+
+void set_capacity(const shader::Program& p, std::size_t vertices, std::size_t active, std::size_t cells) {
+    glProgramUniform4ui(p.id(), RANRYU_LOC_SURFACE_CAPACITY, GLuint(vertices), GLuint(active), GLuint(cells), 0u);
+}
+
+}  // namespace
+
+std::span<const int, 4096> mc_triangle_table() { return std::span<const int, 4096>(kTriangles); }
+std::span<const int, 24> mc_corner_table() { return std::span<const int, 24>(kCorners); }
+std::span<const int, 24> mc_edge_table() { return std::span<const int, 24>(kEdges); }
+
+MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTimer& timer, const MeshCapacity& capacity)
+    : timer_(timer),
+      classify_pass_(timer.pass("mc.classify")),
+      compact_pass_(timer.pass("mc.compact")),
+      emit_pass_(timer.pass("mc.emit")),
+      setup_(shader::Program::compute(shaders, "surface/mc_setup.comp")),
+      classify_(shader::Program::compute(shaders, "surface/mc_classify.comp")),
+      scan_(shader::Program::compute(shaders, "surface/mc_scan_blocks.comp")),
+      compact_(shader::Program::compute(shaders, "surface/mc_compact.comp")),
+      emit_(shader::Program::compute(shaders, "surface/mc_emit.comp")) {
+    const glm::uvec3 d = capacity.max_dims;
+    if (glm::any(glm::lessThan(d, glm::uvec3(2u))) || capacity.max_vertices < 3)
+        throw Error("marching cubes: capacity needs at least 2 nodes per axis and 3 vertices");
+    max_cells_ = std::size_t(d.x - 1) * (d.y - 1) * (d.z - 1);
+    max_vertices_ = capacity.max_vertices;
+    max_active_ = std::min(max_cells_, max_vertices_ / 3);
+    const std::size_t block = classify_.local_size()[0];
+    if (compact_.local_size()[0] != block)
+        throw Error("marching cubes: mc_classify.comp and mc_compact.comp must have the same local size");
+    max_blocks_ = (max_cells_ + block - 1) / block;
+    const std::size_t emit_group = emit_.local_size()[0];
+    if (max_blocks_ > kMaxGroups || (max_active_ + emit_group - 1) / emit_group > kMaxGroups || max_cells_ >= (1u << 31))
+        throw Error("marching cubes: " + std::to_string(max_cells_) + " cells or " + std::to_string(max_active_) +
+                    " active cells need more than 65535 workgroups; lower max_dims or max_vertices");
+
+    state_ = gl::Buffer(sizeof(gpu::MeshState), GL_DYNAMIC_COPY, nullptr, "mc.state");
+    cell_vertices_ = gl::Buffer(max_cells_ * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "mc.cell_vertices");
+    blocks_ = gl::Buffer(max_blocks_ * sizeof(glm::uvec2), GL_DYNAMIC_COPY, nullptr, "mc.blocks");
+    active_ = gl::Buffer(std::max<std::size_t>(max_active_, 1) * sizeof(glm::uvec2), GL_DYNAMIC_COPY, nullptr, "mc.active");
+    vertices_ = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_DYNAMIC_COPY, nullptr, "mc.vertices");
+
+    for (const shader::Program* p : {&setup_, &scan_, &compact_, &emit_}) set_capacity(*p, max_vertices_, max_active_, max_cells_);
+    glProgramUniform4ui(setup_.id(), RANRYU_LOC_SURFACE_GROUP, GLuint(block), 1u, 1u, 0u);
+    glProgramUniform4ui(scan_.id(), RANRYU_LOC_SURFACE_GROUP, GLuint(emit_group), 1u, 1u, 0u);
+}
+
+void MarchingCubes::polygonise(const gl::Buffer& phi, const gl::Buffer& grid) {
+    grid.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_GRID);
+    phi.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_PHI);
+    state_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_STATE);
+    cell_vertices_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_CELL_VERTICES);
+    blocks_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_BLOCKS);
+    active_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_ACTIVE);
+    vertices_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_VERTICES);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state_.id());
+    {
+        auto pass = timer_.scope(classify_pass_);
+        setup_.use();
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        classify_.use();
+        glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(compact_pass_);
+        scan_.use();
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        compact_.use();
+        glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(emit_pass_);
+        emit_.use();
+        glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, emit_dispatch)));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
+std::vector<gpu::MeshVertex> polygonise_cpu(const PhiGrid& g) {
+    std::vector<gpu::MeshVertex> out;
+    if (glm::any(glm::lessThan(g.dims, glm::uvec3(2u)))) return out;
+    const glm::uvec3 cells = g.dims - 1u;
+    for (std::uint32_t k = 0; k < cells.z; ++k)
+        for (std::uint32_t j = 0; j < cells.y; ++j)
+            for (std::uint32_t i = 0; i < cells.x; ++i) {
+                const glm::ivec3 cell(i, j, k);
+                float f[8];
+                int index = 0;
+                for (int c = 0; c < 8; ++c) {
+                    f[c] = g.at(glm::uvec3(cell + corner(c)));
+                    if (f[c] < 0.0f) index |= 1 << c;
+                }
+                for (int t = 0; t < 5 && kTriangles[index * 16 + 3 * t] >= 0; ++t) {
+                    glm::vec3 p[3], grad[3];
+                    for (int v = 0; v < 3; ++v) {
+                        const int e = kTriangles[index * 16 + 3 * t + v], a = kEdges[2 * e], b = kEdges[2 * e + 1];
+                        const glm::ivec3 na = cell + corner(a), nb = cell + corner(b);
+                        const float s = f[a] / (f[a] - f[b]);
+                        const glm::vec3 local = glm::vec3(na) + s * glm::vec3(nb - na);
+                        p[v] = g.origin + g.spacing * local;
+                        const glm::vec3 ga = gradient(g, na), gb = gradient(g, nb);
+                        grad[v] = ga + s * (gb - ga);
+                    }
+                    const glm::vec3 face = glm::cross(p[1] - p[0], p[2] - p[0]);
+                    const glm::vec3 fallback = glm::dot(face, face) > 0.0f ? glm::normalize(face) : glm::vec3(0.0f);
+                    for (int v = 0; v < 3; ++v) {
+                        const glm::vec3 n = glm::dot(grad[v], grad[v]) > 0.0f ? -glm::normalize(grad[v]) : fallback;
+                        out.push_back(gpu::MeshVertex{glm::vec4(p[v], 1.0f), glm::vec4(n, 0.0f)});
+                    }
+                }
+            }
+    return out;
+}
+
+}  // namespace ranryu::surface
