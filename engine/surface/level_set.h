@@ -27,6 +27,7 @@
 //   "level-set"       compute_level_set.comp   φ at every node: a gather over the neighbour
 //                                        grid's cells, glDispatchComputeIndirect
 // Nothing is read back; compute() allocates and compiles nothing.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -92,6 +93,8 @@ public:
     const gl::Buffer& grid() const { return grid_; }   // SurfaceGrid, written on the GPU
     const LevelSetSettings& settings() const { return settings_; }
     std::size_t max_nodes() const { return max_nodes_; }
+    // compute_level_set.comp's workgroup size: nodes per workgroup along x, y, z (tests).
+    std::array<GLuint, 3> node_group() const { return compute_.local_size(); }
 
 private:
     profile::GpuTimer& timer_;

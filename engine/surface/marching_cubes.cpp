@@ -70,6 +70,7 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
     blocks_ = gl::Buffer(max_blocks_ * sizeof(glm::uvec2), GL_DYNAMIC_COPY, nullptr, "mc.blocks");
     active_ = gl::Buffer(std::max<std::size_t>(max_active_, 1) * sizeof(glm::uvec2), GL_DYNAMIC_COPY, nullptr, "mc.active");
     vertices_ = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_DYNAMIC_COPY, nullptr, "mc.vertices");
+    triangles_ = gl::Buffer(sizeof kTriangles, GL_STATIC_DRAW, kTriangles, "mc.triangle_table");
 
     for (const shader::Program* p : {&setup_, &scan_, &compact_, &emit_}) set_capacity(*p, max_vertices_, max_active_, max_cells_);
     glProgramUniform4ui(setup_.id(), RANRYU_LOC_SURFACE_GROUP, GLuint(block), 1u, 1u, 0u);
@@ -84,6 +85,7 @@ void MarchingCubes::polygonise(const gl::Buffer& phi, const gl::Buffer& grid) {
     blocks_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_BLOCKS);
     active_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_ACTIVE);
     vertices_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_VERTICES);
+    triangles_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_TRIANGLES);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state_.id());
     {
         auto pass = timer_.scope(classify_pass_);

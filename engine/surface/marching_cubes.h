@@ -69,7 +69,7 @@ private:
     profile::PassId classify_pass_, compact_pass_, emit_pass_;
     shader::Program setup_, classify_, scan_, compact_, emit_;
     std::size_t max_cells_, max_vertices_, max_active_, max_blocks_;
-    gl::Buffer state_, cell_vertices_, blocks_, active_, vertices_;
+    gl::Buffer state_, cell_vertices_, blocks_, active_, vertices_, triangles_;
 };
 
 // The tables of glsl/surface/mc_tables.h.

@@ -184,6 +184,7 @@ RANRYU_STRUCT_END(LayoutProbe, 112)
 #define RANRYU_SSBO_MC_BLOCKS 24         // uvec2[blocks]: (active cells, vertices) per classify workgroup, then their exclusive prefix sums
 #define RANRYU_SSBO_MC_ACTIVE 25         // uvec2[]: compacted active cells: (cell index, first vertex)
 #define RANRYU_SSBO_MC_VERTICES 26       // MeshVertex[]: the mesh, non-indexed triangles
+#define RANRYU_SSBO_MC_TRIANGLES 27      // int[4096]: the triangle table (surface/mc_tables.h), uploaded once
 #define RANRYU_LOC_SURFACE_CAPACITY 4    // uvec4 uniform: x vertices, y active cells, z cells (MC buffer capacities)
 #define RANRYU_LOC_SURFACE_GROUP 5       // uvec4 uniform: workgroup size of the pass whose indirect arguments this pass writes
 
@@ -196,9 +197,9 @@ RANRYU_STRUCT(SurfaceParams) {
     float volume;          // V: particle volume dx^3 (m^3); V·ΣW is ≈ 1 inside liquid at rest
     float iso;             // the level: φ = 0 where V·ΣW = iso
     uint particle_count;
+    float search_margin;   // (m): the gather also searches cells this much beyond R (particles moved since the sort)
     uint pad0;
     uint pad1;
-    uint pad2;
 }
 RANRYU_STRUCT_END(SurfaceParams, 48)
 

@@ -16,7 +16,10 @@ void main() {
     vec3 xb = boundary[b].xyz;
     float sum = 0.0;
     ivec3 c = grid_cell(xb);
-    FOR_EACH_NEIGHBOUR(c, false, k) sum += kernel_w(length(xb - boundary[k.x].xyz), sph.h);
+    FOR_EACH_ROW {
+        uvec2 run = row_run(c, x0_, ROW_END(x0_), dy_, dz_, false);
+        for (uint k = run.x; k < run.y; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
+    }
     float cell = sph.spacing * sph.spacing * sph.spacing;
     weighted[b] = vec4(xb, sph.rest_density * min(1.0 / sum, cell));
 }

@@ -18,8 +18,12 @@ void main() {
         ivec3 c = grid_cell(xi);
         float h = sph.h;
         float fluid = 0.0, wall = 0.0;
-        FOR_EACH_NEIGHBOUR(c, true, j) fluid += kernel_w(length(xi - position[j.x].xyz), h);
-        FOR_EACH_NEIGHBOUR(c, false, b) wall += boundary[b.x].w * kernel_w(length(xi - boundary[b.x].xyz), h);
+        FOR_EACH_ROW {
+            uvec2 run = row_run(c, x0_, ROW_END(x0_), dy_, dz_, true);
+            for (uint j = run.x; j < run.y; ++j) fluid += kernel_w(length(xi - position[j].xyz), h);
+            run = row_run(c, x0_, ROW_END(x0_), dy_, dz_, false);
+            for (uint b = run.x; b < run.y; ++b) wall += boundary[b].w * kernel_w(length(xi - boundary[b].xyz), h);
+        }
         float rho = sph.mass * fluid + wall;
         ratio = rho / sph.rest_density;
         float p = max(0.0, sph.stiffness * (pow(ratio, 7.0) - 1.0));

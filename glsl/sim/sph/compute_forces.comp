@@ -25,20 +25,24 @@ void main() {
         float eps = 0.01 * h * h;
         vec3 a_pressure = vec3(0.0), a_viscous = vec3(0.0), a_wall = vec3(0.0);
         ivec3 c = grid_cell(xi);
-        FOR_EACH_NEIGHBOUR(c, true, j) {
-            vec3 d = xi - position[j.x].xyz;
-            float r = length(d);
-            if (r >= h || j.x == i) continue;
-            vec3 g = kernel_grad(d, r, h);
-            vec2 dj = density[j.x].xy;
-            a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
-            a_viscous += (2.0 * dot(vi - velocity[j.x].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
-        }
-        FOR_EACH_NEIGHBOUR(c, false, b) {
-            vec3 d = xi - boundary[b.x].xyz;
-            float r = length(d);
-            if (r >= h) continue;
-            a_wall -= boundary[b.x].w * kernel_grad(d, r, h);
+        FOR_EACH_ROW {
+            uvec2 run = row_run(c, x0_, ROW_END(x0_), dy_, dz_, true);
+            for (uint j = run.x; j < run.y; ++j) {
+                vec3 d = xi - position[j].xyz;
+                float r = length(d);
+                if (r >= h || j == i) continue;
+                vec3 g = kernel_grad(d, r, h);
+                vec2 dj = density[j].xy;
+                a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
+                a_viscous += (2.0 * dot(vi - velocity[j].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
+            }
+            run = row_run(c, x0_, ROW_END(x0_), dy_, dz_, false);
+            for (uint b = run.x; b < run.y; ++b) {
+                vec3 d = xi - boundary[b].xyz;
+                float r = length(d);
+                if (r >= h) continue;
+                a_wall -= boundary[b].w * kernel_grad(d, r, h);
+            }
         }
         vec3 a = sph.gravity.xyz + sph.mass * (a_pressure + 10.0 * sph.viscosity * a_viscous) + pi_term * a_wall;
         accel[i] = vec4(a, 0.0);

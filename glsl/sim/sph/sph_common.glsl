@@ -46,14 +46,15 @@ uvec2 row_run(ivec3 center, int x0, int x1, int dy, int dz, bool fluid) {
     return s < e ? uvec2(s, e) : uvec2(0u);
 }
 
-// Loops `j` over every particle in the 27 cells around `center`, as 9 runs (linear keys) or 27
-// (Morton keys). FLUID is true for fluid particles, false for boundary particles.
-#define FOR_EACH_NEIGHBOUR(center, FLUID, j)                                                  \
+// The rows of cells around a particle: dz_, dy_ in -1..1 and x0_ stepping through -1..1 one cell
+// at a time (Morton keys) or as one row (linear keys). The body takes the row's run with
+//     uvec2 run = row_run(center, x0_, ROW_END(x0_), dy_, dz_, fluid);
+// and loops over [run.x, run.y).
+#define FOR_EACH_ROW                                                                          \
     for (int dz_ = -1; dz_ <= 1; ++dz_)                                                       \
     for (int dy_ = -1; dy_ <= 1; ++dy_)                                                       \
-    for (int x0_ = -1; x0_ <= 1; x0_ += (grid.morton != 0u ? 1 : 3))                          \
-    for (uvec2 run_ = row_run(center, x0_, grid.morton != 0u ? x0_ : 1, dy_, dz_, FLUID),     \
-         j = uvec2(run_.x, 0u); j.x < run_.y; ++j.x)
+    for (int x0_ = -1; x0_ <= 1; x0_ += (grid.morton != 0u ? 1 : 3))
+#define ROW_END(x0) (grid.morton != 0u ? (x0) : 1)
 
 // Workgroup maxima of non-negative floats (as bits, see StepState), each with one invocation that
 // has it, so that a pass makes one global atomic per workgroup instead of one per particle (a

@@ -1,0 +1,54 @@
+#version 430
+// "level-set" (METHOD.md §7): φ at every node of the grid that place_grid laid out,
+//     φ(x) = V · Σ_i W(|x - x_i|, R) - iso,
+// W the cubic spline of glsl/sim/kernel.glsl with support R, V = dx^3 (so V·ΣW ≈ 1 inside liquid at
+// rest; engine/surface/level_set.h gives the choice of R and iso).
+// A GATHER: each node loops over the neighbour-grid cells that the box [x - R - m, x + R + m] touches
+// (m = search_margin) and over their particles' runs of the cell-ordered positions. No atomics; each
+// node's sum runs in a fixed order, so φ is the same from run to run.
+//   - Particles are found in the cell they were sorted into. The margin m covers particles that have
+//     moved since (the SPH integrates after the sort): one within R of x now was within R + m of x
+//     then. W vanishes beyond R, so searching farther never changes the sum, only its cost.
+//   - The cell range is clamped to the grid like grid_cell() clamps particles, so particles outside
+//     the neighbour grid (kept in its border cells) are found too: clamping is monotone.
+//   - Cell ranges need not have been cleared (NeighbourGrid::build with clear = false): a run is taken
+//     only if the sorted key at its start is the cell's own, as fluid_run() in sim/sph/sph_common.glsl.
+// Dispatch: glDispatchComputeIndirect with surface_grid.dispatch; one invocation per node.
+#include "../shared/bindings.h"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
+layout(std140, binding = RANRYU_UBO_SURFACE) uniform SurfaceBlock { SurfaceParams surface; };
+layout(std430, binding = RANRYU_SSBO_SORTED_POSITION) readonly buffer Positions { vec4 sorted_position[]; };
+layout(std430, binding = RANRYU_SSBO_CELL_START) readonly buffer Start { uint cell_start[]; };
+layout(std430, binding = RANRYU_SSBO_CELL_END) readonly buffer End { uint cell_end[]; };
+layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer SortedKeys { uint sorted_keys[]; };
+layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
+layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) writeonly buffer Phi { float phi[]; };
+
+#include "../sim/grid.glsl"
+#include "../sim/kernel.glsl"
+
+// The particles of cell `key`: [start, end) of the sorted arrays, or empty when the entry is stale.
+uvec2 cell_run(uint key) {
+    uint s = cell_start[key];
+    if (s < surface.particle_count && sorted_keys[s] == key) return uvec2(s, cell_end[key]);
+    return uvec2(0u);
+}
+
+void main() {
+    uvec3 node = gl_GlobalInvocationID;
+    uvec3 dims = surface_grid.dims.xyz;
+    if (any(greaterThanEqual(node, dims))) return;
+    vec3 x = surface_grid.origin.xyz + surface_grid.origin.w * vec3(node);
+    float r = surface.kernel_radius, reach = r + surface.search_margin;
+    ivec3 lo = grid_cell(x - reach), hi = grid_cell(x + reach);
+    float sum = 0.0;
+    for (int cz = lo.z; cz <= hi.z; ++cz)
+        for (int cy = lo.y; cy <= hi.y; ++cy)
+            for (int cx = lo.x; cx <= hi.x; ++cx) {
+                uvec2 run = cell_run(cell_key(ivec3(cx, cy, cz)));
+                for (uint j = run.x; j < run.y; ++j) sum += kernel_w(length(x - sorted_position[j].xyz), r);
+            }
+    phi[node.x + dims.x * (node.y + dims.y * node.z)] = surface.volume * sum - surface.iso;
+}

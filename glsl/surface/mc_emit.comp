@@ -1,0 +1,69 @@
+#version 430
+// "mc.emit": the triangles of every listed active cell, written at the cell's first vertex.
+//   in   active_cells[0, mc.emit_dispatch.w), phi, surface_grid
+//   out  vertices[first .. first + 3 x triangles): MeshVertex (position, outward unit normal)
+// A vertex on edge (a, b), a the edge's lower corner (mc_tables.h), lies where φ is zero on the
+// linear interpolant:  t = φa / (φa - φb),  x = origin + h (node_a + t (node_b - node_a)).
+// Every cell that shares the edge computes it from the same numbers in the same order ('precise'
+// forbids the compiler to fuse differently), so shared vertices are bit-identical: no cracks.
+// The normal is -∇φ/|∇φ|, ∇φ by central differences at the two nodes (one-sided on the grid's
+// border) interpolated with the same t; where ∇φ vanishes, the triangle's own normal.
+// Triangles past the vertex capacity are dropped (mc.totals.z says so); mc.draw counts those kept.
+// Dispatch: glDispatchComputeIndirect with mc.emit_dispatch.
+#include "../shared/bindings.h"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
+layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) readonly buffer Phi { float phi[]; };
+layout(std430, binding = RANRYU_SSBO_MC_STATE) readonly buffer State { MeshState mc; };
+layout(std430, binding = RANRYU_SSBO_MC_ACTIVE) readonly buffer Active { uvec2 active_cells[]; };
+layout(std430, binding = RANRYU_SSBO_MC_VERTICES) writeonly buffer Vertices { MeshVertex vertices[]; };
+layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // x: vertices
+
+#include "mc_common.glsl"
+
+// ∇φ at a node: central differences inside, one-sided on the border.
+vec3 gradient(ivec3 n) {
+    ivec3 top = ivec3(surface_grid.dims.xyz) - 1;
+    vec3 g;
+    for (int a = 0; a < 3; ++a) {
+        ivec3 e = ivec3(0);
+        e[a] = 1;
+        ivec3 lo = max(n - e, ivec3(0)), hi = min(n + e, top);
+        g[a] = (phi_at(hi) - phi_at(lo)) / (float(hi[a] - lo[a]) * surface_grid.origin.w);
+    }
+    return g;
+}
+
+void edge_vertex(uvec3 cell, int edge, float f[8], out vec3 position, out vec3 grad) {
+    int a = mc_edge_corners[2 * edge], b = mc_edge_corners[2 * edge + 1];
+    ivec3 na = ivec3(cell) + mc_corner(a), nb = ivec3(cell) + mc_corner(b);
+    precise float t = f[a] / (f[a] - f[b]);
+    precise vec3 local = vec3(na) + t * vec3(nb - na);
+    precise vec3 x = surface_grid.origin.xyz + surface_grid.origin.w * local;
+    position = x;
+    vec3 ga = gradient(na), gb = gradient(nb);
+    grad = ga + t * (gb - ga);
+}
+
+void main() {
+    uint s = gl_GlobalInvocationID.x;
+    if (s >= mc.emit_dispatch.w) return;
+    uvec2 cell_first = active_cells[s];
+    uvec3 cell = cell_coord(cell_first.x);
+    float f[8];
+    uint index = cube_case(cell, f);
+    uint room = capacity.x - capacity.x % 3u;
+    for (uint t = 0u; t < 5u; ++t) {
+        uint base = cell_first.y + 3u * t;
+        if (mc_triangles[index * 16u + 3u * t] < 0 || base + 3u > room) break;
+        vec3 p[3], g[3];
+        for (uint v = 0u; v < 3u; ++v) edge_vertex(cell, mc_triangles[index * 16u + 3u * t + v], f, p[v], g[v]);
+        vec3 face = cross(p[1] - p[0], p[2] - p[0]);
+        vec3 fallback = dot(face, face) > 0.0 ? normalize(face) : vec3(0.0);
+        for (uint v = 0u; v < 3u; ++v) {
+            vec3 n = dot(g[v], g[v]) > 0.0 ? -normalize(g[v]) : fallback;
+            vertices[base + v] = MeshVertex(vec4(p[v], 1.0), vec4(n, 0.0));
+        }
+    }
+}

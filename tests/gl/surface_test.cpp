@@ -1,0 +1,455 @@
+// The liquid surface on the GPU (engine/surface/, glsl/surface/) against its CPU references:
+//   - marching cubes on uploaded φ grids (random fields, analytic spheres): the GPU mesh equals
+//     surface::polygonise_cpu() on the same φ vertex for vertex (the compaction keeps cell order, so
+//     the orders agree), is watertight and consistently oriented, and on spheres has the known
+//     second-order area and volume error and Euler characteristic 2;
+//   - capacity limits: vertices past the capacity are dropped and flagged, a grid with too many cells
+//     meshes nothing and says so;
+//   - the level set from particles sorted by sim::NeighbourGrid: bounds equal the CPU's exactly, the
+//     grid placement covers the particles' support, φ equals a brute-force sum in double, and the
+//     mesh of that φ equals the CPU's mesh of the same (read-back) φ;
+//   - the documented iso choice: a lone particle's surface is a sphere of radius dx/2, a flat block's
+//     top lies dx/2 above its top layer.
+//
+// Tolerances:
+//   - vertex positions 1e-5 · (|x| + h): t = φa/(φa - φb) and x = origin + h·(node + t·axis) are a few
+//     float operations on identical inputs; GLSL division may be off by 2.5 ulp (spec), so positions
+//     differ by ~1e-7 relative. Normals 1e-4 (normalisation of a gradient of float differences).
+//   - φ: |Δ| <= 1e-5 · c + 1e-5 · V·W(0), c = φ + iso the kernel sum. The GPU sums up to a few hundred
+//     float terms (relative round-off ~ n·6e-8 of c), and a node's coordinate may differ by one ulp
+//     (fused multiply-add), which moves each term by at most |W'|·ulp(x) ≈ 1e-6 of the peak V·W(0).
+//   - sphere area and volume: the coefficients -0.314 and -0.594 of (h/R)^2 measured for this table
+//     (tests/unit/marching_cubes_table_test.cpp), ±0.03.
+#include "support/gl_fixture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "profile/gpu_timer.h"
+#include "shader/source.h"
+#include "shared/bindings.h"
+#include "sim/grid.h"
+#include "surface/level_set.h"
+#include "surface/marching_cubes.h"
+#include "surface/mesh.h"
+
+namespace {
+
+namespace rs = ranryu::surface;
+using ranryu::gl::Buffer;
+using ranryu::gpu::MeshState;
+using ranryu::gpu::MeshVertex;
+using ranryu::gpu::SurfaceGrid;
+using rs::PhiGrid;
+
+constexpr unsigned kMaxDims = 48;
+
+// Programs and buffers built once per process (shader compiles are slow on llvmpipe).
+struct Rig {
+    bool ready = (ranryu::test::context(), true);
+    ranryu::shader::FileSource shaders = ranryu::shader::FileSource::embedded();
+    ranryu::profile::GpuTimer timer{4, 512};
+    rs::MarchingCubes mc{shaders, timer, rs::MeshCapacity{glm::uvec3(kMaxDims), 400'000}};
+};
+Rig& rig() {
+    static Rig r;
+    return r;
+}
+
+// Particles: raw and cell-ordered positions, and the neighbour grid that sorts them. The neighbour
+// grid covers [0.12, 0.28]^3 m only, so clouds that reach beyond it check that particles kept in the
+// border cells are still gathered.
+struct Particles {
+    static constexpr std::size_t kCapacity = 4096;
+    ranryu::sim::NeighbourGrid grid;
+    Buffer position{kCapacity * sizeof(glm::vec4), GL_DYNAMIC_DRAW, nullptr, "test.position"};
+    Buffer velocity{kCapacity * sizeof(glm::vec4), GL_DYNAMIC_DRAW, nullptr, "test.velocity"};
+    Buffer sorted_position{kCapacity * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "test.sorted_position"};
+    Buffer sorted_velocity{kCapacity * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "test.sorted_velocity"};
+    ranryu::sim::CellRanges ranges;
+    explicit Particles(bool morton)
+        : grid(rig().shaders, rig().timer, ranryu::sim::GridLayout::covering(glm::vec3(0.12f), glm::vec3(0.28f), 0.04f, morton),
+               kCapacity, ranryu::sim::SortMethod::radix),
+          ranges(grid.make_ranges("test.cells")) {}
+
+    void upload(const std::vector<glm::vec4>& x) {
+        REQUIRE(x.size() <= kCapacity);
+        position.upload(x.data(), x.size() * sizeof(glm::vec4));
+        const std::vector<glm::vec4> zero(x.size(), glm::vec4(0.0f));
+        velocity.upload(zero.data(), zero.size() * sizeof(glm::vec4));
+    }
+};
+Particles& particles(bool morton) {
+    static std::unique_ptr<Particles> p[2];
+    if (!p[morton]) p[morton] = std::make_unique<Particles>(morton);
+    return *p[morton];
+}
+
+struct Uploaded {
+    Buffer phi, grid;
+};
+Uploaded upload(const PhiGrid& g) {
+    rig();   // the context first: GL objects made without one are silently not made
+    SurfaceGrid s{};
+    s.origin = glm::vec4(g.origin, g.spacing);
+    s.dims = glm::uvec4(g.dims, std::uint32_t(g.nodes()));
+    return {Buffer::from<float>(g.phi, GL_STATIC_DRAW, "test.phi"), Buffer(sizeof s, GL_STATIC_DRAW, &s, "test.grid")};
+}
+
+struct GpuMesh {
+    MeshState state;
+    std::vector<MeshVertex> vertices;
+};
+GpuMesh polygonise(rs::MarchingCubes& mc, const Buffer& phi, const Buffer& grid) {
+    auto& timer = rig().timer;
+    timer.begin_frame();
+    mc.polygonise(phi, grid);
+    timer.end_frame();
+    GpuMesh m{mc.state().read<MeshState>(1)[0], {}};
+    m.vertices = mc.vertices().read<MeshVertex>(m.state.draw.x);
+    return m;
+}
+
+// GPU vertices equal CPU ones, in order (see the tolerances above). `scale`: the node spacing.
+void check_same_mesh(const std::vector<MeshVertex>& gpu, const std::vector<MeshVertex>& cpu, float scale) {
+    REQUIRE(gpu.size() == cpu.size());
+    std::size_t bad = 0, first = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < gpu.size(); ++i) {
+        const glm::vec3 p(cpu[i].position), q(gpu[i].position), n(cpu[i].normal), m(gpu[i].normal);
+        const double dp = glm::length(p - q) / (glm::length(p) + scale), dn = glm::length(n - m);
+        worst = std::max(worst, dp);
+        if (dp > 1e-5 || dn > 1e-4 || gpu[i].position.w != 1.0f || gpu[i].normal.w != 0.0f) {
+            if (!bad) first = i;
+            ++bad;
+        }
+    }
+    INFO(bad << " of " << gpu.size() << " vertices differ; first at " << first << "; worst relative position error "
+              << worst);
+    CHECK(bad == 0);
+}
+
+void check_watertight(const std::vector<MeshVertex>& soup, long euler) {
+    const auto topo = rs::topology(rs::weld(soup));
+    INFO(topo.faces << " triangles, " << topo.vertices << " vertices, " << topo.edges << " edges; "
+                    << topo.boundary_or_nonmanifold_edges << " edges not in two triangles, " << topo.misoriented_edges
+                    << " misoriented, " << topo.degenerate_faces << " degenerate");
+    CHECK(topo.watertight());
+    if (euler != 1) CHECK(topo.euler() == euler);   // 1: unknown genus, checked for parity only
+    else CHECK(topo.euler() % 2 == 0);
+}
+
+// φ = R - |x - c| (see tests/unit/marching_cubes_table_test.cpp).
+PhiGrid sphere(glm::vec3 origin, float h, glm::uvec3 dims, glm::vec3 centre, float R) {
+    PhiGrid g{origin, h, dims, {}};
+    g.phi.resize(g.nodes());
+    for (std::uint32_t k = 0; k < dims.z; ++k)
+        for (std::uint32_t j = 0; j < dims.y; ++j)
+            for (std::uint32_t i = 0; i < dims.x; ++i) {
+                const float f = R - float(glm::length(glm::dvec3(g.node({i, j, k})) - glm::dvec3(centre)));
+                g.phi[g.index({i, j, k})] = f == 0.0f ? -1e-30f : f;
+            }
+    return g;
+}
+
+glm::vec3 random_vec(ranryu::test::Random& rng, float lo, float hi) {
+    return {rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi)};
+}
+
+// Runs the level set on the GPU for `x` and returns the grid it placed and its φ. The cell ranges
+// are never cleared (as the SPH builds them), so stale entries of earlier builds are in them. With
+// `move`, every sorted particle then moves by up to `move` per axis, as integration moves them after
+// the sort, and `x` becomes the moved positions.
+PhiGrid gpu_level_set(rs::LevelSet& ls, Particles& p, std::vector<glm::vec4>& x, SurfaceGrid* raw = nullptr,
+                      ranryu::test::Random* rng = nullptr, float move = 0.0f) {
+    auto& timer = rig().timer;
+    timer.begin_frame();
+    if (!x.empty()) {
+        p.upload(x);
+        p.grid.build(p.position, p.velocity, p.sorted_position, p.sorted_velocity, p.ranges, x.size(), /*clear=*/false);
+        if (rng) {
+            x = p.sorted_position.read<glm::vec4>(x.size());
+            for (auto& q : x) q += glm::vec4(rng->uniform(-move, move), rng->uniform(-move, move), rng->uniform(-move, move), 0.0f);
+            p.sorted_position.upload(x.data(), x.size() * sizeof(glm::vec4));
+        }
+    }
+    ls.compute(p.grid, p.sorted_position, p.ranges, x.size());
+    timer.end_frame();
+    const SurfaceGrid s = ls.grid().read<SurfaceGrid>(1)[0];
+    if (raw) *raw = s;
+    PhiGrid g{glm::vec3(s.origin), s.origin.w, glm::uvec3(s.dims), {}};
+    g.phi = ls.phi().read<float>(s.dims.w);
+    return g;
+}
+
+}  // namespace
+
+TEST_CASE("surface: GPU marching cubes on random fields equals the CPU reference and is watertight", "[surface]") {
+    // Random signs at inner nodes (|φ| in [0.1, 1]), border outside: every case and ambiguous face.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    for (int trial = 0; trial < 4; ++trial) {
+        const glm::uvec3 dims(4 + rng.below(28), 4 + rng.below(28), 4 + rng.below(28));
+        PhiGrid g{random_vec(rng, -2, 2), rng.uniform(0.01f, 0.1f), dims, {}};
+        g.phi.resize(g.nodes());
+        for (std::uint32_t k = 0; k < dims.z; ++k)
+            for (std::uint32_t j = 0; j < dims.y; ++j)
+                for (std::uint32_t i = 0; i < dims.x; ++i) {
+                    const bool border = i == 0 || j == 0 || k == 0 || i + 1 == dims.x || j + 1 == dims.y || k + 1 == dims.z;
+                    const float m = rng.uniform(0.1f, 1.0f);
+                    g.phi[g.index({i, j, k})] = border || rng.below(2) ? -m : m;
+                }
+        INFO("trial " << trial << ", dims " << dims.x << "x" << dims.y << "x" << dims.z);
+        const auto in = upload(g);
+        const GpuMesh gpu = polygonise(rig().mc, in.phi, in.grid);
+        const auto cpu = rs::polygonise_cpu(g);
+        const glm::uvec3 cells = dims - 1u;
+        CHECK(gpu.state.cell_dispatch.w == cells.x * cells.y * cells.z);
+        CHECK(gpu.state.totals.y == cpu.size());
+        CHECK(gpu.state.totals == glm::uvec4(gpu.state.emit_dispatch.w, cpu.size(), 0u, 0u));
+        CHECK(gpu.state.draw == glm::uvec4(cpu.size(), 1u, 0u, 0u));
+        check_same_mesh(gpu.vertices, cpu, g.spacing);
+        check_watertight(gpu.vertices, 1);
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("surface: GPU marching cubes of spheres: watertight, genus 0, second-order area and volume", "[surface]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    for (float R : {6.0f, 10.0f, 16.0f}) {
+        const float h = rng.uniform(0.005f, 0.05f);
+        const glm::vec3 origin = random_vec(rng, -1, 1);
+        const auto n = std::uint32_t(2 * R + 5);
+        const glm::vec3 centre = origin + h * (glm::vec3(float(n - 1) / 2) + random_vec(rng, -0.5f, 0.5f));
+        const PhiGrid g = sphere(origin, h, glm::uvec3(n), centre, R * h);
+        const auto in = upload(g);
+        const GpuMesh gpu = polygonise(rig().mc, in.phi, in.grid);
+        INFO("R = " << R << " cells, h = " << h << ", " << gpu.vertices.size() / 3 << " triangles");
+        check_same_mesh(gpu.vertices, rs::polygonise_cpu(g), h);
+        check_watertight(gpu.vertices, 2);
+
+        const auto m = rs::measure(gpu.vertices);
+        const double r = R * h, pi = std::numbers::pi;
+        const double area_coeff = (m.area / (4 * pi * r * r) - 1) * R * R;
+        const double volume_coeff = (m.volume / (4.0 / 3.0 * pi * r * r * r) - 1) * R * R;
+        INFO("area error " << area_coeff << " (h/R)^2, volume error " << volume_coeff << " (h/R)^2");
+        CHECK(std::abs(area_coeff + 0.314) < 0.03);
+        CHECK(std::abs(volume_coeff + 0.594) < 0.03);
+
+        // Normals of a distance field are radial; central differences and interpolation keep them
+        // within a few degrees at R >= 6 cells.
+        double worst = 1.0;
+        for (const MeshVertex& v : gpu.vertices)
+            worst = std::min(worst, double(glm::dot(glm::vec3(v.normal), glm::normalize(glm::vec3(v.position) - centre))));
+        INFO("smallest cos(normal, radial) " << worst);
+        CHECK(worst > 0.99);
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("surface: marching cubes past its capacity drops vertices, or a whole grid, and says so", "[surface]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    static rs::MarchingCubes small(rig().shaders, rig().timer, rs::MeshCapacity{glm::uvec3(12), 301});
+    CHECK(small.max_cells() == 11u * 11u * 11u);
+    CHECK(small.max_active() == 100u);
+
+    // A sphere of radius 3.5 cells in 11^3 nodes: ~200 triangles, more than the 100 that fit.
+    const float h = 0.1f;
+    const glm::vec3 origin = random_vec(rng, -1, 1), centre = origin + h * (glm::vec3(5.0f) + random_vec(rng, -0.3f, 0.3f));
+    const PhiGrid g = sphere(origin, h, glm::uvec3(11), centre, 3.5f * h);
+    const auto cpu = rs::polygonise_cpu(g);
+    REQUIRE(cpu.size() > 301);
+    const auto in = upload(g);
+    GpuMesh gpu = polygonise(small, in.phi, in.grid);
+    CHECK(gpu.state.totals.x > 100u);
+    CHECK(gpu.state.totals.y == cpu.size());
+    CHECK(gpu.state.totals.z == 1u);
+    CHECK(gpu.state.emit_dispatch.w == 100u);
+    CHECK(gpu.state.draw.x == 300u);
+    check_same_mesh(gpu.vertices, std::vector<MeshVertex>(cpu.begin(), cpu.begin() + 300), h);
+
+    // 12^3 cells > 11^3: nothing meshed.
+    const auto too_big = upload(sphere(origin, h, glm::uvec3(13), centre, 3.5f * h));
+    gpu = polygonise(small, too_big.phi, too_big.grid);
+    CHECK(gpu.state.totals == glm::uvec4(0u, 0u, 0u, 1u));
+    CHECK(gpu.state.draw.x == 0u);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("surface: level set of a random cloud equals a brute-force sum; bounds and placement are exact", "[surface]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const float dx = 0.02f;
+    auto s = rs::LevelSetSettings::for_spacing(dx);
+    s.max_dims = glm::uvec3(kMaxDims);
+    static rs::LevelSet ls(rig().shaders, rig().timer, s);
+    for (bool morton : {false, true}) {
+        // Clumps of jittered lattice (liquid-like) plus scattered drops, a few outside the neighbour grid.
+        std::vector<glm::vec4> x;
+        const int clumps = 1 + int(rng.below(3));
+        for (int c = 0; c < clumps; ++c) {
+            const glm::vec3 corner = random_vec(rng, 0.11f, 0.2f);
+            const glm::ivec3 n(2 + rng.below(5), 2 + rng.below(5), 2 + rng.below(5));
+            for (int k = 0; k < n.z; ++k)
+                for (int j = 0; j < n.y; ++j)
+                    for (int i = 0; i < n.x; ++i)
+                        x.emplace_back(corner + dx * (glm::vec3(i, j, k) + random_vec(rng, -0.2f, 0.2f)), 0.0f);
+        }
+        for (int d = 0; d < 20; ++d) x.emplace_back(random_vec(rng, 0.1f, 0.3f), 0.0f);
+        INFO((morton ? "Morton" : "linear") << " keys, " << x.size() << " particles");
+
+        // Particles moved after the sort by up to margin/√3 per axis (within the search margin).
+        SurfaceGrid raw{};
+        PhiGrid g = gpu_level_set(ls, particles(morton), x, &raw, &rng, s.search_margin / std::sqrt(3.0f));
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const auto& p : x) {
+            lo = glm::min(lo, glm::vec3(p));
+            hi = glm::max(hi, glm::vec3(p));
+        }
+        for (int a = 0; a < 3; ++a) {
+            CHECK(rs::from_ordered_bits(raw.bounds_min[a]) == lo[a]);
+            CHECK(rs::from_ordered_bits(raw.bounds_max[a]) == hi[a]);
+        }
+        // Placement: the CPU rule (dims may differ by one only where a quotient rounds across an integer).
+        const PhiGrid want = rs::place_grid(lo, hi, s);
+        INFO("GPU grid " << g.dims.x << "x" << g.dims.y << "x" << g.dims.z << " at spacing " << g.spacing << ", CPU "
+                         << want.dims.x << "x" << want.dims.y << "x" << want.dims.z << " at " << want.spacing);
+        CHECK(g.spacing == want.spacing);
+        CHECK(glm::length(g.origin - want.origin) <= 1e-5f * g.spacing);
+        CHECK(glm::all(glm::lessThanEqual(glm::abs(glm::ivec3(g.dims) - glm::ivec3(want.dims)), glm::ivec3(1))));
+        CHECK(glm::all(glm::lessThanEqual(g.origin, lo - s.kernel_radius)));
+        CHECK(glm::all(glm::greaterThanEqual(g.node(g.dims - 1u), hi + s.kernel_radius - 1e-6f)));
+        CHECK(raw.dispatch.w == 0u);
+        const auto group = ls.node_group();
+        const glm::uvec3 local(group[0], group[1], group[2]);
+        CHECK(glm::uvec3(raw.dispatch) == (g.dims + local - 1u) / local);
+
+        PhiGrid ref = g;
+        rs::level_set_cpu(x, s, ref);
+        const double peak = double(dx) * dx * dx * rs::kernel_w(0.0, s.kernel_radius);
+        std::size_t bad = 0;
+        double worst = 0.0;
+        for (std::size_t i = 0; i < g.phi.size(); ++i) {
+            const double c = ref.phi[i] + double(s.iso), err = std::abs(double(g.phi[i]) - ref.phi[i]);
+            worst = std::max(worst, err / (1e-5 * c + 1e-5 * peak));
+            bad += err > 1e-5 * c + 1e-5 * peak;
+        }
+        INFO(bad << " of " << g.phi.size() << " nodes off; worst error / tolerance " << worst);
+        CHECK(bad == 0);
+
+        // The mesh of this φ: GPU equals CPU on the read-back φ; closed.
+        const GpuMesh gpu = polygonise(rig().mc, ls.phi(), ls.grid());
+        const auto cpu = rs::polygonise_cpu(g);
+        CHECK(gpu.state.totals.y == cpu.size());
+        check_same_mesh(gpu.vertices, cpu, g.spacing);
+        check_watertight(gpu.vertices, 1);
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("surface: the level set grid coarsens to fit its max dims, and is empty without particles", "[surface]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    auto s = rs::LevelSetSettings::for_spacing(0.02f);
+    s.max_dims = glm::uvec3(8 + rng.below(8), 8 + rng.below(8), 8 + rng.below(8));
+    rs::LevelSet ls(rig().shaders, rig().timer, s);
+    std::vector<glm::vec4> x;
+    for (int i = 0; i < 200; ++i) x.emplace_back(random_vec(rng, 0.1f, 0.3f), 0.0f);
+    SurfaceGrid raw{};
+    PhiGrid g = gpu_level_set(ls, particles(false), x, &raw);
+    INFO("max dims " << s.max_dims.x << "x" << s.max_dims.y << "x" << s.max_dims.z << "; spacing " << g.spacing);
+    CHECK(g.spacing > s.node_spacing);
+    CHECK(raw.dispatch.w == 1u);
+    CHECK(glm::all(glm::lessThanEqual(g.dims, s.max_dims)));
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : x) {
+        lo = glm::min(lo, glm::vec3(p));
+        hi = glm::max(hi, glm::vec3(p));
+    }
+    CHECK(glm::all(glm::lessThanEqual(g.origin, lo - s.kernel_radius)));
+    CHECK(glm::all(glm::greaterThanEqual(g.node(g.dims - 1u), hi + s.kernel_radius - 1e-6f)));
+    PhiGrid ref = g;
+    rs::level_set_cpu(x, s, ref);
+    for (std::size_t i = 0; i < g.phi.size(); ++i)
+        CHECK(std::abs(g.phi[i] - ref.phi[i]) <= 1e-5 * (ref.phi[i] + s.iso) + 1e-5);
+
+    // No particles: no nodes, and marching cubes draws nothing.
+    x.clear();
+    g = gpu_level_set(ls, particles(false), x, &raw);
+    CHECK(raw.dims == glm::uvec4(0u));
+    CHECK(glm::uvec3(raw.dispatch) == glm::uvec3(0u, 1u, 1u));
+    const GpuMesh gpu = polygonise(rig().mc, ls.phi(), ls.grid());
+    CHECK(gpu.state.draw == glm::uvec4(0u, 1u, 0u, 0u));
+    CHECK(gpu.state.totals == glm::uvec4(0u));
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("surface: a lone particle's surface is a sphere of radius dx/2; a flat top lies dx/2 above its particles", "[surface]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const float dx = 0.02f;
+    auto s = rs::LevelSetSettings::for_spacing(dx);
+    s.node_spacing = dx / 8;   // 4 nodes per particle radius: the mesh's own error stays below 1%
+    s.max_dims = glm::uvec3(kMaxDims);
+    static rs::LevelSet ls(rig().shaders, rig().timer, s);
+
+    SECTION("lone particle") {
+        const glm::vec3 p = random_vec(rng, 0.15f, 0.25f);
+        std::vector<glm::vec4> x{glm::vec4(p, 0.0f)};
+        const PhiGrid g = gpu_level_set(ls, particles(false), x);
+        const GpuMesh gpu = polygonise(rig().mc, ls.phi(), ls.grid());
+        REQUIRE(!gpu.vertices.empty());
+        check_watertight(gpu.vertices, 2);
+        double lo = INFINITY, hi = 0.0;
+        for (const MeshVertex& v : gpu.vertices) {
+            const double r = glm::length(glm::vec3(v.position) - p) / dx;
+            lo = std::min(lo, r);
+            hi = std::max(hi, r);
+        }
+        INFO("vertex distances " << lo << " dx to " << hi << " dx, grid " << g.dims.x << "^3");
+        // φ = 0 exactly at 0.5 dx. The mesh interpolates φ linearly along edges h = dx/8 long, which
+        // moves a vertex by up to h^2/8 · (curvature 1/r) ≈ 0.004 dx: asserted within 0.01 dx (2%).
+        CHECK(lo > 0.49);
+        CHECK(hi < 0.51);
+    }
+    SECTION("flat top of a block") {
+        // An n x 3 x n block on a cubic lattice; the top's vertices away from the sides.
+        const glm::vec3 corner = random_vec(rng, 0.12f, 0.16f);
+        const int n = 6;
+        std::vector<glm::vec4> x;
+        for (int k = 0; k < n; ++k)
+            for (int j = 0; j < 3; ++j)
+                for (int i = 0; i < n; ++i) x.emplace_back(corner + dx * glm::vec3(i, j, k), 0.0f);
+        gpu_level_set(ls, particles(false), x);
+        const GpuMesh gpu = polygonise(rig().mc, ls.phi(), ls.grid());
+        check_watertight(gpu.vertices, 2);
+        const float top = corner.y + 2 * dx;
+        double lo = INFINITY, hi = -INFINITY;
+        int count = 0;
+        for (const MeshVertex& v : gpu.vertices) {
+            const glm::vec3 q = (glm::vec3(v.position) - corner) / dx;
+            if (q.y < 2.0f || q.x < 1.5f || q.x > n - 2.5f || q.z < 1.5f || q.z > n - 2.5f) continue;
+            const double above = (v.position.y - top) / dx;
+            lo = std::min(lo, above);
+            hi = std::max(hi, above);
+            ++count;
+        }
+        INFO(count << " top vertices, " << lo << " dx to " << hi << " dx above the top layer");
+        REQUIRE(count > 50);
+        // φ's 0-level: 0.530 dx above the middle of four particles to 0.575 dx above a particle
+        // (level_set.h); the mesh adds up to ~0.004 dx of interpolation error (ripples of curvature
+        // ~2/dx, edges dx/8). Asserted: within [0.51, 0.59] dx.
+        CHECK(lo > 0.51);
+        CHECK(hi < 0.59);
+    }
+    ranryu::test::require_no_gl_errors();
+}
