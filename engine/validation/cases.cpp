@@ -135,9 +135,13 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         l.reference = rho0 * g * std::max(r.height - (l.z - scene.tank_min.y), 0.0);
         l.particles = n[std::size_t(k)];
         r.layers.push_back(l);
-        // Below the top kernel support the summation density is complete: that is where the
-        // hydrostatic law is compared (the top layers lack neighbours above and read low).
-        if (l.z - scene.tank_min.y < r.height - h) r.max_error = std::max(r.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
+        // The hydrostatic law is compared in the interior: from one kernel support above the floor
+        // (whose boundary term carries the bottom layer at about twice the pressure, docs/SPH.md
+        // eq. (4)) to one below the free surface (where the summation density lacks neighbours
+        // above and reads low). The layers outside are printed, not compared.
+        const double depth_from_floor = l.z - scene.tank_min.y;
+        if (depth_from_floor > h && depth_from_floor < r.height - h)
+            r.max_error = std::max(r.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
     }
     return r;
 }

@@ -28,7 +28,7 @@ struct HydrostaticResult {
     std::size_t particles = 0;
     struct Layer { double z, pressure, reference; int particles; };
     std::vector<Layer> layers;
-    double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) below the top kernel support
+    double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) in the interior: a kernel support from floor and surface
     double max_speed = 0.0, rms_speed = 0.0;
 };
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s);

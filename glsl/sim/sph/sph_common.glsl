@@ -31,30 +31,22 @@ uvec2 fluid_run(uint key) {
 // The boundary's ranges were cleared when they were built (once, at start): empty cells read 0, 0.
 uvec2 boundary_run(uint key) { return uvec2(boundary_start[key], boundary_end[key]); }
 
-// The cells (center.x + x0 .. center.x + x1, center.y + dy, center.z + dz) as one run of sorted
-// particles. With linear keys the cells of an x-row have consecutive keys, so their particles are
-// contiguous and the whole row is one run [first start, last end); Morton keys give one cell a call.
-uvec2 row_run(ivec3 center, int x0, int x1, int dy, int dz, bool fluid) {
-    uint s = 0xFFFFFFFFu, e = 0u;
-    for (int dx = x0; dx <= x1; ++dx) {
-        ivec3 c = center + ivec3(dx, dy, dz);
-        if (!cell_inside(c)) continue;
-        uint key = cell_key(c);
-        uvec2 r = fluid ? fluid_run(key) : boundary_run(key);
-        if (r.y > r.x) { s = min(s, r.x); e = max(e, r.y); }
-    }
-    return s < e ? uvec2(s, e) : uvec2(0u);
+// The particles of the cell at `c`, as a run of the sorted arrays (empty outside the grid).
+uvec2 cell_run(ivec3 c, bool fluid) {
+    if (!cell_inside(c)) return uvec2(0u);
+    uint key = cell_key(c);
+    return fluid ? fluid_run(key) : boundary_run(key);
 }
 
-// The rows of cells around a particle: dz_, dy_ in -1..1 and x0_ stepping through -1..1 one cell
-// at a time (Morton keys) or as one row (linear keys). The body takes the row's run with
-//     uvec2 run = row_run(center, x0_, ROW_END(x0_), dy_, dz_, fluid);
-// and loops over [run.x, run.y).
-#define FOR_EACH_ROW                                                                          \
-    for (int dz_ = -1; dz_ <= 1; ++dz_)                                                       \
-    for (int dy_ = -1; dy_ <= 1; ++dy_)                                                       \
-    for (int x0_ = -1; x0_ <= 1; x0_ += (grid.morton != 0u ? 1 : 3))
-#define ROW_END(x0) (grid.morton != 0u ? (x0) : 1)
+// The 27 cells around a particle; the body reads NEIGHBOUR_CELL(center) and loops over the run
+//     uvec2 run = cell_run(NEIGHBOUR_CELL(center), fluid);
+// (Merging the three cells of an x-row into one run, which linear keys allow, gave wrong sums on
+// NVIDIA's driver 580 though not on Mesa; docs/PERFORMANCE.md has the measurement.)
+#define FOR_EACH_CELL                         \
+    for (int dz_ = -1; dz_ <= 1; ++dz_)       \
+    for (int dy_ = -1; dy_ <= 1; ++dy_)       \
+    for (int dx_ = -1; dx_ <= 1; ++dx_)
+#define NEIGHBOUR_CELL(center) ((center) + ivec3(dx_, dy_, dz_))
 
 // Workgroup maxima of non-negative floats (as bits, see StepState), each with one invocation that
 // has it, so that a pass makes one global atomic per workgroup instead of one per particle (a
