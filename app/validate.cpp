@@ -44,7 +44,7 @@ int validate(const Options& o) {
                   {"max_error", r.max_error}});
     } else {
         const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0);
-        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, after 1 s\n", r.height, r.spacing, r.particles);
+        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s\n", r.height, r.spacing, r.particles);
         std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",

@@ -107,40 +107,48 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     r.particles = sph.count();
     run_sph(sph, timer, int(std::ceil(settle_s / scene.frame_dt)));
 
-    // End of run, not the frame path: read the state back once.
-    const auto x = sph.positions().read<glm::vec4>(sph.count());
-    const auto v = sph.velocities().read<glm::vec4>(sph.count());
-    const auto d = sph.densities().read<glm::vec4>(sph.count());
+    // The column starts uncompressed and rings acoustically (period 4 H / c); a snapshot lands at
+    // some phase of that. So the pressure profile is averaged over the next half second, read back
+    // once a frame: a validation run, not the frame path.
     const double rho0 = scene.sph.rest_density, g = glm::length(scene.gravity), dx = scene.spacing;
     r.reference_scale = rho0 * g * r.height;
-    // Mean pressure in layers one spacing thick, from the floor up.
     const int layers = int(std::ceil(r.height / dx)) + 2;
     std::vector<double> sum(std::size_t(layers), 0.0);
-    std::vector<int> n(std::size_t(layers), 0);
+    std::vector<long> n(std::size_t(layers), 0);
+    const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
+    std::vector<glm::vec4> x, v, d;
+    for (int f = 0; f < average_frames; ++f) {
+        run_sph(sph, timer, 1);
+        x = sph.positions().read<glm::vec4>(sph.count());
+        d = sph.densities().read<glm::vec4>(sph.count());
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
+            if (k >= 0 && k < layers) sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
+        }
+    }
+    v = sph.velocities().read<glm::vec4>(sph.count());
     double v2 = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
-        if (k >= 0 && k < layers) sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
-        const double speed = glm::length(glm::vec3(v[i]));
+    for (const glm::vec4& u : v) {
+        const double speed = glm::length(glm::vec3(u));
         v2 += speed * speed;
         r.max_speed = std::max(r.max_speed, speed);
     }
-    r.rms_speed = std::sqrt(v2 / double(std::max<std::size_t>(x.size(), 1)));
+    r.rms_speed = std::sqrt(v2 / double(std::max<std::size_t>(v.size(), 1)));
     const double h = 2.0 * dx;
     for (int k = 0; k < layers; ++k) {
         if (!n[std::size_t(k)]) continue;
         HydrostaticResult::Layer l;
         l.z = scene.tank_min.y + (k + 0.5) * dx;
-        l.pressure = sum[std::size_t(k)] / n[std::size_t(k)];
+        l.pressure = sum[std::size_t(k)] / double(n[std::size_t(k)]);
         l.reference = rho0 * g * std::max(r.height - (l.z - scene.tank_min.y), 0.0);
-        l.particles = n[std::size_t(k)];
+        l.particles = int(n[std::size_t(k)] / average_frames);
         r.layers.push_back(l);
         // The hydrostatic law is compared in the interior: from one kernel support above the floor
         // (whose boundary term carries the bottom layer at about twice the pressure, docs/SPH.md
         // eq. (4)) to one below the free surface (where the summation density lacks neighbours
         // above and reads low). The layers outside are printed, not compared.
-        const double depth_from_floor = l.z - scene.tank_min.y;
-        if (depth_from_floor > h && depth_from_floor < r.height - h)
+        const double from_floor = l.z - scene.tank_min.y;
+        if (from_floor > h && from_floor < r.height - h)
             r.max_error = std::max(r.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
     }
     return r;

@@ -21,8 +21,8 @@ struct DamBreakResult {
 };
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders);
 
-// A tank at rest after `settle_s` seconds: mean pressure in layers one spacing thick against
-// rho0 g (H - z), and the spurious velocity.
+// A tank at rest after `settle_s` seconds: pressure in layers one spacing thick, averaged over the
+// next half second, against rho0 g (H - z); and the spurious velocity at the end.
 struct HydrostaticResult {
     double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H, dx, rho0 g H
     std::size_t particles = 0;

@@ -29,7 +29,7 @@ TEST_CASE("validate: dam break surge front against Martin & Moyce (1952) at a/dx
 TEST_CASE("validate: a tank at rest follows rho0 g (H - z) in its interior", "[validation]") {
     test::context();
     const scene::Scene s = scene::with_spacing(scene::load("hydrostatic"), 0.02f, "test");
-    const validation::HydrostaticResult r = validation::hydrostatic(s, shader::FileSource::embedded(), 1.0);
+    const validation::HydrostaticResult r = validation::hydrostatic(s, shader::FileSource::embedded(), 0.5);
     const double g = 9.81, H = r.height, c = s.sound_speed();
     INFO("interior error " << r.max_error << " of rho0 g H; speed max " << r.max_speed << ", rms " << r.rms_speed
                            << "; g H / c = " << g * H / c);
@@ -38,13 +38,14 @@ TEST_CASE("validate: a tank at rest follows rho0 g (H - z) in its interior", "[v
     // kernel support holds more than the one above it, less one layer's weight of noise.
     for (std::size_t k = 1; k + 2 < r.layers.size(); ++k)
         CHECK(r.layers[k].pressure >= r.layers[k + 1].pressure - 1000.0 * g * r.spacing);
-    // Interior against rho0 g (H - z): WCSPH's pressure noise at 12 layers is a few layers' weight;
-    // bound 0.2 rho0 g H (2.5 layers of 12). Measured on llvmpipe: 0.13.
+    // Interior against rho0 g (H - z), averaged over half a second of the acoustic ringing: WCSPH at
+    // 12 layers carries an offset of a few layers' weight; bound 0.2 rho0 g H (2.5 layers of 12).
+    // Measured: 0.13 on llvmpipe and on the H100.
     CHECK(r.max_error <= 0.2);
     // Spurious velocity: the column starts uncompressed and rings acoustically with a velocity
     // amplitude of about g H / c (the compression rho0 g H / (rho0 c^2) over a period of 4 H / c);
-    // nu = 1e-4 m^2/s barely damps it in 1 s. Bound rms <= 1.5 g H / c, max <= 4 g H / c
-    // (measured: rms 1.1, max 2.6 g H / c).
+    // nu = 1e-4 m^2/s barely damps it in a second. Bound rms <= 1.5 g H / c, max <= 4 g H / c
+    // (measured after 1 s: rms 1.1, max 2.6 g H / c).
     CHECK(r.rms_speed <= 1.5 * g * H / c);
     CHECK(r.max_speed <= 4.0 * g * H / c);
     test::require_no_gl_errors();
