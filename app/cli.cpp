@@ -132,7 +132,7 @@ exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output f
 }
 
 std::string command_help(const std::string& cmd) {
-    const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default falling-block)
+    const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default dam-break)
   --spacing DX        particle spacing in metres: the scene at another resolution
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary

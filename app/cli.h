@@ -13,7 +13,7 @@ struct Options {
     std::optional<float> spacing; // particle spacing (m): the scene at another resolution
     bool help = false;            // COMMAND --help
 
-    std::string scene = "falling-block";
+    std::string scene = "dam-break";
     std::optional<int> frames;    // unset: the command's default
     std::optional<int> width, height;
     std::string out;              // record: output folder
