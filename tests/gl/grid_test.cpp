@@ -45,10 +45,6 @@ using ranryu::sim::Sph;
 struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& json) : SphRig(json, "grid_test") {}
 };
-    Sph sph;
-    explicit Rig(const std::string& json)
-        : scene(ranryu::scene::parse(json, "grid_test")), sph(ranryu::shader::FileSource::embedded(), timer, scene) {}
-};
 
 // Tank 0.3 m a side, spacing 0.03 m (h = 0.06 m): an 8x8x8 block, 512 particles.
 std::string scene_json(const std::string& keys, const std::string& sort) {

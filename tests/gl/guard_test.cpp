@@ -43,24 +43,6 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& json) : SphRig(json, "guard_test") {}
 };
-    Sph sph;
-    explicit Rig(const std::string& json)
-        : scene(ranryu::scene::parse(json, "guard_test")), sph(ranryu::shader::FileSource::embedded(), timer, scene) {}
-
-    void frame(std::uint64_t index) {
-        timer.begin_frame();
-        sph.begin_frame(index);
-        for (int s = 0; s < sph.substeps_this_frame(); ++s) sph.substep();
-        sph.end_frame();
-        timer.end_frame();
-        sph.poll_records();
-    }
-    void finish() {
-        timer.drain();
-        sph.drain_records();
-    }
-    std::vector<glm::vec4> read(const ranryu::gl::Buffer& b) const { return b.read<glm::vec4>(sph.count()); }
-};
 
 // 512 particles (8x8x8 at 0.03 m) in a 0.3 m tank; `sph` adds keys to the "sph" object.
 std::string scene_json(const std::string& sph = "") {

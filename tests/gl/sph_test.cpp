@@ -49,19 +49,6 @@ struct Rig : ranryu::test::SphRig {
                                          double(p.viscosity), dvec3(glm::vec3(p.gravity)));
     }
 };
-    Sph sph;
-    explicit Rig(const std::string& json)
-        : scene(ranryu::scene::parse(json, "sph_test")), sph(ranryu::shader::FileSource::embedded(), timer, scene) {}
-
-    // The reference's constants from the GPU's own (float) parameters.
-    ref::Params params() const {
-        const gpu::SphParams& p = sph.params();
-        return ref::Params::from_spacing(double(p.spacing), double(p.rest_density), double(p.sound_speed),
-                                         double(p.viscosity), dvec3(glm::vec3(p.gravity)));
-    }
-    gpu::StepState step() const { return sph.step_state().read<gpu::StepState>(1)[0]; }
-    std::vector<glm::vec4> read(const ranryu::gl::Buffer& b) const { return b.read<glm::vec4>(sph.count()); }
-};
 
 // A scene of 512 fluid particles (an 8x8x8 block at spacing 0.03 m, h = 0.06 m) in a cubic tank of
 // side `tank`; `sph` adds keys to the "sph" object.
