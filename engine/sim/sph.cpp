@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "core/error.h"
 #include "scene/scene.h"
@@ -24,6 +26,14 @@ GridLayout fluid_grid(const scene::Scene& s, float h, int layers) {
     glm::vec3 hi = s.tank_max + pad;
     hi.y += 0.5f * (s.tank_max.y - s.tank_min.y);
     return GridLayout::covering(s.tank_min - pad, hi, h, s.sph.morton);
+}
+
+// Neighbour loops as 9 x-row runs where the keys allow it (linear keys), 27 cells otherwise
+// (glsl/sim/sph/sph_common.glsl). RANRYU_NO_MERGE_ROWS=1 forces per-cell loops, for comparison.
+std::string neighbour_defines(const scene::Scene& s) {
+    const char* off = std::getenv("RANRYU_NO_MERGE_ROWS");
+    if (s.sph.morton || (off && std::string(off) == "1")) return {};
+    return "#define RANRYU_MERGE_ROWS 1\n";
 }
 
 }  // namespace
@@ -78,10 +88,11 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
       boundary_pass_(timer.pass("boundary-volume")),
       begin_(shader::Program::compute(shaders, "sim/sph/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/sph/choose_time_step.comp")),
-      density_prog_(shader::Program::compute(shaders, "sim/sph/compute_density.comp")),
-      forces_(shader::Program::compute(shaders, "sim/sph/compute_forces.comp")),
+      density_prog_(shader::Program::compute(shaders, "sim/sph/compute_density.comp", neighbour_defines(scene))),
+      forces_(shader::Program::compute(shaders, "sim/sph/compute_forces.comp", neighbour_defines(scene))),
       integrate_(shader::Program::compute(shaders, "sim/sph/integrate_particles.comp")),
-      boundary_volume_(shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp")),
+      boundary_volume_(
+          shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", neighbour_defines(scene))),
       limits_(guard_limits(scene)),
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),

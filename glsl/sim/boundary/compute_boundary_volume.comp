@@ -16,8 +16,8 @@ void main() {
     vec3 xb = boundary[b].xyz;
     float sum = 0.0;
     ivec3 c = grid_cell(xb);
-    FOR_EACH_CELL {
-        uvec2 run = cell_run(NEIGHBOUR_CELL(c), false);
+    FOR_EACH_RUN {
+        uvec2 run = NEIGHBOUR_RUN(c, false);
         for (uint k = run.x; k < run.y; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
     }
     float cell = sph.spacing * sph.spacing * sph.spacing;

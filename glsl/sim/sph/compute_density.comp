@@ -18,10 +18,10 @@ void main() {
         ivec3 c = grid_cell(xi);
         float h = sph.h;
         float fluid = 0.0, wall = 0.0;
-        FOR_EACH_CELL {
-            uvec2 run = cell_run(NEIGHBOUR_CELL(c), true);
+        FOR_EACH_RUN {
+            uvec2 run = NEIGHBOUR_RUN(c, true);
             for (uint j = run.x; j < run.y; ++j) fluid += kernel_w(length(xi - position[j].xyz), h);
-            run = cell_run(NEIGHBOUR_CELL(c), false);
+            run = NEIGHBOUR_RUN(c, false);
             for (uint b = run.x; b < run.y; ++b) wall += boundary[b].w * kernel_w(length(xi - boundary[b].xyz), h);
         }
         float rho = sph.mass * fluid + wall;

@@ -25,8 +25,8 @@ void main() {
         float eps = 0.01 * h * h;
         vec3 a_pressure = vec3(0.0), a_viscous = vec3(0.0), a_wall = vec3(0.0);
         ivec3 c = grid_cell(xi);
-        FOR_EACH_CELL {
-            uvec2 run = cell_run(NEIGHBOUR_CELL(c), true);
+        FOR_EACH_RUN {
+            uvec2 run = NEIGHBOUR_RUN(c, true);
             for (uint j = run.x; j < run.y; ++j) {
                 vec3 d = xi - position[j].xyz;
                 float r = length(d);
@@ -36,7 +36,7 @@ void main() {
                 a_pressure -= (pi_term + dj.y / (dj.x * dj.x)) * g;
                 a_viscous += (2.0 * dot(vi - velocity[j].xyz, d) / ((r * r + eps) * (di.x + dj.x))) * g;
             }
-            run = cell_run(NEIGHBOUR_CELL(c), false);
+            run = NEIGHBOUR_RUN(c, false);
             for (uint b = run.x; b < run.y; ++b) {
                 vec3 d = xi - boundary[b].xyz;
                 float r = length(d);

@@ -38,15 +38,34 @@ uvec2 cell_run(ivec3 c, bool fluid) {
     return fluid ? fluid_run(key) : boundary_run(key);
 }
 
-// The 27 cells around a particle; the body reads NEIGHBOUR_CELL(center) and loops over the run
-//     uvec2 run = cell_run(NEIGHBOUR_CELL(center), fluid);
-// (Merging the three cells of an x-row into one run, which linear keys allow, gave wrong sums on
-// NVIDIA's driver 580 though not on Mesa; docs/PERFORMANCE.md has the measurement.)
-#define FOR_EACH_CELL                         \
+// The runs of particles around a particle: the body of FOR_EACH_RUN reads
+//     uvec2 run = NEIGHBOUR_RUN(center, fluid);
+// and loops over [run.x, run.y). With RANRYU_MERGE_ROWS (linear keys only; Sph defines it then) the
+// three cells of an x-row have consecutive keys, so their particles are contiguous and the row is one
+// run: 9 runs instead of 27. The merge is written without a loop: a loop form (min/max over the cells
+// with `continue`) read wrong sums on NVIDIA's driver 580 though not on Mesa.
+uvec2 merge_row(uvec2 a, uvec2 b, uvec2 c) {
+    bool has_a = a.y > a.x, has_b = b.y > b.x, has_c = c.y > c.x;
+    uint first = has_a ? a.x : (has_b ? b.x : c.x);
+    uint last = has_c ? c.y : (has_b ? b.y : a.y);
+    return (has_a || has_b || has_c) ? uvec2(first, last) : uvec2(0u);
+}
+
+#if defined(RANRYU_MERGE_ROWS)
+#define FOR_EACH_RUN                          \
+    for (int dz_ = -1; dz_ <= 1; ++dz_)       \
+    for (int dy_ = -1; dy_ <= 1; ++dy_)
+#define NEIGHBOUR_RUN(center, fluid)                                       \
+    merge_row(cell_run((center) + ivec3(-1, dy_, dz_), fluid),             \
+              cell_run((center) + ivec3(0, dy_, dz_), fluid),              \
+              cell_run((center) + ivec3(1, dy_, dz_), fluid))
+#else
+#define FOR_EACH_RUN                          \
     for (int dz_ = -1; dz_ <= 1; ++dz_)       \
     for (int dy_ = -1; dy_ <= 1; ++dy_)       \
     for (int dx_ = -1; dx_ <= 1; ++dx_)
-#define NEIGHBOUR_CELL(center) ((center) + ivec3(dx_, dy_, dz_))
+#define NEIGHBOUR_RUN(center, fluid) cell_run((center) + ivec3(dx_, dy_, dz_), fluid)
+#endif
 
 // Workgroup maxima of non-negative floats (as bits, see StepState), each with one invocation that
 // has it, so that a pass makes one global atomic per workgroup instead of one per particle (a
