@@ -45,7 +45,7 @@ using mat4 = glm::mat4;
 #define RANRYU_SSBO_CELL_END 9         // uint[cells]: one past the last sorted index
 #define RANRYU_SSBO_SORTED_POSITION 10 // vec4[n]
 #define RANRYU_SSBO_SORTED_VELOCITY 11 // vec4[n]
-#define RANRYU_SSBO_DENSITY 12         // vec4[n]: x density, y pressure
+#define RANRYU_SSBO_DENSITY 12         // vec4[n]: x density, y pressure, z pressure / density^2
 #define RANRYU_SSBO_ACCEL 13           // vec4[n]: xyz acceleration
 #define RANRYU_SSBO_REDUCE 14          // uint[]: reductions (max speed, max acceleration, guard)
 #define RANRYU_SSBO_BOUNDARY 15        // vec4[m]: boundary particles, xyz position, w volume psi
