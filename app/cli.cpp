@@ -13,13 +13,13 @@ namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--spacing", "--frames", "--size", "--screenshot", "--shader-dir", "--gl-debug"}},
-    {"record", {"--scene", "--spacing", "--frames", "--size", "--out", "--force", "--shader-dir", "--gl-debug"}},
-    {"profile", {"--scene", "--spacing", "--frames", "--size", "--warmup", "--json", "--csv", "--shader-dir", "--gl-debug"}},
+    {"run", {"--scene", "--spacing", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
+    {"record", {"--scene", "--spacing", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh", "--shader-dir", "--gl-debug"}},
+    {"profile", {"--scene", "--spacing", "--frames", "--size", "--warmup", "--json", "--csv", "--shading", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
     {"validate", {"--spacing", "--json", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -105,6 +105,13 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--csv") o.csv = value;
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
+        else if (opt == "--export-mesh") o.export_mesh = true;
+        else if (opt == "--shading") {
+            // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
+            if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
+                throw InputError("--shading " + value + ": expected one of phong, gouraud, fresnel, particles");
+            o.shading = value;
+        }
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic)");
@@ -135,6 +142,9 @@ std::string command_help(const std::string& cmd) {
     const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default dam-break)
   --spacing DX        particle spacing in metres: the scene at another resolution
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
+  --shading MODE      phong | gouraud | fresnel | particles: how the liquid is drawn (default:
+                      fresnel for SPH scenes, particles for ballistic ones; the surface modes mesh
+                      the SPH liquid each frame)
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";
@@ -150,6 +160,9 @@ std::string command_help(const std::string& cmd) {
                R"(  --frames N          frames to record (default 120)
   --out DIR           output folder (default out/SCENE); created if missing
   --force             replace an earlier run in DIR (otherwise refused)
+  --export-mesh       also write the surface of each frame as frame_00000.ply, ... (binary PLY:
+                      marching cubes' triangles with normals, 3 vertices each; needs a surface
+                      shading of an SPH scene)
 )";
     if (cmd == "profile")
         return "usage: ranryu profile [options]\n\nRun a scene headless for N frames and print, per GPU pass: calls per frame,\n"

@@ -23,6 +23,8 @@ struct Options {
     std::string json, csv;        // profile: report files
     std::string shader_dir;       // read shaders from this folder instead of the embedded copies
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
+    std::string shading;          // run/record/profile: phong | gouraud | fresnel | particles; empty: the scene's default
+    bool export_mesh = false;     // record: frame_NNNNN.ply of the surface beside each PNG
 };
 
 Options parse(const std::vector<std::string>& args);

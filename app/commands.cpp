@@ -11,6 +11,7 @@
 #include "frame/pipeline.h"
 #include "gl/context.h"
 #include "profile/report.h"
+#include "record/mesh_export.h"
 #include "record/png.h"
 #include "record/recorder.h"
 #include "scene/scene.h"
@@ -41,6 +42,11 @@ shader::FileSource shader_source(const Options& o) {
 }
 
 namespace {
+
+std::optional<render::Shading> shading(const Options& o) {
+    if (o.shading.empty()) return std::nullopt;
+    return render::parse_shading(o.shading);
+}
 
 glm::ivec2 image_size(const Options& o, const scene::Scene& s) {
     return {o.width.value_or(s.width), o.height.value_or(s.height)};
@@ -96,32 +102,47 @@ int record(const Options& o) {
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(120);
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
+    if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
+        throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
+                         scene.name + " is drawn as particles");
     // Check the folder before any GPU work, so bad input costs nothing and loses nothing.
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
 
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     std::unique_ptr<record::Recorder> recorder;
+    std::unique_ptr<record::MeshExporter> meshes;   // --export-mesh: frame_NNNNN.ply, gated the same way
     auto validate = [&] {
-        if (const auto sound = pipeline.poll()) recorder->validate_through(*sound);
-        if (const auto& bad = pipeline.instability()) recorder->discard_from(bad->frame);
+        if (const auto sound = pipeline.poll()) {
+            recorder->validate_through(*sound);
+            if (meshes) meshes->validate_through(*sound);
+        }
+        if (const auto& bad = pipeline.instability()) {
+            recorder->discard_from(bad->frame);
+            if (meshes) meshes->discard_from(bad->frame);
+        }
     };
     recorder = std::make_unique<record::Recorder>(pipeline.timer(), out, size.x, size.y,
                                                   scene.model == scene::Model::sph, validate);
+    if (o.export_mesh)
+        meshes = std::make_unique<record::MeshExporter>(pipeline.timer(), out, pipeline.mesh()->max_vertices(),
+                                                        scene.model == scene::Model::sph, validate);
     for (int f = 0; f < frames && !pipeline.instability(); ++f) {
         pipeline.begin_frame();
         pipeline.simulate();
         pipeline.draw();
         recorder->capture(pipeline.target());
+        if (meshes) meshes->capture(pipeline.mesh()->vertices(), pipeline.mesh()->state());
         pipeline.end_frame();
         validate();
     }
     pipeline.drain();
     validate();
     recorder->finish();
+    if (meshes) meshes->finish();
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0));
     nlohmann::json run = profile::to_json(report);
@@ -129,6 +150,15 @@ int record(const Options& o) {
     run["frames_written"] = recorder->frames_written();
     run["frame_pattern"] = "frame_%05d.png";
     run["simulated_seconds"] = pipeline.simulated_time();
+    run["shading"] = render::shading_name(pipeline.shading());
+    if (meshes) {
+        // Per written mesh: the MeshState's vertex count (every one is in the PLY) and its flags.
+        nlohmann::json list = nlohmann::json::array();
+        for (const record::MeshRecord& m : meshes->written())
+            list.push_back({{"frame", m.frame}, {"vertices", m.vertices}, {"vertices_cut", m.cut}, {"grid_too_big", m.grid_too_big}});
+        run["mesh_pattern"] = "frame_%05d.ply";
+        run["meshes"] = list;
+    }
     if (const auto& bad = pipeline.instability())
         run["instability"] = {{"frame", bad->frame}, {"step", bad->step}, {"time", bad->time},
                               {"criterion", bad->criterion}, {"particle", bad->particle},
@@ -147,7 +177,7 @@ int profile_cmd(const Options& o) {
     const int frames = o.frames.value_or(300);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     auto one_frame = [&] {
         pipeline.begin_frame();
         pipeline.simulate();
@@ -191,7 +221,7 @@ int run(const Options& o) {
     gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
     if (debug) gl::install_debug_callback();
     print_device(window.info());
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y);
+    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     const profile::PassId present = pipeline.timer().pass("present");
 
     // Orbit camera: spherical coordinates around the scene's target.

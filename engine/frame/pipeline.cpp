@@ -1,16 +1,39 @@
 #include "frame/pipeline.h"
 
+#include "core/error.h"
+
 namespace ranryu::frame {
 
-Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height)
+namespace {
+render::Shading checked_shading(const scene::Scene& s, std::optional<render::Shading> shading) {
+    const render::Shading sh = shading.value_or(render::default_shading(s));
+    if (render::needs_surface(sh) && s.model != scene::Model::sph)
+        throw InputError(std::string("--shading ") + render::shading_name(sh) + ": scene " + s.name +
+                         " uses the ballistic model, which has no liquid surface; use --shading particles");
+    return sh;
+}
+}  // namespace
+
+Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height,
+                   std::optional<render::Shading> shading)
     : scene_(scene),
       timer_(4, scene.model == scene::Model::sph ? 64 + sim::timed_passes_per_substep(scene) * 64 : 64 + scene.substeps()),
-      renderer_(shaders, timer_),
+      renderer_(shaders, timer_, checked_shading(scene, shading)),
       target_(width, height, "frame"),
       camera_(render::scene_camera(scene)),
       substeps_(scene.substeps()) {
     if (scene_.model == scene::Model::sph) {
         sph_ = std::make_unique<sim::Sph>(shaders, timer_, scene_);
+        if (render::needs_surface(renderer_.shading())) {
+            // Level set defaults (surface/level_set.h) with the scene's grid; the mesh's capacity.
+            surface::LevelSetSettings ls = surface::LevelSetSettings::for_spacing(scene_.spacing);
+            ls.node_spacing = scene_.surface.node_spacing * scene_.spacing;
+            ls.max_dims = glm::uvec3(std::uint32_t(scene_.surface.max_dims));
+            level_set_ = std::make_unique<surface::LevelSet>(shaders, timer_, ls);
+            mc_ = std::make_unique<surface::MarchingCubes>(
+                shaders, timer_, surface::MeshCapacity{ls.max_dims, std::size_t(scene_.surface.max_vertices)});
+            renderer_.set_absorption(scene_.surface.absorption);
+        }
     } else {
         ballistic_ = std::make_unique<sim::Particles>(shaders, timer_);
         ballistic_->reset(scene_.initial_positions(), scene_.initial_velocities());
@@ -23,13 +46,26 @@ void Pipeline::simulate() {
     if (sph_) {
         sph_->begin_frame(frames_);
         for (int s = 0; s < sph_->substeps_this_frame(); ++s) sph_->substep();
+        if (level_set_) {
+            // After the last substep the positions are in the cell order of its grid build, moved
+            // by that substep's integration (within LevelSetSettings::search_margin).
+            level_set_->compute(sph_->grid(), sph_->positions(), sph_->cell_ranges(), sph_->count());
+            mc_->polygonise(level_set_->phi(), level_set_->grid());
+        }
         sph_->end_frame();
         return;
     }
     for (int s = 0; s < substeps_; ++s) ballistic_->integrate();
 }
 
-void Pipeline::draw() { renderer_.draw(target_, positions(), velocities(), particle_count()); }
+void Pipeline::draw() {
+    if (mc_) {
+        const render::SurfaceMesh mesh{mc_->vertices(), mc_->state(), surface::MarchingCubes::draw_offset};
+        renderer_.draw(target_, positions(), velocities(), particle_count(), &mesh);
+    } else {
+        renderer_.draw(target_, positions(), velocities(), particle_count());
+    }
+}
 
 void Pipeline::end_frame() {
     timer_.end_frame();

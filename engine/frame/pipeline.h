@@ -2,8 +2,11 @@
 // One frame of ranryu as a list of GPU passes. The callers (app/commands) read as:
 //
 //     pipeline.begin_frame();
-//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: see sim/sph.h
-//     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles"
+//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: see sim/sph.h, then, when
+//                                 // the shading draws a surface, "surface.bounds", "level-set" and
+//                                 // "mc.classify", "mc.compact", "mc.emit" (surface/level_set.h,
+//                                 // surface/marching_cubes.h) mesh the liquid after the last substep
+//     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" or "draw-surface"
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //
@@ -21,13 +24,19 @@
 #include "sim/guard.h"
 #include "sim/particles.h"
 #include "sim/sph.h"
+#include "surface/level_set.h"
+#include "surface/marching_cubes.h"
 
 namespace ranryu::frame {
 
 class Pipeline {
 public:
     // Builds every program (start-up), allocates the particle state and a width x height target.
-    Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height);
+    // `shading` (default: render::default_shading(scene)) other than particles also builds the level
+    // set and marching cubes (scene.surface); a scene that draws particles builds neither. Throws
+    // InputError for a surface shading of a ballistic scene (it has no neighbour grid to mesh from).
+    Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height,
+             std::optional<render::Shading> shading = std::nullopt);
 
     void begin_frame() { timer_.begin_frame(); }
     void simulate();   // advances scene.frame_dt of simulated time
@@ -51,6 +60,10 @@ public:
     const gl::Buffer& positions() const;
     const gl::Buffer& velocities() const;
     sim::Sph* sph() { return sph_.get(); }
+    render::Shading shading() const { return renderer_.shading(); }
+    // The surface's mesh (null when the shading draws particles): vertices() and state() as
+    // MarchingCubes documents them, written by this frame's simulate().
+    const surface::MarchingCubes* mesh() const { return mc_.get(); }
     // Simulated time: the GPU's clock as last read back for SPH (frames late), else frames x frame_dt.
     double simulated_time() const;
     std::uint64_t frames() const { return frames_; }
@@ -60,6 +73,8 @@ private:
     profile::GpuTimer timer_;
     std::unique_ptr<sim::Particles> ballistic_;
     std::unique_ptr<sim::Sph> sph_;
+    std::unique_ptr<surface::LevelSet> level_set_;
+    std::unique_ptr<surface::MarchingCubes> mc_;
     render::Renderer renderer_;
     gl::RenderTarget target_;
     render::Camera camera_;

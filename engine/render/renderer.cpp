@@ -2,9 +2,44 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/shading.h"
 #include "scene/scene.h"
 
 namespace ranryu::render {
+
+namespace {
+struct ShadingName {
+    Shading shading;
+    const char* name;
+};
+constexpr ShadingName kShadingNames[] = {
+    {Shading::particles, "particles"}, {Shading::phong, "phong"}, {Shading::gouraud, "gouraud"}, {Shading::fresnel, "fresnel"}};
+
+shader::Program surface_program(const shader::FileSource& shaders, Shading s) {
+    switch (s) {
+        case Shading::phong: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_phong.frag");
+        case Shading::gouraud:
+            return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_gouraud.frag", "#define GOURAUD\n");
+        case Shading::fresnel: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_fresnel.frag");
+        case Shading::particles: break;
+    }
+    return {};
+}
+}  // namespace
+
+std::optional<Shading> parse_shading(std::string_view name) {
+    for (const ShadingName& n : kShadingNames)
+        if (name == n.name) return n.shading;
+    return std::nullopt;
+}
+
+const char* shading_name(Shading s) {
+    for (const ShadingName& n : kShadingNames)
+        if (s == n.shading) return n.name;
+    return "?";
+}
+
+Shading default_shading(const scene::Scene& s) { return s.model == scene::Model::sph ? Shading::fresnel : Shading::particles; }
 
 Camera scene_camera(const scene::Scene& s) { return Camera{s.camera_eye, s.camera_target, s.fov_deg}; }
 
@@ -27,8 +62,9 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
     return p;
 }
 
-Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer)
+Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading)
     : timer_(timer),
+      shading_(shading),
       clear_pass_(timer.pass("clear")),
       floor_pass_(timer.pass("draw-floor")),
       tank_pass_(timer.pass("draw-tank")),
@@ -49,6 +85,26 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer)
     glVertexBindingDivisor(1, 1);
     glBindVertexArray(0);
     gl::label(GL_VERTEX_ARRAY, particle_vao_.id(), "particles.vao");
+
+    if (needs_surface(shading_)) {
+        surface_pass_ = timer.pass("draw-surface");
+        surface_ = surface_program(shaders, shading_);
+        // gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32; buffer attached at draw time.
+        glBindVertexArray(mesh_vao_.id());
+        glEnableVertexAttribArray(RANRYU_ATTR_MESH_POSITION);
+        glEnableVertexAttribArray(RANRYU_ATTR_MESH_NORMAL);
+        glVertexAttribFormat(RANRYU_ATTR_MESH_POSITION, 4, GL_FLOAT, GL_FALSE, offsetof(gpu::MeshVertex, position));
+        glVertexAttribFormat(RANRYU_ATTR_MESH_NORMAL, 4, GL_FLOAT, GL_FALSE, offsetof(gpu::MeshVertex, normal));
+        glVertexAttribBinding(RANRYU_ATTR_MESH_POSITION, 0);
+        glVertexAttribBinding(RANRYU_ATTR_MESH_NORMAL, 0);
+        glBindVertexArray(0);
+        gl::label(GL_VERTEX_ARRAY, mesh_vao_.id(), "surface.vao");
+        set_absorption(glm::vec3(0.0f));
+    }
+}
+
+void Renderer::set_absorption(glm::vec3 sigma) {
+    if (shading_ == Shading::fresnel) glProgramUniform4f(surface_.id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
 }
 
 void Renderer::set_frame(const gpu::FrameParams& p) {
@@ -57,7 +113,7 @@ void Renderer::set_frame(const gpu::FrameParams& p) {
 }
 
 void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-                    std::size_t count) {
+                    std::size_t count, const SurfaceMesh* surface) {
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
     glViewport(0, 0, target.width(), target.height());
     frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
@@ -81,7 +137,15 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         tank_.use();
         glDrawArrays(GL_LINES, 0, 24);
     }
-    {
+    if (needs_surface(shading_) && surface) {
+        auto pass = timer_.scope(surface_pass_);
+        surface_.use();
+        glBindVertexArray(mesh_vao_.id());
+        glBindVertexBuffer(0, surface->vertices.id(), 0, sizeof(gpu::MeshVertex));
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, surface->indirect.id());
+        glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(surface->draw_offset));
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    } else {
         auto pass = timer_.scope(particles_pass_);
         impostor_.use();
         glBindVertexArray(particle_vao_.id());

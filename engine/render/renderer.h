@@ -1,5 +1,10 @@
 #pragma once
-// The raster stage: floor, tank and particles drawn into a render target with per-pixel Phong.
+// The raster stage: floor, tank, and either the particles (per-pixel Phong on sphere impostors) or
+// the liquid surface that marching cubes meshed, shaded in one of the Shading modes.
+#include <optional>
+#include <string>
+#include <string_view>
+
 #include <glm/glm.hpp>
 
 #include "gl/objects.h"
@@ -10,6 +15,24 @@
 namespace ranryu::scene { struct Scene; }
 
 namespace ranryu::render {
+
+// How the liquid is drawn. particles: sphere impostors (no surface is built). The others draw the
+// marching-cubes mesh: phong (per pixel, glsl/render/surface_phong.frag), gouraud (Phong per vertex,
+// interpolated), fresnel (reflection and refraction of the environment, surface_fresnel.frag).
+enum class Shading { particles, phong, gouraud, fresnel };
+std::optional<Shading> parse_shading(std::string_view name);
+const char* shading_name(Shading s);
+// particles for the ballistic model (no level set), fresnel for SPH.
+Shading default_shading(const scene::Scene& s);
+inline bool needs_surface(Shading s) { return s != Shading::particles; }
+
+// The mesh to draw: marching cubes' vertices (gpu::MeshVertex[]) and the buffer holding the
+// glDrawArraysIndirect arguments at byte draw_offset (MarchingCubes::state(), draw_offset).
+struct SurfaceMesh {
+    const gl::Buffer& vertices;
+    const gl::Buffer& indirect;
+    std::size_t draw_offset;
+};
 
 struct Camera {
     glm::vec3 eye{2.0f, 1.5f, 2.5f};
@@ -23,21 +46,28 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
 
 class Renderer {
 public:
-    Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer);
+    // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
+    // its pass "draw-surface") when it is not particles.
+    Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles);
 
     void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO
     const gpu::FrameParams& frame() const { return frame_; }
+    // Fresnel mode: Beer-Lambert absorption coefficients of the water (1/m, per channel).
+    void set_absorption(glm::vec3 sigma);
+    Shading shading() const { return shading_; }
 
-    // Passes "clear", "draw-floor", "draw-tank", "draw-particles" into `target`: `count` particles
-    // whose positions and velocities are vec4 arrays.
+    // Passes "clear", "draw-floor", "draw-tank", then "draw-particles" into `target` (`count`
+    // particles whose positions and velocities are vec4 arrays) or, when the shading is not
+    // particles and `surface` is given, "draw-surface": glDrawArraysIndirect of the mesh, no readback.
     void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-              std::size_t count);
+              std::size_t count, const SurfaceMesh* surface = nullptr);
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_;
-    shader::Program floor_, tank_, impostor_;
-    gl::VertexArray empty_vao_, particle_vao_;
+    Shading shading_;
+    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{};
+    shader::Program floor_, tank_, impostor_, surface_;
+    gl::VertexArray empty_vao_, particle_vao_, mesh_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};
 };

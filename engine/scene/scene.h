@@ -42,6 +42,15 @@ struct SphSettings {
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
 };
 
+// The liquid surface (engine/surface/): the level set grid and the mesh capacity, and the water's
+// absorption in the Fresnel shading mode. Used only when the shading draws a surface.
+struct SurfaceSettings {
+    float node_spacing = 0.5f;           // φ-grid node spacing, in particle spacings
+    int max_dims = 160;                  // most φ-grid nodes per axis (a larger box coarsens the grid)
+    int max_vertices = 1 << 22;          // mesh capacity (3 per triangle; more are dropped)
+    glm::vec3 absorption{1.5f, 0.4f, 0.25f};   // Beer-Lambert sigma per channel (1/m): red fades first
+};
+
 struct Scene {
     std::string name;          // file stem, or "name" key
     std::string description;
@@ -63,6 +72,7 @@ struct Scene {
 
     Model model = Model::ballistic;
     SphSettings sph;
+    SurfaceSettings surface;
 
     glm::vec3 camera_eye{2.0f, 1.5f, 2.5f};
     glm::vec3 camera_target{0.5f, 0.3f, 0.3f};

@@ -1,14 +1,9 @@
 #version 430
-// A 0.1 m checkerboard, Phong-lit with the normal +y.
+// A 0.1 m checkerboard (floor_albedo, common/frame.glsl), Phong-lit with the normal +y.
 #include "../common/frame.glsl"
 
 in vec3 v_world;
 layout(location = 0) out vec4 out_color;
-
-vec3 floor_albedo(vec2 xz) {
-    ivec2 cell = ivec2(floor(xz / 0.1));
-    return ((cell.x + cell.y) & 1) == 0 ? vec3(0.62) : vec3(0.42);
-}
 
 void main() {
     vec3 v = normalize(frame.eye.xyz - v_world);

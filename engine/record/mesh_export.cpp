@@ -1,0 +1,219 @@
+#include "record/mesh_export.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+#include "core/error.h"
+#include "record/recorder.h"
+#include "surface/ply.h"
+
+namespace ranryu::record {
+
+namespace {
+// GL 4.3 (no direct state access): copies and maps go through the copy binding points.
+void copy(const gl::Buffer& from, const gl::Buffer& to, std::size_t bytes) {
+    glBindBuffer(GL_COPY_READ_BUFFER, from.id());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, to.id());
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(bytes));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+// Copies the first `bytes` of `from` into dst; false if the buffer could not be mapped.
+bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
+    glBindBuffer(GL_COPY_READ_BUFFER, from.id());
+    const void* p = glMapBufferRange(GL_COPY_READ_BUFFER, 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
+    bool ok = p != nullptr;
+    if (p) {
+        std::memcpy(dst, p, bytes);
+        ok = glUnmapBuffer(GL_COPY_READ_BUFFER) == GL_TRUE;
+    }
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    return ok;
+}
+}  // namespace
+
+MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
+                           std::function<void()> pump, int ring)
+    : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),
+      validated_end_(gated ? 0 : ~0ull), gated_(gated), pump_(std::move(pump)) {
+    ring_.resize(std::size_t(std::max(ring, 1)));
+    for (std::size_t i = 0; i < ring_.size(); ++i) {
+        ring_[i].vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
+                                       "mesh-readback.vertices." + std::to_string(i));
+        ring_[i].state = gl::Buffer(sizeof(gpu::MeshState), GL_STREAM_READ, nullptr, "mesh-readback.state." + std::to_string(i));
+    }
+    // One writer: a buffer it writes from, the ring's worth retiring, and the frames a gated run holds
+    // until their records arrive (a few frames late), as record::Recorder sizes its frames.
+    buffers_.resize(1 + ring_.size() + (gated ? 8 : 0));
+    for (std::size_t i = 0; i < buffers_.size(); ++i) free_.push_back(i);
+    thread_ = std::thread([this] { writer_loop(); });
+}
+
+MeshExporter::~MeshExporter() {
+    try {
+        finish();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "ranryu: %s\n", e.what());
+    }
+}
+
+void MeshExporter::capture(const gl::Buffer& vertices, const gl::Buffer& state) {
+    if (finished_) throw Error("MeshExporter::capture after finish");
+    if (vertices.size() < max_vertices_ * sizeof(gpu::MeshVertex)) throw Error("MeshExporter: vertex buffer smaller than its capacity");
+    Slot& s = ring_[next_];
+    if (s.busy) {
+        s.fence.wait();   // the GPU is a whole ring behind: back-pressure
+        retire(s);
+    }
+    {
+        auto pass = timer_.scope(pass_);
+        // The mesh passes end with their own barriers; copies read buffer data after them in order.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        copy(state, s.state, sizeof(gpu::MeshState));
+        copy(vertices, s.vertices, s.vertices.size());
+    }
+    s.fence.insert();
+    s.frame = captured_++;
+    s.busy = true;
+    next_ = (next_ + 1) % ring_.size();
+    for (std::size_t k = 0; k < ring_.size(); ++k) {
+        Slot& o = ring_[(next_ + k) % ring_.size()];
+        if (!o.busy) continue;
+        if (!o.fence.signaled()) break;
+        retire(o);
+    }
+}
+
+void MeshExporter::retire(Slot& s) {
+    std::size_t buffer;
+    {
+        std::unique_lock lock(mutex_);
+        while (free_.empty()) {
+            if (pump_) {
+                lock.unlock();
+                pump_();
+                lock.lock();
+            }
+            done_.wait_for(lock, std::chrono::milliseconds(1));
+        }
+        buffer = free_.back();
+        free_.pop_back();
+    }
+    gpu::MeshState state{};
+    bool ok = read_mapped(s.state, &state, sizeof state);
+    MeshRecord record{s.frame, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)), state.totals.z != 0,
+                      state.totals.w != 0};
+    std::vector<gpu::MeshVertex>& dst = buffers_[buffer];
+    dst.resize(record.vertices);   // reuses the storage once it has grown to the largest mesh
+    if (ok && record.vertices > 0) ok = read_mapped(s.vertices, dst.data(), record.vertices * sizeof(gpu::MeshVertex));
+    s.fence.reset();
+    s.busy = false;
+    {
+        std::lock_guard lock(mutex_);
+        if (!ok) {
+            if (error_.empty()) error_ = "cannot map the mesh readback buffers of frame " + std::to_string(s.frame);
+            free_.push_back(buffer);
+            return;
+        }
+        jobs_.push_back(Job{record, buffer});
+    }
+    work_.notify_one();
+}
+
+void MeshExporter::writer_loop() {
+    // Reused across frames (this thread's only allocations grow them to the largest mesh).
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::uvec3> triangles;
+    for (;;) {
+        Job job;
+        {
+            std::unique_lock lock(mutex_);
+            for (;;) {
+                while (!jobs_.empty() && jobs_.front().record.frame >= discard_from_) {
+                    free_.push_back(jobs_.front().buffer);
+                    jobs_.pop_front();
+                    done_.notify_all();
+                }
+                if (!jobs_.empty() && jobs_.front().record.frame < validated_end_) break;
+                if (stopping_) {
+                    for (const Job& j : jobs_) free_.push_back(j.buffer);
+                    jobs_.clear();
+                    done_.notify_all();
+                    return;
+                }
+                work_.wait(lock);
+            }
+            job = jobs_.front();
+            jobs_.pop_front();
+        }
+        const std::vector<gpu::MeshVertex>& soup = buffers_[job.buffer];
+        const std::size_t n = soup.size() - soup.size() % 3;
+        positions.resize(n);
+        normals.resize(n);
+        triangles.resize(n / 3);
+        for (std::size_t i = 0; i < n; ++i) {
+            positions[i] = glm::vec3(soup[i].position);
+            normals[i] = glm::vec3(soup[i].normal);
+        }
+        for (std::size_t t = 0; t < n / 3; ++t) triangles[t] = glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2);
+        std::string failure;
+        try {
+            surface::write_ply(dir_ / frame_name(job.record.frame, "ply"), positions, normals, triangles);
+        } catch (const std::exception& e) {
+            failure = e.what();
+        }
+        {
+            std::lock_guard lock(mutex_);
+            free_.push_back(job.buffer);
+            if (failure.empty()) written_.push_back(job.record);
+            else if (error_.empty()) error_ = failure;
+        }
+        done_.notify_all();
+    }
+}
+
+void MeshExporter::validate_through(std::uint64_t frame) {
+    {
+        std::lock_guard lock(mutex_);
+        validated_end_ = std::max(validated_end_, frame + 1);
+    }
+    work_.notify_all();
+}
+
+void MeshExporter::discard_from(std::uint64_t frame) {
+    {
+        std::lock_guard lock(mutex_);
+        discard_from_ = std::min(discard_from_, frame);
+    }
+    work_.notify_all();
+}
+
+void MeshExporter::finish() {
+    if (finished_) return;
+    finished_ = true;
+    for (std::size_t k = 0; k < ring_.size(); ++k) {
+        Slot& s = ring_[(next_ + k) % ring_.size()];
+        if (!s.busy) continue;
+        s.fence.wait();
+        retire(s);
+    }
+    // Let the writer drain what is validated before it stops.
+    {
+        std::unique_lock lock(mutex_);
+        done_.wait(lock, [&] { return jobs_.empty() || jobs_.front().record.frame >= validated_end_ ||
+                                      jobs_.front().record.frame >= discard_from_ || !error_.empty(); });
+        stopping_ = true;
+    }
+    work_.notify_all();
+    if (thread_.joinable()) thread_.join();
+    if (!error_.empty()) throw Error(error_);
+}
+
+std::vector<MeshRecord> MeshExporter::written() const {
+    std::lock_guard lock(mutex_);
+    return written_;
+}
+
+}  // namespace ranryu::record

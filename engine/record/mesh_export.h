@@ -1,0 +1,102 @@
+#pragma once
+// Exporting the liquid surface as frame_NNNNN.ply beside the PNGs, without stalling the frame.
+//
+// capture() copies marching cubes' vertex buffer and MeshState on the GPU (glCopyBufferSubData, pass
+// "mesh-readback") into the next slot of a ring of GL_STREAM_READ buffers, each sized by the mesh's
+// capacity (max_vertices · 32 bytes, since the vertex count is known only on the GPU), and fences
+// it. A later capture() finds the fence signalled, maps the MeshState and then just the first
+// draw.x vertices, copies them into a reusable CPU buffer (its storage grows to the largest mesh
+// seen, so after the first frames nothing is allocated) and hands it to a writer thread, which
+// writes the PLY (surface::write_ply). Back-pressure as in record::Recorder: the render thread waits
+// only when the whole ring is still in flight or every CPU buffer is queued.
+//
+// The file holds marching cubes' triangle soup as the GPU wrote it: one PLY vertex per mesh vertex
+// (position and normal), faces (3i, 3i+1, 3i+2). Shared edge vertices are bit-identical, so
+// surface::weld() rebuilds the indexed, watertight mesh (a reader's "merge by distance" with 0).
+//
+// Frames are written only once validated, with the same gating as record::Recorder.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "gl/objects.h"
+#include "profile/gpu_timer.h"
+#include "shared/bindings.h"
+
+namespace ranryu::record {
+
+// What one exported frame held, as its MeshState said.
+struct MeshRecord {
+    std::uint64_t frame = 0;
+    std::uint32_t vertices = 0;   // MeshState.draw.x: vertices drawn and written
+    bool cut = false;             // MeshState.totals.z: vertices past the capacity were dropped
+    bool grid_too_big = false;    // MeshState.totals.w: the φ grid exceeded the capacity (empty mesh)
+};
+
+class MeshExporter {
+public:
+    // `max_vertices`: the capacity of the vertex buffers that capture() will copy from.
+    MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
+                 std::function<void()> pump = {}, int ring = 3);
+    ~MeshExporter();
+    MeshExporter(const MeshExporter&) = delete;
+    MeshExporter& operator=(const MeshExporter&) = delete;
+
+    // Pass "mesh-readback": queues the copy of `vertices` (gpu::MeshVertex[max_vertices]) and
+    // `state` (gpu::MeshState) as frame number frames_captured(). Call after the mesh's passes.
+    void capture(const gl::Buffer& vertices, const gl::Buffer& state);
+    void validate_through(std::uint64_t frame);
+    void discard_from(std::uint64_t frame);
+    // Waits for every queued copy and file of validated frames, drops the rest. Throws ranryu::Error
+    // if a file failed to write.
+    void finish();
+
+    std::uint64_t frames_captured() const { return captured_; }
+    // The frames written so far, in frame order.
+    std::vector<MeshRecord> written() const;
+
+private:
+    struct Slot {
+        gl::Buffer vertices, state;
+        gl::Fence fence;
+        std::uint64_t frame = 0;
+        bool busy = false;
+    };
+    struct Job {
+        MeshRecord record;
+        std::size_t buffer;
+    };
+    void retire(Slot& s);
+    void writer_loop();
+
+    profile::GpuTimer& timer_;
+    profile::PassId pass_;
+    std::filesystem::path dir_;
+    std::size_t max_vertices_;
+    std::vector<Slot> ring_;
+    std::size_t next_ = 0;
+    std::uint64_t captured_ = 0;
+
+    std::vector<std::vector<gpu::MeshVertex>> buffers_;   // reused; storage grows to the largest mesh
+    std::vector<std::size_t> free_;
+    std::deque<Job> jobs_;
+    mutable std::mutex mutex_;
+    std::condition_variable work_, done_;
+    std::vector<MeshRecord> written_;
+    std::uint64_t validated_end_ = 0;
+    std::uint64_t discard_from_ = ~0ull;
+    bool gated_;
+    std::function<void()> pump_;
+    std::string error_;
+    bool stopping_ = false;
+    bool finished_ = false;
+    std::thread thread_;
+};
+
+}  // namespace ranryu::record

@@ -1,0 +1,185 @@
+// The liquid surface end to end: `--shading` picks how SPH liquid is drawn; the surface modes build
+// the level set and marching cubes each frame (their passes appear in the timing table), particles
+// builds neither; a bad mode, or a surface for a ballistic scene, is bad input (exit 2).
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "image.h"
+#include "run_helper.h"
+#include "shared/bindings.h"
+#include "surface/mesh.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const std::vector<std::string> kSurfacePasses = {"surface.bounds", "level-set", "mc.classify", "mc.compact", "mc.emit",
+                                                 "draw-surface"};
+
+// The pass names of the timing table on stdout (first word of each row after the "pass" header).
+std::vector<std::string> table_passes(const std::string& out) {
+    std::vector<std::string> names;
+    bool in_table = false;
+    for (const std::string& line : Result::split_lines(out)) {
+        if (line.starts_with("pass ")) {
+            in_table = true;
+            continue;
+        }
+        if (in_table && !line.empty()) names.push_back(line.substr(0, line.find(' ')));
+    }
+    return names;
+}
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// Reads a binary PLY as surface/ply.h writes it: vertices (x y z nx ny nz floats) and triangle faces
+// (uchar 3, int indices), as a triangle soup in face order. Fails the test on any other layout.
+std::vector<ranryu::gpu::MeshVertex> read_ply_soup(const fs::path& path, std::size_t* vertex_count) {
+    std::ifstream in(path, std::ios::binary);
+    REQUIRE(in);
+    std::string line;
+    std::size_t nv = 0, nf = 0;
+    while (std::getline(in, line) && line != "end_header") {
+        std::istringstream w(line);
+        std::string a, b;
+        w >> a >> b;
+        if (a == "element" && b == "vertex") w >> nv;
+        if (a == "element" && b == "face") w >> nf;
+    }
+    REQUIRE(line == "end_header");
+    std::vector<float> v(nv * 6);
+    in.read(reinterpret_cast<char*>(v.data()), std::streamsize(v.size() * sizeof(float)));
+    std::vector<ranryu::gpu::MeshVertex> soup;
+    for (std::size_t f = 0; f < nf; ++f) {
+        unsigned char n = 0;
+        std::int32_t idx[3];
+        in.read(reinterpret_cast<char*>(&n), 1);
+        REQUIRE(n == 3);
+        in.read(reinterpret_cast<char*>(idx), sizeof idx);
+        for (int k = 0; k < 3; ++k) {
+            REQUIRE(std::size_t(idx[k]) < nv);
+            const float* p = &v[std::size_t(idx[k]) * 6];
+            soup.push_back({glm::vec4(p[0], p[1], p[2], 1.0f), glm::vec4(p[3], p[4], p[5], 0.0f)});
+        }
+    }
+    REQUIRE(in.good());
+    REQUIRE(in.peek() == std::char_traits<char>::eof());
+    *vertex_count = nv;
+    return soup;
+}
+
+}  // namespace
+
+TEST_CASE("record --export-mesh writes a watertight PLY per frame holding every vertex of the MeshState") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.04", "--frames", "2",
+                                             "--size", "32x24", "--export-mesh", "--out", "out"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    CHECK(has(table_passes(r.out), "mesh-readback"));
+    std::ifstream run_json(tmp / "out/run.json");
+    const auto run = nlohmann::json::parse(run_json);
+    REQUIRE(run.at("meshes").size() == 2);
+    for (int f = 0; f < 2; ++f) {
+        const auto& m = run.at("meshes")[std::size_t(f)];
+        CHECK(m.at("frame") == f);
+        CHECK(m.at("vertices_cut") == false);
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05d.ply", f);
+        INFO(name);
+        std::size_t nv = 0;
+        const auto soup = read_ply_soup(tmp / ("out/" + std::string(name)), &nv);
+        CHECK(nv == m.at("vertices").get<std::size_t>());
+        CHECK(soup.size() == nv);
+        CHECK(nv > 300);
+        const auto topo = ranryu::surface::topology(ranryu::surface::weld(soup));
+        INFO("edges not in two faces " << topo.boundary_or_nonmanifold_edges << ", misoriented " << topo.misoriented_edges
+                                       << ", degenerate " << topo.degenerate_faces);
+        CHECK(topo.watertight());
+    }
+    // A run drawn as particles has no surface to export: refused before anything is written.
+    const Result p = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--shading", "particles", "--export-mesh",
+                                             "--out", "parts"});
+    INFO(p.describe());
+    CHECK(p.exit_code == 2);
+    CHECK_THAT(p.err, Contains("--export-mesh"));
+    CHECK(!fs::exists(tmp / "parts"));
+}
+
+TEST_CASE("record --shading fresnel draws the SPH surface into non-uniform frames") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.04", "--frames", "2",
+                                             "--shading", "fresnel", "--size", "64x48", "--out", "out"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    const auto passes = table_passes(r.out);
+    for (const std::string& p : kSurfacePasses) {
+        INFO("pass " << p);
+        CHECK(has(passes, p));
+    }
+    CHECK(!has(passes, "draw-particles"));
+    for (int f = 0; f < 2; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05d.png", f);
+        const Image img = load_png(tmp / ("out/" + std::string(name)));
+        INFO(name << ": " << img.error);
+        REQUIRE(img.ok());
+        CHECK(img.width == 64);
+        CHECK(img.height == 48);
+        CHECK(img.distinct_colours() > 20);
+        CHECK(img.luma_stddev() > 5.0);
+    }
+}
+
+TEST_CASE("profile names the surface passes in fresnel mode and not in particles mode") {
+    TempDir tmp;
+    for (const std::string mode : {"fresnel", "particles"}) {
+        const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.04", "--frames", "2",
+                                                 "--warmup", "0", "--size", "32x24", "--shading", mode});
+        INFO(mode << "\n" << r.describe());
+        REQUIRE(r.exit_code == 0);
+        const auto passes = table_passes(r.out);
+        for (const std::string& p : kSurfacePasses) {
+            INFO("pass " << p);
+            CHECK(has(passes, p) == (mode == "fresnel"));
+        }
+        CHECK(has(passes, "draw-particles") == (mode == "particles"));
+    }
+}
+
+TEST_CASE("record and profile take a shading mode of phong, gouraud, fresnel or particles, and a surface only for SPH scenes") {
+    TempDir tmp;
+    Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--shading", "bogus", "--out", "out"});
+    {
+        INFO(r.describe());
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Contains("--shading bogus"));
+        CHECK_THAT(r.err, Contains("phong, gouraud, fresnel, particles"));
+        CHECK(!fs::exists(tmp / "out"));
+    }
+    r = run_ranryu(tmp.path(), {"profile", "--scene", "falling-block", "--frames", "1", "--warmup", "0", "--size", "32x24",
+                                "--shading", "phong"});
+    {
+        INFO(r.describe());
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Contains("--shading phong"));
+        CHECK_THAT(r.err, Contains("ballistic"));
+    }
+    for (const std::string mode : {"phong", "gouraud"}) {
+        r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.04", "--frames", "1", "--shading",
+                                    mode, "--size", "32x24", "--out", "out-" + mode});
+        INFO(mode << "\n" << r.describe());
+        CHECK(r.exit_code == 0);
+        const Image img = load_png(tmp / ("out-" + mode + "/frame_00000.png"));
+        CHECK(img.ok());
+        CHECK(img.distinct_colours() > 10);
+    }
+}
