@@ -196,7 +196,16 @@ int profile_cmd(const Options& o) {
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup));
     std::printf("%s", profile::table(report).c_str());
-    if (!o.json.empty()) profile::write_text_file(o.json, profile::to_json(report).dump(2) + "\n", "--json " + o.json);
+    nlohmann::json extra = profile::to_json(report);
+    if (const surface::MarchingCubes* mc = pipeline.mesh()) {
+        // After the run, not in the frame path: the last frame's mesh size, read once.
+        const gpu::MeshState m = mc->state().read<gpu::MeshState>(1)[0];
+        std::printf("surface (last frame): %u triangles from %u active of %u cells%s\n", m.draw.x / 3, m.totals.x,
+                    m.cell_dispatch.w, m.totals.z ? ", cut to the vertex capacity" : "");
+        extra["surface"] = {{"triangles", m.draw.x / 3}, {"active_cells", m.totals.x}, {"cells", m.cell_dispatch.w},
+                            {"cut_to_capacity", m.totals.z != 0}};
+    }
+    if (!o.json.empty()) profile::write_text_file(o.json, extra.dump(2) + "\n", "--json " + o.json);
     if (!o.csv.empty()) profile::write_text_file(o.csv, profile::to_csv(report), "--csv " + o.csv);
     return 0;
 }
