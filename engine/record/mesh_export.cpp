@@ -1,7 +1,6 @@
 #include "record/mesh_export.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 
@@ -36,8 +35,7 @@ bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
 
 MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                            std::function<void()> pump, int ring)
-    : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),
-      validated_end_(gated ? 0 : ~0ull), gated_(gated), pump_(std::move(pump)) {
+    : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices) {
     ring_.resize(std::size_t(std::max(ring, 1)));
     for (std::size_t i = 0; i < ring_.size(); ++i) {
         ring_[i].vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
@@ -47,8 +45,9 @@ MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, 
     // One writer: a buffer it writes from, the ring's worth retiring, and the frames a gated run holds
     // until their records arrive (a few frames late), as record::Recorder sizes its frames.
     buffers_.resize(1 + ring_.size() + (gated ? 8 : 0));
-    for (std::size_t i = 0; i < buffers_.size(); ++i) free_.push_back(i);
-    thread_ = std::thread([this] { writer_loop(); });
+    records_.resize(buffers_.size());
+    writer_ = std::make_unique<GatedWriter>(
+        buffers_.size(), 1, gated, [this](std::uint64_t, std::size_t b) { write(b); }, std::move(pump));
 }
 
 MeshExporter::~MeshExporter() {
@@ -87,108 +86,43 @@ void MeshExporter::capture(const gl::Buffer& vertices, const gl::Buffer& state) 
 }
 
 void MeshExporter::retire(Slot& s) {
-    std::size_t buffer;
-    {
-        std::unique_lock lock(mutex_);
-        while (free_.empty()) {
-            if (pump_) {
-                lock.unlock();
-                pump_();
-                lock.lock();
-            }
-            done_.wait_for(lock, std::chrono::milliseconds(1));
-        }
-        buffer = free_.back();
-        free_.pop_back();
-    }
+    const std::size_t buffer = writer_->acquire();
     gpu::MeshState state{};
     bool ok = read_mapped(s.state, &state, sizeof state);
-    MeshRecord record{s.frame, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)), state.totals.z != 0,
-                      state.totals.w != 0};
+    records_[buffer] = MeshRecord{s.frame, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)),
+                                  state.totals.z != 0, state.totals.w != 0};
     std::vector<gpu::MeshVertex>& dst = buffers_[buffer];
-    dst.resize(record.vertices);   // reuses the storage once it has grown to the largest mesh
-    if (ok && record.vertices > 0) ok = read_mapped(s.vertices, dst.data(), record.vertices * sizeof(gpu::MeshVertex));
+    dst.resize(records_[buffer].vertices);   // reuses the storage once it has grown to the largest mesh
+    if (ok && !dst.empty()) ok = read_mapped(s.vertices, dst.data(), dst.size() * sizeof(gpu::MeshVertex));
     s.fence.reset();
     s.busy = false;
-    {
-        std::lock_guard lock(mutex_);
-        if (!ok) {
-            if (error_.empty()) error_ = "cannot map the mesh readback buffers of frame " + std::to_string(s.frame);
-            free_.push_back(buffer);
-            return;
-        }
-        jobs_.push_back(Job{record, buffer});
+    if (!ok) {
+        writer_->fail("cannot map the mesh readback buffers of frame " + std::to_string(s.frame));
+        writer_->release(buffer);
+        return;
     }
-    work_.notify_one();
+    writer_->submit(s.frame, buffer);
 }
 
-void MeshExporter::writer_loop() {
-    // Reused across frames (this thread's only allocations grow them to the largest mesh).
-    std::vector<glm::vec3> positions, normals;
-    std::vector<glm::uvec3> triangles;
-    for (;;) {
-        Job job;
-        {
-            std::unique_lock lock(mutex_);
-            for (;;) {
-                while (!jobs_.empty() && jobs_.front().record.frame >= discard_from_) {
-                    free_.push_back(jobs_.front().buffer);
-                    jobs_.pop_front();
-                    done_.notify_all();
-                }
-                if (!jobs_.empty() && jobs_.front().record.frame < validated_end_) break;
-                if (stopping_) {
-                    for (const Job& j : jobs_) free_.push_back(j.buffer);
-                    jobs_.clear();
-                    done_.notify_all();
-                    return;
-                }
-                work_.wait(lock);
-            }
-            job = jobs_.front();
-            jobs_.pop_front();
-        }
-        const std::vector<gpu::MeshVertex>& soup = buffers_[job.buffer];
-        const std::size_t n = soup.size() - soup.size() % 3;
-        positions.resize(n);
-        normals.resize(n);
-        triangles.resize(n / 3);
-        for (std::size_t i = 0; i < n; ++i) {
-            positions[i] = glm::vec3(soup[i].position);
-            normals[i] = glm::vec3(soup[i].normal);
-        }
-        for (std::size_t t = 0; t < n / 3; ++t) triangles[t] = glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2);
-        std::string failure;
-        try {
-            surface::write_ply(dir_ / frame_name(job.record.frame, "ply"), positions, normals, triangles);
-        } catch (const std::exception& e) {
-            failure = e.what();
-        }
-        {
-            std::lock_guard lock(mutex_);
-            free_.push_back(job.buffer);
-            if (failure.empty()) written_.push_back(job.record);
-            else if (error_.empty()) error_ = failure;
-        }
-        done_.notify_all();
+// On the writer thread (the only one, so the scratch arrays need no lock).
+void MeshExporter::write(std::size_t buffer) {
+    const std::vector<gpu::MeshVertex>& soup = buffers_[buffer];
+    const std::size_t n = soup.size() - soup.size() % 3;
+    positions_.resize(n);
+    normals_.resize(n);
+    triangles_.resize(n / 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        positions_[i] = glm::vec3(soup[i].position);
+        normals_[i] = glm::vec3(soup[i].normal);
     }
+    for (std::size_t t = 0; t < n / 3; ++t) triangles_[t] = glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2);
+    surface::write_ply(dir_ / frame_name(records_[buffer].frame, "ply"), positions_, normals_, triangles_);
+    std::lock_guard lock(written_mutex_);
+    written_.push_back(records_[buffer]);
 }
 
-void MeshExporter::validate_through(std::uint64_t frame) {
-    {
-        std::lock_guard lock(mutex_);
-        validated_end_ = std::max(validated_end_, frame + 1);
-    }
-    work_.notify_all();
-}
-
-void MeshExporter::discard_from(std::uint64_t frame) {
-    {
-        std::lock_guard lock(mutex_);
-        discard_from_ = std::min(discard_from_, frame);
-    }
-    work_.notify_all();
-}
+void MeshExporter::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
+void MeshExporter::discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
 
 void MeshExporter::finish() {
     if (finished_) return;
@@ -199,20 +133,11 @@ void MeshExporter::finish() {
         s.fence.wait();
         retire(s);
     }
-    // Let the writer drain what is validated before it stops.
-    {
-        std::unique_lock lock(mutex_);
-        done_.wait(lock, [&] { return jobs_.empty() || jobs_.front().record.frame >= validated_end_ ||
-                                      jobs_.front().record.frame >= discard_from_ || !error_.empty(); });
-        stopping_ = true;
-    }
-    work_.notify_all();
-    if (thread_.joinable()) thread_.join();
-    if (!error_.empty()) throw Error(error_);
+    writer_->finish();
 }
 
 std::vector<MeshRecord> MeshExporter::written() const {
-    std::lock_guard lock(mutex_);
+    std::lock_guard lock(written_mutex_);
     return written_;
 }
 

@@ -14,19 +14,18 @@
 // (position and normal), faces (3i, 3i+1, 3i+2). Shared edge vertices are bit-identical, so
 // surface::weld() rebuilds the indexed, watertight mesh (a reader's "merge by distance" with 0).
 //
-// Frames are written only once validated, with the same gating as record::Recorder.
-#include <condition_variable>
+// Frames are written only once validated, through the same record::GatedWriter as record::Recorder.
 #include <cstdint>
-#include <deque>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
+#include "record/gated_writer.h"
 #include "shared/bindings.h"
 
 namespace ranryu::record {
@@ -68,12 +67,8 @@ private:
         std::uint64_t frame = 0;
         bool busy = false;
     };
-    struct Job {
-        MeshRecord record;
-        std::size_t buffer;
-    };
     void retire(Slot& s);
-    void writer_loop();
+    void write(std::size_t buffer);   // the writer thread's job: one PLY
 
     profile::GpuTimer& timer_;
     profile::PassId pass_;
@@ -82,21 +77,14 @@ private:
     std::vector<Slot> ring_;
     std::size_t next_ = 0;
     std::uint64_t captured_ = 0;
-
     std::vector<std::vector<gpu::MeshVertex>> buffers_;   // reused; storage grows to the largest mesh
-    std::vector<std::size_t> free_;
-    std::deque<Job> jobs_;
-    mutable std::mutex mutex_;
-    std::condition_variable work_, done_;
+    std::vector<MeshRecord> records_;                     // what each buffer holds
+    std::vector<glm::vec3> positions_, normals_;          // the writer thread's scratch
+    std::vector<glm::uvec3> triangles_;
+    std::unique_ptr<GatedWriter> writer_;
+    mutable std::mutex written_mutex_;
     std::vector<MeshRecord> written_;
-    std::uint64_t validated_end_ = 0;
-    std::uint64_t discard_from_ = ~0ull;
-    bool gated_;
-    std::function<void()> pump_;
-    std::string error_;
-    bool stopping_ = false;
     bool finished_ = false;
-    std::thread thread_;
 };
 
 }  // namespace ranryu::record

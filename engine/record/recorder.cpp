@@ -1,11 +1,11 @@
 #include "record/recorder.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <system_error>
+#include <thread>
 
 #include "core/error.h"
 #include "record/png.h"
@@ -62,8 +62,7 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
 
 Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
                    std::function<void()> pump, int ring, int writers)
-    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
-      validated_end_(gated ? 0 : ~0ull), gated_(gated), pump_(std::move(pump)) {
+    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height) {
     const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
     ring_.resize(std::size_t(std::max(ring, 1)));
     for (std::size_t i = 0; i < ring_.size(); ++i)
@@ -72,11 +71,11 @@ Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height
     // Enough CPU frames that every writer can be busy while the ring retires more, plus the frames a
     // gated recorder holds until their records arrive (those arrive a few frames late).
     buffers_.resize(std::size_t(writers) + ring_.size() + (gated ? 8 : 0));
-    for (std::size_t i = 0; i < buffers_.size(); ++i) {
-        buffers_[i].resize(bytes);
-        free_.push_back(i);
-    }
-    for (int i = 0; i < writers; ++i) threads_.emplace_back([this] { writer_loop(); });
+    for (auto& b : buffers_) b.resize(bytes);
+    writer_ = std::make_unique<GatedWriter>(
+        buffers_.size(), writers, gated,
+        [this](std::uint64_t frame, std::size_t b) { write_png(dir_ / frame_name(frame), width_, height_, buffers_[b].data()); },
+        std::move(pump));
 }
 
 Recorder::~Recorder() {
@@ -119,101 +118,30 @@ void Recorder::capture(const gl::RenderTarget& target) {
 }
 
 void Recorder::retire(Slot& s) {
-    std::size_t buffer;
-    {
-        std::unique_lock lock(mutex_);
-        while (free_.empty()) {   // encoders, or the records that validate frames, are behind
-            if (pump_) {
-                lock.unlock();
-                pump_();
-                lock.lock();
-            }
-            done_.wait_for(lock, std::chrono::milliseconds(1));
-        }
-        buffer = free_.back();
-        free_.pop_back();
-    }
+    const std::size_t buffer = writer_->acquire();
     glBindBuffer(GL_PIXEL_PACK_BUFFER, s.pbo.id());
     const auto* src = static_cast<const std::uint8_t*>(
         glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(s.pbo.size()), GL_MAP_READ_BIT));
-    const std::size_t row = std::size_t(width_) * 4;
-    std::uint8_t* dst = buffers_[buffer].data();
     if (src) {
         // GL rows run bottom-up; PNG rows top-down.
+        const std::size_t row = std::size_t(width_) * 4;
+        std::uint8_t* dst = buffers_[buffer].data();
         for (int y = 0; y < height_; ++y) std::memcpy(dst + std::size_t(y) * row, src + std::size_t(height_ - 1 - y) * row, row);
         glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
     }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     s.fence.reset();
     s.busy = false;
-    {
-        std::lock_guard lock(mutex_);
-        if (!src) {
-            if (error_.empty()) error_ = "cannot map the readback buffer of frame " + std::to_string(s.frame);
-            free_.push_back(buffer);
-            return;
-        }
-        jobs_.push_back(Job{s.frame, buffer});
+    if (!src) {
+        writer_->fail("cannot map the readback buffer of frame " + std::to_string(s.frame));
+        writer_->release(buffer);
+        return;
     }
-    work_.notify_one();
+    writer_->submit(s.frame, buffer);
 }
 
-void Recorder::writer_loop() {
-    for (;;) {
-        Job job;
-        {
-            std::unique_lock lock(mutex_);
-            // Jobs are in frame order: the front one waits for validation, or is dropped.
-            for (;;) {
-                while (!jobs_.empty() && jobs_.front().frame >= discard_from_) {
-                    free_.push_back(jobs_.front().buffer);
-                    jobs_.pop_front();
-                    done_.notify_all();
-                }
-                if (!jobs_.empty() && jobs_.front().frame < validated_end_) break;
-                if (stopping_ && (jobs_.empty() || !gated_)) return;
-                if (stopping_) {   // finish() after the last validation: the rest never will be
-                    for (const Job& j : jobs_) free_.push_back(j.buffer);
-                    jobs_.clear();
-                    done_.notify_all();
-                    return;
-                }
-                work_.wait(lock);
-            }
-            job = jobs_.front();
-            jobs_.pop_front();
-        }
-        std::string failure;
-        try {
-            write_png(dir_ / frame_name(job.frame), width_, height_, buffers_[job.buffer].data());
-        } catch (const std::exception& e) {
-            failure = e.what();
-        }
-        {
-            std::lock_guard lock(mutex_);
-            free_.push_back(job.buffer);
-            if (failure.empty()) ++written_;
-            else if (error_.empty()) error_ = failure;
-        }
-        done_.notify_all();
-    }
-}
-
-void Recorder::validate_through(std::uint64_t frame) {
-    {
-        std::lock_guard lock(mutex_);
-        validated_end_ = std::max(validated_end_, frame + 1);
-    }
-    work_.notify_all();
-}
-
-void Recorder::discard_from(std::uint64_t frame) {
-    {
-        std::lock_guard lock(mutex_);
-        discard_from_ = std::min(discard_from_, frame);
-    }
-    work_.notify_all();
-}
+void Recorder::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
+void Recorder::discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
 
 void Recorder::finish() {
     if (finished_) return;
@@ -224,19 +152,9 @@ void Recorder::finish() {
         s.fence.wait();
         retire(s);
     }
-    {
-        std::lock_guard lock(mutex_);
-        stopping_ = true;
-    }
-    work_.notify_all();
-    for (std::thread& t : threads_) t.join();
-    threads_.clear();
-    if (!error_.empty()) throw Error(error_);
+    writer_->finish();
 }
 
-std::uint64_t Recorder::frames_written() const {
-    std::lock_guard lock(mutex_);
-    return written_;
-}
+std::uint64_t Recorder::frames_written() const { return writer_->written(); }
 
 }  // namespace ranryu::record

@@ -10,18 +10,16 @@
 // A frame is written only once the caller says it is sound (validate_through), so that nothing drawn
 // after an instability reaches disk; discard_from() drops such frames. A recorder whose frames need
 // no check is made with `gated` false.
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <filesystem>
 #include <functional>
-#include <mutex>
+#include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
+#include "record/gated_writer.h"
 
 namespace ranryu::record {
 
@@ -64,12 +62,7 @@ private:
         std::uint64_t frame = 0;
         bool busy = false;
     };
-    struct Job {
-        std::uint64_t frame;
-        std::size_t buffer;
-    };
     void retire(Slot& s);   // fence signalled (or waited): copy out and queue for encoding
-    void writer_loop();
 
     profile::GpuTimer& timer_;
     profile::PassId pass_;
@@ -78,22 +71,9 @@ private:
     std::vector<Slot> ring_;
     std::size_t next_ = 0;
     std::uint64_t captured_ = 0;
-
-    // CPU side, shared with the writers under mutex_.
-    std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames
-    std::vector<std::size_t> free_;                   // indices into buffers_
-    std::deque<Job> jobs_;
-    mutable std::mutex mutex_;
-    std::condition_variable work_, done_;
-    std::uint64_t written_ = 0;
-    std::uint64_t validated_end_ = 0;   // frames below this may be written
-    std::uint64_t discard_from_ = ~0ull;
-    bool gated_;
-    std::function<void()> pump_;
-    std::string error_;
-    bool stopping_ = false;
+    std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames, named by the writer's indices
+    std::unique_ptr<GatedWriter> writer_;
     bool finished_ = false;
-    std::vector<std::thread> threads_;
 };
 
 }  // namespace ranryu::record
