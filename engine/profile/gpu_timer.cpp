@@ -51,6 +51,17 @@ void GpuTimer::collect(Slot& s) {
             passes_[p].calls.push_back(scratch_calls_[p]);
         }
         frame_ms_.push_back(double(final - first) * 1e-6);
+        // An open-ended run (the window) keeps the latest kMaxFrames frames, halving the history when
+        // it fills: memory stays bounded and the reallocation happens once per 32k frames, not per frame.
+        if (frame_ms_.size() >= kMaxFrames) {
+            const auto half = std::ptrdiff_t(kMaxFrames / 2);
+            frame_ms_.erase(frame_ms_.begin(), frame_ms_.begin() + half);
+            for (PassSamples& p : passes_) {
+                const auto drop = std::min<std::ptrdiff_t>(half, std::ptrdiff_t(p.ms.size()));
+                p.ms.erase(p.ms.begin(), p.ms.begin() + drop);
+                p.calls.erase(p.calls.begin(), p.calls.begin() + drop);
+            }
+        }
     }
     s.records.clear();
     s.pending = false;

@@ -51,6 +51,7 @@ public:
     // Pass indices in the order their first samples came back: the order they run in a frame.
     const std::vector<std::uint16_t>& first_use_order() const { return order_; }
     const std::vector<double>& frame_ms() const { return frame_ms_; }   // GPU span of each frame read back
+    static constexpr std::size_t kMaxFrames = 65536;   // history kept; the older half goes when it fills
     std::uint64_t frames_read() const { return frame_ms_.size(); }
 
     // RAII scope of one pass: debug group + timestamp pair.
