@@ -219,12 +219,12 @@ Scene parse(const std::string& text, const std::string& origin) {
         p.finish();
     }
     {
-        // max_dims: 160^3 nodes is the most marching cubes' one-dimensional dispatches cover
-        // (65535 workgroups); max_vertices: 2^26 vertices are 2 GiB of mesh.
+        // max_dims: 512^3 nodes keep every cell index and buffer offset in 32 bits (134M cells);
+        // max_vertices: 2^26 vertices are 2 GiB of mesh.
         Reader f = r.object("surface");
         SurfaceSettings& u = s.surface;
         u.node_spacing = float(f.number("node_spacing", u.node_spacing, 0.1, 4.0));
-        u.max_dims = f.integer("max_dims", u.max_dims, 4, 160);
+        u.max_dims = f.integer("max_dims", u.max_dims, 4, 512);
         u.max_vertices = f.integer("max_vertices", u.max_vertices, 3, 1 << 26);
         u.absorption = f.vec3("absorption", u.absorption, 0.0, 1e3);
         f.finish();

@@ -13,7 +13,12 @@ constexpr int kTriangles[4096] = {RANRYU_MC_TRIANGLES};
 constexpr int kCorners[24] = {RANRYU_MC_CORNERS};
 constexpr int kEdges[24] = {RANRYU_MC_EDGES};
 
-constexpr std::size_t kMaxGroups = 65535;   // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] guaranteed by GL 4.3
+// The cell passes dispatch 2-D (glsl/surface/dispatch_2d.glsl): rows of capacity.groups_x workgroups,
+// at most 65535 rows (GL 4.3's guaranteed minimum per dimension); the last row pads up to a row.
+std::string dispatch_defines(const MeshCapacity& c) {
+    if (c.groups_x < 1 || c.groups_x > 65535) throw Error("marching cubes: groups_x must be in [1, 65535]");
+    return "#define RANRYU_MC_GROUPS_X " + std::to_string(c.groups_x) + "u\n";
+}
 
 glm::ivec3 corner(int c) { return {kCorners[3 * c], kCorners[3 * c + 1], kCorners[3 * c + 2]}; }
 
@@ -45,11 +50,11 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
       classify_pass_(timer.pass("mc.classify")),
       compact_pass_(timer.pass("mc.compact")),
       emit_pass_(timer.pass("mc.emit")),
-      setup_(shader::Program::compute(shaders, "surface/mc_setup.comp")),
-      classify_(shader::Program::compute(shaders, "surface/mc_classify.comp")),
-      scan_(shader::Program::compute(shaders, "surface/mc_scan_blocks.comp")),
-      compact_(shader::Program::compute(shaders, "surface/mc_compact.comp")),
-      emit_(shader::Program::compute(shaders, "surface/mc_emit.comp")) {
+      setup_(shader::Program::compute(shaders, "surface/mc_setup.comp", dispatch_defines(capacity))),
+      classify_(shader::Program::compute(shaders, "surface/mc_classify.comp", dispatch_defines(capacity))),
+      scan_(shader::Program::compute(shaders, "surface/mc_scan_blocks.comp", dispatch_defines(capacity))),
+      compact_(shader::Program::compute(shaders, "surface/mc_compact.comp", dispatch_defines(capacity))),
+      emit_(shader::Program::compute(shaders, "surface/mc_emit.comp", dispatch_defines(capacity))) {
     const glm::uvec3 d = capacity.max_dims;
     if (glm::any(glm::lessThan(d, glm::uvec3(2u))) || capacity.max_vertices < 3)
         throw Error("marching cubes: capacity needs at least 2 nodes per axis and 3 vertices");
@@ -59,11 +64,12 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
     const std::size_t block = classify_.local_size()[0];
     if (compact_.local_size()[0] != block)
         throw Error("marching cubes: mc_classify.comp and mc_compact.comp must have the same local size");
-    max_blocks_ = (max_cells_ + block - 1) / block;
+    max_blocks_ = (max_cells_ + block - 1) / block + capacity.groups_x;   // with the last row's padding
+    const std::size_t kMaxGroups = std::size_t(capacity.groups_x) * 65535;
     const std::size_t emit_group = emit_.local_size()[0];
     if (max_blocks_ > kMaxGroups || (max_active_ + emit_group - 1) / emit_group > kMaxGroups || max_cells_ >= (1u << 31))
         throw Error("marching cubes: " + std::to_string(max_cells_) + " cells or " + std::to_string(max_active_) +
-                    " active cells need more than 65535 workgroups; lower max_dims or max_vertices");
+                    " active cells need more workgroups than a dispatch holds; lower max_dims or max_vertices");
 
     state_ = gl::Buffer(sizeof(gpu::MeshState), GL_DYNAMIC_COPY, nullptr, "mc.state");
     cell_vertices_ = gl::Buffer(max_cells_ * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "mc.cell_vertices");

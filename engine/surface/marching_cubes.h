@@ -41,12 +41,13 @@ namespace ranryu::surface {
 struct MeshCapacity {
     glm::uvec3 max_dims{160u};                      // most φ-grid nodes per axis (cells: one fewer)
     std::size_t max_vertices = std::size_t(1) << 22;   // 3 per triangle; more are dropped (MeshState.totals.z)
+    std::uint32_t groups_x = 32768;   // workgroups a row of the cell passes' 2-D dispatches (tests narrow it)
 };
 
 class MarchingCubes {
 public:
     // Builds the programs and allocates every buffer. Throws ranryu::Error when a dispatch could not
-    // cover the capacity (65535 workgroups along x).
+    // cover the capacity (the cell passes dispatch in 2-D).
     MarchingCubes(const shader::FileSource& shaders, profile::GpuTimer& timer, const MeshCapacity& capacity);
 
     // Meshes the φ = 0 surface of `phi` (float[], layout of shared/bindings.h) on the grid described

@@ -19,7 +19,7 @@ layout(std430, binding = RANRYU_SSBO_MC_BLOCKS) writeonly buffer Blocks { uvec2 
 #include "workgroup_scan.glsl"
 
 void main() {
-    uint c = gl_GlobalInvocationID.x;
+    uint c = flat_group() * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
     uint n = 0u;
     if (c < mc.cell_dispatch.w) {
         float f[8];
@@ -28,5 +28,5 @@ void main() {
     }
     uvec2 total;
     workgroup_exclusive_scan(uvec2(n > 0u ? 1u : 0u, n), total);   // only the total is wanted here
-    if (gl_LocalInvocationIndex == 0u) blocks[gl_WorkGroupID.x] = total;
+    if (gl_LocalInvocationIndex == 0u) blocks[flat_group()] = total;
 }

@@ -14,6 +14,8 @@ const int mc_edge_corners[24] = int[24](RANRYU_MC_EDGES);
 
 ivec3 mc_corner(int c) { return ivec3(mc_corner_offsets[3 * c], mc_corner_offsets[3 * c + 1], mc_corner_offsets[3 * c + 2]); }
 
+#include "dispatch_2d.glsl"
+
 // Cells per axis: nodes - 1 (none when there are no nodes).
 uvec3 cell_dims() { return uvec3(max(ivec3(surface_grid.dims.xyz) - 1, ivec3(0))); }
 

@@ -25,11 +25,12 @@ layout(std430, binding = RANRYU_SSBO_MC_ACTIVE) writeonly buffer Active { uvec2 
 layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // y: active cells
 
 #include "workgroup_scan.glsl"
+#include "dispatch_2d.glsl"
 
 void main() {
-    uint c = gl_GlobalInvocationID.x;
+    uint c = flat_group() * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
     uint n = c < mc.cell_dispatch.w ? cell_vertices[c] : 0u;
     uvec2 total;
-    uvec2 before = workgroup_exclusive_scan(uvec2(n > 0u ? 1u : 0u, n), total) + blocks[gl_WorkGroupID.x];
+    uvec2 before = workgroup_exclusive_scan(uvec2(n > 0u ? 1u : 0u, n), total) + blocks[flat_group()];
     if (n > 0u && before.x < capacity.y) active_cells[before.x] = uvec2(c, before.y);
 }

@@ -47,7 +47,7 @@ void edge_vertex(uvec3 cell, int edge, float f[8], out vec3 position, out vec3 g
 }
 
 void main() {
-    uint s = gl_GlobalInvocationID.x;
+    uint s = flat_group() * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
     if (s >= mc.emit_dispatch.w) return;
     uvec2 cell_first = active_cells[s];
     uvec3 cell = cell_coord(cell_first.x);

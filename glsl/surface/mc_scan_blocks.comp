@@ -1,10 +1,10 @@
 #version 430
 // "mc.compact", step 1 of 2 (ONE workgroup): exclusive prefix sums of the blocks' (active, vertices),
 // and the indirect arguments that follow from the totals.
-//   in   blocks[0, B) from mc_classify, B = mc.cell_dispatch.x
+//   in   blocks[0, B) from mc_classify, B = mc.cell_dispatch.x * mc.cell_dispatch.y (padding blocks hold 0)
 //   out  blocks[b] = sums over blocks 0..b-1
 //        mc.totals.xyz = (active cells, vertices, 1 if vertices > capacity)
-//        mc.emit_dispatch = (groups, 1, 1, active cells listed = min(active, capacity.y))
+//        mc.emit_dispatch = (dispatch_2d(groups), active cells listed = min(active, capacity.y))
 //        mc.draw = (vertices cut to a whole number of triangles within capacity.x, 1, 0, 0)
 // The workgroup walks the blocks in chunks of local_size * SCAN_ITEMS and carries the running sum
 // from chunk to chunk, so any B works without a third level (16.7M cells = 65536 blocks = 16 chunks).
@@ -17,11 +17,12 @@ layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // x ve
 layout(location = RANRYU_LOC_SURFACE_GROUP) uniform uvec4 group;         // x: mc_emit's local size
 
 #include "workgroup_scan.glsl"
+#include "dispatch_2d.glsl"
 
 #define SCAN_ITEMS 16u   // blocks per invocation per chunk
 
 void main() {
-    uint count = mc.cell_dispatch.x;
+    uint count = mc.cell_dispatch.x * mc.cell_dispatch.y;
     uint rank = gl_LocalInvocationIndex;
     uvec2 carry = uvec2(0u);
     for (uint base = 0u; base < count; base += SCAN_SIZE * SCAN_ITEMS) {
@@ -44,7 +45,7 @@ void main() {
         uint room = capacity.x - capacity.x % 3u;
         uint listed = min(carry.x, capacity.y);
         mc.totals.xyz = uvec3(carry.x, carry.y, carry.y > room ? 1u : 0u);
-        mc.emit_dispatch = uvec4((listed + group.x - 1u) / group.x, 1u, 1u, listed);
+        mc.emit_dispatch = uvec4(dispatch_2d((listed + group.x - 1u) / group.x), listed);
         mc.draw = uvec4(min(carry.y, room), 1u, 0u, 0u);
     }
 }

@@ -23,6 +23,8 @@
 #include "support/gl_fixture.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -33,6 +35,7 @@
 
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
+#include "profile/report.h"
 #include "shader/source.h"
 #include "shared/bindings.h"
 #include "sim/grid.h"
@@ -255,6 +258,31 @@ TEST_CASE("surface: GPU marching cubes of spheres: watertight, genus 0, second-o
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("surface: cell passes dispatched in rows of workgroups mesh like the CPU", "[surface]") {
+    // The cell passes dispatch 2-D, rows of groups_x workgroups (glsl/surface/dispatch_2d.glsl): in
+    // production 32768, so rows begin past 8.4M cells; here rows of 7, so a 48^3 grid (103,823
+    // cells, 406 blocks of 256) runs as 58 rows, the last one padded. The GPU mesh must equal the
+    // CPU's vertex for vertex, in order.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    rs::MarchingCubes rows{rig().shaders, rig().timer, rs::MeshCapacity{glm::uvec3(48), 200'000, 7}};
+    const float h = rng.uniform(0.005f, 0.05f);
+    const glm::vec3 origin = random_vec(rng, -1, 1);
+    const glm::vec3 centre = origin + h * (glm::vec3(23.5f) + random_vec(rng, -0.5f, 0.5f));
+    const PhiGrid g = sphere(origin, h, glm::uvec3(48), centre, 20.0f * h);
+    const auto in = upload(g);
+    const GpuMesh gpu = polygonise(rows, in.phi, in.grid);
+    INFO(gpu.vertices.size() / 3 << " triangles, " << gpu.state.cell_dispatch.x << " x " << gpu.state.cell_dispatch.y
+                                 << " cell workgroups");
+    CHECK(gpu.state.cell_dispatch.x == 7);
+    CHECK(gpu.state.cell_dispatch.y * 7 >= 406);
+    CHECK(gpu.state.cell_dispatch.y > 1);
+    CHECK(gpu.state.cell_dispatch.w == 47u * 47u * 47u);
+    check_same_mesh(gpu.vertices, rs::polygonise_cpu(g), h);
+    check_watertight(gpu.vertices, 2);
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("surface: marching cubes past its capacity drops vertices, or a whole grid, and says so", "[surface]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
@@ -452,4 +480,37 @@ TEST_CASE("surface: a lone particle's surface is a sphere of radius dx/2; a flat
         CHECK(hi < 0.59);
     }
     ranryu::test::require_no_gl_errors();
+}
+
+// Benchmark, not a test (hidden: run `ranryu_gl_tests "[mc-bench]"` on the GPU host): marching cubes
+// of a sphere of radius 0.4 N on an N^3 grid (RANRYU_MC_BENCH_N, default 256), 20 frames after 3,
+// with the per-pass table of profile::summarize. docs/PERFORMANCE.md quotes it.
+TEST_CASE("surface: marching cubes benchmark", "[.][mc-bench]") {
+    const char* env = std::getenv("RANRYU_MC_BENCH_N");
+    const std::uint32_t n = env ? std::uint32_t(std::strtoul(env, nullptr, 10)) : 256u;
+    const float h = 1.0f / float(n);
+    const PhiGrid g = sphere(glm::vec3(0.0f), h, glm::uvec3(n), glm::vec3(0.5f), 0.4f);
+    const auto in = upload(g);
+    ranryu::profile::GpuTimer timer(4, 64);
+    rs::MarchingCubes mc{rig().shaders, timer, rs::MeshCapacity{glm::uvec3(n), std::size_t(1) << 23}};
+    for (int f = 0; f < 23; ++f) {
+        if (f == 3) {
+            timer.drain();
+            timer.reset_samples();
+        }
+        timer.begin_frame();
+        mc.polygonise(in.phi, in.grid);
+        timer.end_frame();
+    }
+    timer.drain();
+    const MeshState m = mc.state().read<MeshState>(1)[0];
+    ranryu::profile::RunInfo info;
+    info.renderer = ranryu::test::context().info().renderer;
+    info.driver = ranryu::test::context().info().version;
+    info.scene = "marching cubes, sphere on " + std::to_string(n) + "^3 nodes";
+    info.frames = 20;
+    std::printf("%s%u triangles from %u active of %u cells\n",
+                ranryu::profile::table(ranryu::profile::summarize(timer, info)).c_str(), m.draw.x / 3, m.totals.x,
+                m.cell_dispatch.w);
+    CHECK(m.draw.x > 0);
 }

@@ -35,7 +35,7 @@ TEST_CASE("scene surface settings: unknown keys and out-of-range values name the
     CHECK_THAT(error(R"({"node_spacin": 1})"), Contains("unknown key \"surface.node_spacin\""));
     CHECK_THAT(error(R"({"node_spacing": 0})"), Contains("\"surface.node_spacing\" = 0 is out of range"));
     CHECK_THAT(error(R"({"max_dims": 2})"), Contains("\"surface.max_dims\" = 2 is out of range"));
-    CHECK_THAT(error(R"({"max_dims": 500})"), Contains("\"surface.max_dims\""));
+    CHECK_THAT(error(R"({"max_dims": 600})"), Contains("\"surface.max_dims\""));
     CHECK_THAT(error(R"({"max_dims": 10.5})"), Contains("must be a whole number"));
     CHECK_THAT(error(R"({"max_vertices": 1})"), Contains("\"surface.max_vertices\" = 1 is out of range"));
     CHECK_THAT(error(R"({"absorption": [1, -1, 0]})"), Contains("\"surface.absorption[1]\""));
