@@ -233,6 +233,37 @@ RANRYU_STRUCT(MeshVertex) {
 RANRYU_STRUCT_END(MeshVertex, 32)
 // ---- end surface
 
+// ---- turbulence (engine/turbulence/, glsl/turbulence/): METHOD.md §3, §4 ----
+// Wavelet analysis (engine/turbulence/wavelet.h, glsl/turbulence/analyse_velocity.comp): 28, 29.
+// Bindings 30, 31 of this section are the noise synthesis's.
+#define RANRYU_SSBO_WAVELET_ENERGY 28   // vec4[particles]: xyz û_i, w ê_i = ½|û_i|², in the analysed (cell) order
+#define RANRYU_SSBO_WAVELET_PARAMS 29   // WaveletParams (std430, read-only)
+
+// The wavelet pass's constants (METHOD.md §3), written by WaveletAnalysis::analyse().
+RANRYU_STRUCT(WaveletParams) {
+    float scale;            // s (m): ψ is evaluated at (x_i - x_j)/s
+    float inv_sqrt_scale;   // 1/√s, the transform's normalisation (1/√m)
+    float truncation;       // R: neighbours with |x_i - x_j|/s < R are summed; R·s <= the grid's cell
+    uint particle_count;    // particles analysed
+}
+RANRYU_STRUCT_END(WaveletParams, 16)
+// Noise synthesis (engine/turbulence/noise.h, glsl/turbulence/curl_noise.glsl, sample_field.comp): 30, 31, UBO 5.
+#define RANRYU_UBO_NOISE 5                // NoiseParams: the sampling grid and the octave sum
+#define RANRYU_SSBO_NOISE_TILES 30        // float[3·n³]: the three wavelet-noise potential tiles, x + n·(y + n·z)
+#define RANRYU_SSBO_NOISE_FIELD 31        // float[points·3]: sampled y, C order of shape (nx, ny, nz, 3)
+
+// y(x) = Σ_{i=lmin}^{lmax} w(2^i x + o_i) · 2^(−β(i − lmin)) sampled at origin + spacing·(i, j, k).
+RANRYU_STRUCT(NoiseParams) {
+    vec4 origin;      // xyz: grid point (0,0,0) (m); w: grid spacing (m)
+    uvec4 dims;       // xyz: points per axis; w: points in all
+    int lmin;         // first octave
+    int lmax;         // last octave (inclusive)
+    float beta;       // amplitude falloff 2^(−β(i − lmin)); 1/3 gives E(k) ∝ k^(−5/3)
+    uint tile_size;   // n: each tile holds n³ values
+}
+RANRYU_STRUCT_END(NoiseParams, 48)
+// ---- end turbulence
+
 #ifdef __cplusplus
 }  // namespace ranryu::gpu
 #endif

@@ -1,0 +1,50 @@
+#include "turbulence/wavelet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "sim/sph.h"
+
+namespace ranryu::turbulence {
+
+WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity)
+    : timer_(timer),
+      pass_(timer.pass("wavelet")),
+      // 27 cells per particle, never RANRYU_MERGE_ROWS: correct for linear and Morton keys alike.
+      program_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp")),
+      capacity_(capacity),
+      energy_(std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
+      params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams"),
+      sph_params_(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, nullptr, "wavelet SphParams") {}
+
+void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
+    const std::size_t count = sph.count();
+    const float cell = sph.grid().layout().cell;
+    // s·R <= cell, with a float rounding's slack so that s = max_scale(cell) itself passes.
+    if (!(scale > 0.0f) || !std::isfinite(scale) || scale * kTruncation > cell * (1.0f + 1e-6f))
+        throw InputError("wavelet: scale " + std::to_string(scale) + " m must be positive and at most the grid cell / " +
+                         std::to_string(kTruncation) + " = " + std::to_string(max_scale(cell)) + " m");
+    if (count > capacity_)
+        throw InputError("wavelet: " + std::to_string(count) + " particles exceed the capacity " + std::to_string(capacity_));
+    if (count == 0) return;
+
+    auto pass = timer_.scope(pass_);
+    const gpu::WaveletParams p{scale, float(1.0 / std::sqrt(double(scale))), kTruncation, std::uint32_t(count)};
+    params_.upload_value(p);
+    sph_params_.upload_value(sph.params());   // 112 bytes: fluid_run() reads particle_count
+    sph_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+    sph.grid().bind_params(count);
+    sph.positions().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
+    sph.velocities().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
+    sph.cell_ranges().start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
+    sph.cell_ranges().end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
+    sph.grid().sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
+    params_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_PARAMS);
+    energy_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
+    program_.dispatch(count);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace ranryu::turbulence

@@ -1,0 +1,50 @@
+#version 430
+// Wavelet analysis of the velocity at every fluid particle (METHOD.md §3; engine/turbulence/wavelet.h
+// states the choices and their reasons):
+//
+//     û_i = 1/(√s·ψ_sum,i) · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²
+//     ψ(x) = (3 − |x|²)·e^(−|x|²/2)          (3-D Mexican hat, −∇² of e^(−|x|²/2), zero mean)
+//     ψ_sum,i = Σ_j |ψ((x_i − x_j)/s)|       (j = i included: ψ(0) = 3, so ψ_sum,i >= 3 > 0)
+//
+// both sums over the fluid particles j with |x_i − x_j| < R·s (R = truncation; R·s <= the grid's
+// cell, so the 27 cells around x_i hold them all). u_j − u_i: a uniform velocity gives û_i = 0 exactly.
+// Input: positions and velocities in cell order, the cell ranges and sorted keys of that order
+// (sph_common.glsl's fluid_run() tells stale ranges from current ones), GridParams, SphParams
+// (particle_count, for fluid_run()), WaveletParams.
+// Output: energy[i] = (û_i, ê_i) for i < particle_count.
+#include "../sim/sph/sph_common.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
+layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430, binding = RANRYU_SSBO_WAVELET_PARAMS) readonly buffer Wavelet { WaveletParams wavelet; };
+layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) writeonly buffer Energy { vec4 energy[]; };
+
+// The 3-D Mexican hat at |x|² = q2.
+float mexican_hat(float q2) { return (3.0 - q2) * exp(-0.5 * q2); }
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= wavelet.particle_count) return;   // no barriers in this pass
+    vec3 xi = position[i].xyz;
+    vec3 ui = velocity[i].xyz;
+    float inv_s = 1.0 / wavelet.scale;
+    float r2 = wavelet.truncation * wavelet.truncation;
+    vec3 sum = vec3(0.0);
+    float psi_sum = 0.0;
+    ivec3 c = grid_cell(xi);
+    FOR_EACH_RUN {
+        uvec2 run = NEIGHBOUR_RUN(c, true);
+        for (uint j = run.x; j < run.y; ++j) {
+            vec3 d = (xi - position[j].xyz) * inv_s;
+            float q2 = dot(d, d);
+            if (q2 < r2) {
+                float psi = mexican_hat(q2);
+                sum += (velocity[j].xyz - ui) * psi;
+                psi_sum += abs(psi);
+            }
+        }
+    }
+    vec3 u_hat = sum * (wavelet.inv_sqrt_scale / psi_sum);
+    energy[i] = vec4(u_hat, 0.5 * dot(u_hat, u_hat));
+}
