@@ -18,6 +18,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"profile", {"--scene", "--spacing", "--frames", "--size", "--warmup", "--json", "--csv", "--shading", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
     {"validate", {"--spacing", "--json", "--shader-dir", "--gl-debug"}},
+    {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
 const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh"};
 
@@ -28,6 +29,14 @@ int parse_int(const std::string& option, const std::string& text, int lo, int hi
         throw InputError(option + " " + text + ": not a whole number");
     if (v < lo || v > hi)
         throw InputError(option + " " + text + ": out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+float parse_float(const std::string& option, const std::string& text, float lo, float hi, const std::string& what) {
+    char* end = nullptr;
+    const float v = std::strtof(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || !(v >= lo && v <= hi))
+        throw InputError(option + " " + text + ": expected " + what);
     return v;
 }
 
@@ -46,7 +55,7 @@ Options parse(const std::vector<std::string>& args) {
         return o;
     }
     if (!kAccepts.count(first))
-        throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes, validate)");
+        throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes, validate, export-field)");
     o.command = first;
     const auto& accepts = kAccepts.at(first);
     for (std::size_t i = 1; i < args.size(); ++i) {
@@ -78,7 +87,26 @@ Options parse(const std::vector<std::string>& args) {
         if (!kFlags.count(opt) && value.empty()) throw InputError(opt + ": needs a value");
         if (opt == "--scene") o.scene = value;
         else if (opt == "--frames") o.frames = parse_int(opt, value, first == "run" ? 0 : 1, 1'000'000);
-        else if (opt == "--size") {
+        else if (opt == "--size" && first == "export-field") o.field_size = parse_int(opt, value, 8, 256);
+        else if (opt == "--extent") o.extent = parse_float(opt, value, 1e-6f, 1e6f, "an extent in metres in [1e-6, 1e6]");
+        else if (opt == "--beta") o.beta = parse_float(opt, value, 0.0f, 4.0f, "an octave falloff exponent in [0, 4]");
+        else if (opt == "--seed") {
+            std::uint32_t v = 0;
+            const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+            if (ec != std::errc() || end != value.data() + value.size())
+                throw InputError("--seed " + value + ": expected a whole number in [0, 4294967295]");
+            o.seed = v;
+        } else if (opt == "--octaves") {
+            const auto colon = value.find(':');
+            try {
+                if (colon == std::string::npos) throw InputError("");
+                o.lmin = parse_int(opt, value.substr(0, colon), -8, 16);
+                o.lmax = parse_int(opt, value.substr(colon + 1), -8, 16);
+            } catch (const InputError&) {
+                throw InputError("--octaves " + value + ": expected LMIN:LMAX, whole numbers in [-8, 16]");
+            }
+            if (o.lmin > o.lmax) throw InputError("--octaves " + value + ": LMIN must not exceed LMAX");
+        } else if (opt == "--size") {
             const auto x = value.find('x');
             if (x == std::string::npos) throw InputError("--size " + value + ": expected WIDTHxHEIGHT, e.g. 960x540");
             const std::string w = value.substr(0, x), h = value.substr(x + 1);
@@ -115,6 +143,8 @@ Options parse(const std::vector<std::string>& args) {
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic)");
+    if (o.command == "export-field" && o.out.empty() && !o.help)
+        throw InputError("--out: export-field needs --out FILE.npy");
     return o;
 }
 
@@ -129,6 +159,7 @@ commands:
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
   validate  run a validation case (dam-break, hydrostatic) against its reference
+  export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
   --version   print the version
   --help      this text
@@ -182,6 +213,26 @@ Run a case headless and print the simulation next to its reference, with the err
 
   --spacing DX        particle spacing in metres (default: the bundled scene's)
   --json FILE         also write the series and errors as JSON
+  --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
+  --gl-debug          debug context; print the driver's KHR_debug messages
+)";
+    if (cmd == "export-field")
+        return R"(usage: ranryu export-field --out FILE.npy [options]
+
+Sample the turbulence field y(x) = sum_{i=LMIN}^{LMAX} w(2^i x + o_i) 2^(-B (i - LMIN)) (METHOD.md
+section 4; w = analytic curl of wavelet noise on 32^3 tiles, a tile cell of octave 0 is 1 m, o_i a
+fixed per-octave offset) at the points L (i, j, k) / N,
+0 <= i, j, k < N, and write it as a NumPy .npy v1.0 file of float32, shape (N, N, N, 3), C order:
+f[i, j, k] is y at (x_i, y_j, z_k).
+
+  --size N            grid points per axis, 8..256 (default 64)
+  --extent L          side of the sampled cube in metres (default 1)
+  --octaves LMIN:LMAX octaves summed (default 2:4)
+  --beta B            amplitude falloff per octave (default 1/3: shell-averaged E(k) ~ k^(-5/3);
+                      5/6 gives energy per octave ~ k^(-5/3), Kim et al. 2008)
+  --seed S            seed of the noise tiles (default 1)
+  --out FILE.npy      output file (required); written atomically
+  --force             replace FILE.npy if it exists (otherwise refused)
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";

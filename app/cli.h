@@ -1,6 +1,7 @@
 #pragma once
 // Command-line parsing for `ranryu COMMAND [options]`. Every mistake raises ranryu::InputError
 // with one line naming the option and what is wrong (exit code 2).
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,7 +9,7 @@
 namespace ranryu::app {
 
 struct Options {
-    std::string command;          // run | record | profile | scenes | validate | help | version
+    std::string command;          // run | record | profile | scenes | validate | export-field | help | version
     std::string case_name;        // validate: dam-break | hydrostatic
     std::optional<float> spacing; // particle spacing (m): the scene at another resolution
     bool help = false;            // COMMAND --help
@@ -25,6 +26,12 @@ struct Options {
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
     std::string shading;          // run/record/profile: phong | gouraud | fresnel | particles; empty: the scene's default
     bool export_mesh = false;     // record: frame_NNNNN.ply of the surface beside each PNG
+    // export-field (app/export_field.cpp): the turbulence field y of METHOD.md §4 on an N³ grid.
+    int field_size = 64;          // --size N: grid points per axis
+    float extent = 1.0f;          // --extent L (m): points at L·(i, j, k)/N
+    int lmin = 2, lmax = 4;       // --octaves LMIN:LMAX
+    float beta = 1.0f / 3.0f;     // --beta B: octave falloff 2^(-B(i-lmin)); 1/3: E(k) ~ k^(-5/3)
+    std::uint32_t seed = 1;       // --seed S: the noise tiles' std::mt19937 seed
 };
 
 Options parse(const std::vector<std::string>& args);

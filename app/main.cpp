@@ -1,4 +1,4 @@
-// ranryu: run | record | profile | scenes | validate. Errors end here: one line on stderr, and the exit code
+// ranryu: run | record | profile | scenes | validate | export-field. Errors end here: one line on stderr, and the exit code
 // of their kind (0 ok, 1 failure, 2 bad input, 3 unstable simulation).
 #include <cstdio>
 #include <exception>
@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
         if (o.command == "profile") return app::profile_cmd(o);
         if (o.command == "scenes") return app::scenes(o);
         if (o.command == "validate") return app::validate(o);
+        if (o.command == "export-field") return app::export_field(o);
         return 1;
     } catch (const Error& e) {
         std::fflush(stdout);
