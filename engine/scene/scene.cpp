@@ -5,6 +5,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -73,6 +74,23 @@ public:
         if (!j_.contains(k)) return def;
         if (!j_.at(k).is_string()) fail("\"" + key(k) + "\" must be a string");
         return j_.at(k).get<std::string>();
+    }
+    // [a, b] of whole numbers in [lo, hi] with a <= b.
+    std::pair<int, int> int_pair(const std::string& k, std::pair<int, int> def, int lo, int hi) {
+        used_.insert(k);
+        if (!j_.contains(k)) return def;
+        const json& v = j_.at(k);
+        if (!v.is_array() || v.size() != 2 || !std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number(); }))
+            fail("\"" + key(k) + "\" must be an array of 2 numbers, not " + v.dump());
+        int r[2];
+        for (int i = 0; i < 2; ++i) {
+            const std::string name = key(k) + "[" + std::to_string(i) + "]";
+            const double x = check(name, v[std::size_t(i)].get<double>(), lo, hi);
+            if (x != std::floor(x)) fail("\"" + name + "\" = " + fmt(x) + " must be a whole number");
+            r[i] = int(x);
+        }
+        if (r[0] > r[1]) fail("\"" + key(k) + "\" = " + v.dump() + " must be [lmin, lmax] with lmin <= lmax");
+        return {r[0], r[1]};
     }
     Reader object(const std::string& k) {
         used_.insert(k);
@@ -217,6 +235,22 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.density_limit = float(p.number("density_limit", h.density_limit, 1.01, 100.0));
         h.speed_limit = float(p.number("speed_limit", h.speed_limit, 0.0, 1e5));
         p.finish();
+    }
+    {
+        // The turbulence force (METHOD.md §5, engine/turbulence/force.h). scale <= 1/3: the wavelet's
+        // truncation radius 3 s must fit in the neighbour grid's cell h (wavelet.h). Octaves up to 16:
+        // 2^16 x stays well inside float's exact range for tanks of metres.
+        Reader t = r.object("turbulence");
+        TurbulenceSettings& u = s.turbulence;
+        u.amplitude = float(t.number("amplitude", u.amplitude, 0.0, 10.0));
+        u.scale = float(t.number("scale", u.scale, 1e-3, 1.0 / 3.0 + 1e-7));
+        const auto oct = t.int_pair("octaves", {u.lmin, u.lmax}, -4, 16);
+        u.lmin = oct.first;
+        u.lmax = oct.second;
+        u.beta = float(t.number("beta", u.beta, 0.0, 4.0));
+        u.seed = std::uint32_t(t.integer("seed", int(u.seed), 0, 2147483647));
+        if (u.enabled() && s.model != Model::sph) t.fail("\"turbulence.amplitude\" > 0 needs \"model\": \"sph\"");
+        t.finish();
     }
     {
         // max_dims: 512^3 nodes keep every cell index and buffer offset in 32 bits (134M cells);

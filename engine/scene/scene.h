@@ -2,6 +2,7 @@
 // A scene: what to simulate and how to look at it. Scenes are JSON files (media/scenes/*.json are
 // bundled into the binary); every key is known and range-checked, and any error names the file,
 // the key and what is wrong (ranryu::InputError, exit code 2).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -42,6 +43,17 @@ struct SphSettings {
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
 };
 
+// The turbulence force (METHOD.md §5; engine/turbulence/force.h): off unless amplitude > 0, and
+// then only with model "sph". With amplitude 0 nothing is constructed and no pass runs.
+struct TurbulenceSettings {
+    float amplitude = 0.0f;           // A (s): the velocity kick a substep gives is A·ê·y (force.h)
+    float scale = 1.0f / 3.0f;        // wavelet scale s in units of h (at most 1/3: s·3 <= the grid cell h)
+    int lmin = 3, lmax = 5;           // noise octaves (octave i: wavelengths of about 2..4 · 2^-i m)
+    float beta = 1.0f / 3.0f;         // octave falloff 2^(-β(i - lmin)); 1/3: E(k) ∝ k^(-5/3)
+    std::uint32_t seed = 1;           // noise tiles' seed
+    bool enabled() const { return amplitude > 0.0f; }
+};
+
 // The liquid surface (engine/surface/): the level set grid and the mesh capacity, and the water's
 // absorption in the Fresnel shading mode. Used only when the shading draws a surface.
 struct SurfaceSettings {
@@ -73,6 +85,7 @@ struct Scene {
     Model model = Model::ballistic;
     SphSettings sph;
     SurfaceSettings surface;
+    TurbulenceSettings turbulence;
 
     glm::vec3 camera_eye{2.0f, 1.5f, 2.5f};
     glm::vec3 camera_target{0.5f, 0.3f, 0.3f};

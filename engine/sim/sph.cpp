@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "scene/scene.h"
 #include "sim/boundary.h"
+#include "turbulence/force.h"
 
 namespace ranryu::sim {
 namespace {
@@ -66,7 +67,10 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     return p;
 }
 
-int timed_passes_per_substep(const scene::Scene& s) { return s.sph.sort == "bitonic" ? 110 : 24; }
+int timed_passes_per_substep(const scene::Scene& s) {
+    // + "wavelet" and "turbulence-force" when the turbulence force is on.
+    return (s.sph.sort == "bitonic" ? 110 : 24) + (s.turbulence.enabled() ? 2 : 0);
+}
 
 GuardLimits guard_limits(const scene::Scene& s) {
     GuardLimits g;
@@ -160,7 +164,11 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     timer_.end_frame();
     timer_.drain();
     timer_.reset_samples();
+    if (scene.turbulence.enabled())
+        turbulence_ = std::make_unique<turbulence::TurbulenceForce>(shaders, timer_, scene.turbulence, params_.h, count_);
 }
+
+Sph::~Sph() = default;
 
 void Sph::set_fixed_dt(float dt) { fixed_dt_ = dt; }
 
@@ -212,8 +220,20 @@ void Sph::substep() {
     choose_time_step();
     rebuild_grid();
     compute_density();
+    analyse_turbulence();
     compute_forces();
+    apply_turbulence();
     integrate();
+}
+
+void Sph::analyse_turbulence() {
+    if (turbulence_) turbulence_->analyse(*this);
+}
+
+void Sph::apply_turbulence() {
+    if (!turbulence_) return;
+    bind_fields();   // positions, accelerations, StepState, SphParams; the pass binds the rest
+    turbulence_->apply(*this);
 }
 
 void Sph::choose_time_step() {

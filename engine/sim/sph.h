@@ -5,7 +5,9 @@
 //     substep() × N                       "choose-time-step"  eq. (7), on the GPU
 //                                         "hash", "sort.*", "cell-ranges", "reorder"   (NeighbourGrid)
 //                                         "density"           eqs. (2), (3)
+//                                         "wavelet"           turbulence only: ê (METHOD.md §3)
 //                                         "forces"            eqs. (4), (5) and gravity
+//                                         "turbulence-force"  turbulence only: METHOD.md §5
 //                                         "integrate"         eq. (6) and the guard's records
 //     end_frame()                         "diagnostics"       queues the record's readback
 //
@@ -14,6 +16,7 @@
 // a guard criterion is kept as instability(); the caller stops the run.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,6 +31,7 @@
 #include "sim/guard.h"
 
 namespace ranryu::scene { struct Scene; }
+namespace ranryu::turbulence { class TurbulenceForce; }
 
 namespace ranryu::sim {
 
@@ -41,6 +45,7 @@ int timed_passes_per_substep(const scene::Scene& s);
 class Sph {
 public:
     Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene);
+    ~Sph();
 
     void begin_frame(std::uint64_t frame_index);
     void substep();   // the five stages below, in order
@@ -51,6 +56,11 @@ public:
     void rebuild_grid();       // "hash", "sort.*", "cell-ranges", "reorder": state now in cell order
     void compute_density();    // "density"
     void compute_forces();     // "forces"
+    // The turbulence force (engine/turbulence/force.h), only when the scene's turbulence is on
+    // (amplitude > 0; otherwise these do nothing and nothing was constructed).
+    void analyse_turbulence();   // "wavelet": after compute_density(), on the current cell order
+    void apply_turbulence();     // "turbulence-force": after compute_forces(), before integrate()
+    const turbulence::TurbulenceForce* turbulence() const { return turbulence_.get(); }
     void integrate();          // "integrate"
     int substeps_this_frame() const { return substeps_; }
 
@@ -106,6 +116,7 @@ private:
     int substeps_ = 1;
     float dt_estimate_;
     std::optional<float> fixed_dt_;
+    std::unique_ptr<turbulence::TurbulenceForce> turbulence_;   // null unless the scene turns it on
 };
 
 }  // namespace ranryu::sim

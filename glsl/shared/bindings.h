@@ -262,6 +262,9 @@ RANRYU_STRUCT(NoiseParams) {
     uint tile_size;   // n: each tile holds n³ values
 }
 RANRYU_STRUCT_END(NoiseParams, 48)
+// Turbulence force (engine/turbulence/force.h, glsl/turbulence/apply_turbulence_force.comp): reads
+// 0, 13, 16, 28, 30, UBO 3 and 5 (NoiseParams: lmin, lmax, beta, tile_size), and this uniform.
+#define RANRYU_LOC_TURBULENCE_AMPLITUDE 1   // float: A (s), the force's amplitude
 // ---- end turbulence
 
 #ifdef __cplusplus
