@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Diagnosis on the GPU host: runs `validate hydrostatic` with shader variants made by sed.
+# The record of the bisection in docs/PERFORMANCE.md (the looped row merge that read wrong sums on
+# NVIDIA 580): its sed patterns match glsl/sim/sph/sph_common.glsl as of commit 56bca8e, so check
+# that commit out to repeat it; on later shaders the variants equal the base.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 B=build/gpu/app/ranryu
