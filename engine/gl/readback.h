@@ -9,6 +9,7 @@
 #include <functional>
 #include <vector>
 
+#include "gl/fence_ring.h"
 #include "gl/objects.h"
 
 namespace ranryu::gl {
@@ -27,19 +28,11 @@ public:
     std::size_t drain();
 
 private:
-    struct Slot {
-        Buffer buffer;
-        Fence fence;
-        std::uint64_t tag = 0;
-        bool busy = false;
-    };
-    void hand_over(Slot& s);
+    void hand_over(FenceRing<Buffer>::Slot& s);
     Consumer on_record_;
 
     std::size_t bytes_;
-    std::vector<Slot> ring_;
-    std::size_t next_ = 0;     // slot the next copy() uses
-    std::size_t oldest_ = 0;   // slot the next poll() looks at
+    FenceRing<Buffer> ring_;
     std::vector<std::uint8_t> scratch_;
 };
 

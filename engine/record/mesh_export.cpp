@@ -35,12 +35,13 @@ bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
 
 MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                            std::function<void()> pump, int ring)
-    : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices) {
-    ring_.resize(std::size_t(std::max(ring, 1)));
+    : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),
+      ring_(std::size_t(std::max(ring, 1))) {
     for (std::size_t i = 0; i < ring_.size(); ++i) {
-        ring_[i].vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
-                                       "mesh-readback.vertices." + std::to_string(i));
-        ring_[i].state = gl::Buffer(sizeof(gpu::MeshState), GL_STREAM_READ, nullptr, "mesh-readback.state." + std::to_string(i));
+        Copies& c = ring_.slots()[i].data;
+        c.vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
+                                "mesh-readback.vertices." + std::to_string(i));
+        c.state = gl::Buffer(sizeof(gpu::MeshState), GL_STREAM_READ, nullptr, "mesh-readback.state." + std::to_string(i));
     }
     // One writer: a buffer it writes from, the ring's worth retiring, and the frames a gated run holds
     // until their records arrive (a few frames late), as record::Recorder sizes its frames.
@@ -61,47 +62,33 @@ MeshExporter::~MeshExporter() {
 void MeshExporter::capture(const gl::Buffer& vertices, const gl::Buffer& state) {
     if (finished_) throw Error("MeshExporter::capture after finish");
     if (vertices.size() < max_vertices_ * sizeof(gpu::MeshVertex)) throw Error("MeshExporter: vertex buffer smaller than its capacity");
-    Slot& s = ring_[next_];
-    if (s.busy) {
-        s.fence.wait();   // the GPU is a whole ring behind: back-pressure
-        retire(s);
-    }
+    auto retire_slot = [this](Slot& o) { retire(o); };
+    Slot& s = ring_.acquire(retire_slot);
     {
         auto pass = timer_.scope(pass_);
         // The mesh passes end with their own barriers; copies read buffer data after them in order.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        copy(state, s.state, sizeof(gpu::MeshState));
-        copy(vertices, s.vertices, s.vertices.size());
+        copy(state, s.data.state, sizeof(gpu::MeshState));
+        copy(vertices, s.data.vertices, s.data.vertices.size());
     }
-    s.fence.insert();
-    s.frame = captured_++;
-    s.busy = true;
-    next_ = (next_ + 1) % ring_.size();
-    for (std::size_t k = 0; k < ring_.size(); ++k) {
-        Slot& o = ring_[(next_ + k) % ring_.size()];
-        if (!o.busy) continue;
-        if (!o.fence.signaled()) break;
-        retire(o);
-    }
+    ring_.submit(captured_++, retire_slot);
 }
 
 void MeshExporter::retire(Slot& s) {
     const std::size_t buffer = writer_->acquire();
     gpu::MeshState state{};
-    bool ok = read_mapped(s.state, &state, sizeof state);
-    records_[buffer] = MeshRecord{s.frame, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)),
+    bool ok = read_mapped(s.data.state, &state, sizeof state);
+    records_[buffer] = MeshRecord{s.tag, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)),
                                   state.totals.z != 0, state.totals.w != 0};
     std::vector<gpu::MeshVertex>& dst = buffers_[buffer];
     dst.resize(records_[buffer].vertices);   // reuses the storage once it has grown to the largest mesh
-    if (ok && !dst.empty()) ok = read_mapped(s.vertices, dst.data(), dst.size() * sizeof(gpu::MeshVertex));
-    s.fence.reset();
-    s.busy = false;
+    if (ok && !dst.empty()) ok = read_mapped(s.data.vertices, dst.data(), dst.size() * sizeof(gpu::MeshVertex));
     if (!ok) {
-        writer_->fail("cannot map the mesh readback buffers of frame " + std::to_string(s.frame));
+        writer_->fail("cannot map the mesh readback buffers of frame " + std::to_string(s.tag));
         writer_->release(buffer);
         return;
     }
-    writer_->submit(s.frame, buffer);
+    writer_->submit(s.tag, buffer);
 }
 
 // On the writer thread (the only one, so the scratch arrays need no lock).
@@ -127,12 +114,7 @@ void MeshExporter::discard_from(std::uint64_t frame) { writer_->discard_from(fra
 void MeshExporter::finish() {
     if (finished_) return;
     finished_ = true;
-    for (std::size_t k = 0; k < ring_.size(); ++k) {
-        Slot& s = ring_[(next_ + k) % ring_.size()];
-        if (!s.busy) continue;
-        s.fence.wait();
-        retire(s);
-    }
+    ring_.drain([this](Slot& s) { retire(s); });
     writer_->finish();
 }
 

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
 #include "record/gated_writer.h"
@@ -61,12 +62,10 @@ public:
     std::vector<MeshRecord> written() const;
 
 private:
-    struct Slot {
+    struct Copies {
         gl::Buffer vertices, state;
-        gl::Fence fence;
-        std::uint64_t frame = 0;
-        bool busy = false;
     };
+    using Slot = gl::FenceRing<Copies>::Slot;   // tag: the frame
     void retire(Slot& s);
     void write(std::size_t buffer);   // the writer thread's job: one PLY
 
@@ -74,8 +73,7 @@ private:
     profile::PassId pass_;
     std::filesystem::path dir_;
     std::size_t max_vertices_;
-    std::vector<Slot> ring_;
-    std::size_t next_ = 0;
+    gl::FenceRing<Copies> ring_;
     std::uint64_t captured_ = 0;
     std::vector<std::vector<gpu::MeshVertex>> buffers_;   // reused; storage grows to the largest mesh
     std::vector<MeshRecord> records_;                     // what each buffer holds

@@ -62,11 +62,11 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
 
 Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
                    std::function<void()> pump, int ring, int writers)
-    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height) {
+    : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
+      ring_(std::size_t(std::max(ring, 1))) {
     const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
-    ring_.resize(std::size_t(std::max(ring, 1)));
     for (std::size_t i = 0; i < ring_.size(); ++i)
-        ring_[i].pbo = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
+        ring_.slots()[i].data = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
     if (writers <= 0) writers = std::max(1, int(std::thread::hardware_concurrency()) - 1);
     // Enough CPU frames that every writer can be busy while the ring retires more, plus the frames a
     // gated recorder holds until their records arrive (those arrive a few frames late).
@@ -89,39 +89,26 @@ Recorder::~Recorder() {
 void Recorder::capture(const gl::RenderTarget& target) {
     if (finished_) throw Error("Recorder::capture after finish");
     if (target.width() != width_ || target.height() != height_) throw Error("Recorder: target size changed");
-    Slot& s = ring_[next_];
-    if (s.busy) {
-        s.fence.wait();   // the GPU is a whole ring behind: back-pressure
-        retire(s);
-    }
+    auto retire_slot = [this](Slot& o) { retire(o); };
+    Slot& s = ring_.acquire(retire_slot);
     {
         auto pass = timer_.scope(pass_);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer());
         glReadBuffer(GL_COLOR_ATTACHMENT0);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, s.pbo.id());
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, s.data.id());
         glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     }
-    s.fence.insert();
-    s.frame = captured_++;
-    s.busy = true;
-    next_ = (next_ + 1) % ring_.size();
-    // Hand over, oldest first, whatever the GPU has finished; stop at the first still in flight.
-    for (std::size_t k = 0; k < ring_.size(); ++k) {
-        Slot& o = ring_[(next_ + k) % ring_.size()];
-        if (!o.busy) continue;
-        if (!o.fence.signaled()) break;
-        retire(o);
-    }
+    ring_.submit(captured_++, retire_slot);   // and hands over whatever the GPU has finished
 }
 
 void Recorder::retire(Slot& s) {
     const std::size_t buffer = writer_->acquire();
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, s.pbo.id());
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, s.data.id());
     const auto* src = static_cast<const std::uint8_t*>(
-        glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(s.pbo.size()), GL_MAP_READ_BIT));
+        glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(s.data.size()), GL_MAP_READ_BIT));
     if (src) {
         // GL rows run bottom-up; PNG rows top-down.
         const std::size_t row = std::size_t(width_) * 4;
@@ -130,14 +117,12 @@ void Recorder::retire(Slot& s) {
         glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
     }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    s.fence.reset();
-    s.busy = false;
     if (!src) {
-        writer_->fail("cannot map the readback buffer of frame " + std::to_string(s.frame));
+        writer_->fail("cannot map the readback buffer of frame " + std::to_string(s.tag));
         writer_->release(buffer);
         return;
     }
-    writer_->submit(s.frame, buffer);
+    writer_->submit(s.tag, buffer);
 }
 
 void Recorder::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
@@ -146,12 +131,7 @@ void Recorder::discard_from(std::uint64_t frame) { writer_->discard_from(frame);
 void Recorder::finish() {
     if (finished_) return;
     finished_ = true;
-    for (std::size_t k = 0; k < ring_.size(); ++k) {
-        Slot& s = ring_[(next_ + k) % ring_.size()];
-        if (!s.busy) continue;
-        s.fence.wait();
-        retire(s);
-    }
+    ring_.drain([this](Slot& s) { retire(s); });
     writer_->finish();
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
 #include "record/gated_writer.h"
@@ -56,20 +57,14 @@ public:
     std::uint64_t frames_written() const;
 
 private:
-    struct Slot {
-        gl::Buffer pbo;
-        gl::Fence fence;
-        std::uint64_t frame = 0;
-        bool busy = false;
-    };
+    using Slot = gl::FenceRing<gl::Buffer>::Slot;   // data: the pixel-buffer object; tag: the frame
     void retire(Slot& s);   // fence signalled (or waited): copy out and queue for encoding
 
     profile::GpuTimer& timer_;
     profile::PassId pass_;
     std::filesystem::path dir_;
     int width_, height_;
-    std::vector<Slot> ring_;
-    std::size_t next_ = 0;
+    gl::FenceRing<gl::Buffer> ring_;
     std::uint64_t captured_ = 0;
     std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames, named by the writer's indices
     std::unique_ptr<GatedWriter> writer_;
