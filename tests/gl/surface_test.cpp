@@ -21,6 +21,7 @@
 //   - sphere area and volume: the coefficients -0.314 and -0.594 of (h/R)^2 measured for this table
 //     (tests/unit/marching_cubes_table_test.cpp), ±0.03.
 #include "support/gl_fixture.h"
+#include "support/phi_fields.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -200,15 +201,8 @@ TEST_CASE("surface: GPU marching cubes on random fields equals the CPU reference
     INFO("seed " << rng.seed());
     for (int trial = 0; trial < 4; ++trial) {
         const glm::uvec3 dims(4 + rng.below(28), 4 + rng.below(28), 4 + rng.below(28));
-        PhiGrid g{random_vec(rng, -2, 2), rng.uniform(0.01f, 0.1f), dims, {}};
-        g.phi.resize(g.nodes());
-        for (std::uint32_t k = 0; k < dims.z; ++k)
-            for (std::uint32_t j = 0; j < dims.y; ++j)
-                for (std::uint32_t i = 0; i < dims.x; ++i) {
-                    const bool border = i == 0 || j == 0 || k == 0 || i + 1 == dims.x || j + 1 == dims.y || k + 1 == dims.z;
-                    const float m = rng.uniform(0.1f, 1.0f);
-                    g.phi[g.index({i, j, k})] = border || rng.below(2) ? -m : m;
-                }
+        const glm::vec3 origin = random_vec(rng, -2, 2);
+        const PhiGrid g = ranryu::test::random_closed_field(rng, origin, rng.uniform(0.01f, 0.1f), dims);
         INFO("trial " << trial << ", dims " << dims.x << "x" << dims.y << "x" << dims.z);
         const auto in = upload(g);
         const GpuMesh gpu = polygonise(rig().mc, in.phi, in.grid);

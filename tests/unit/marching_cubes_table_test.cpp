@@ -13,7 +13,7 @@
 #include <set>
 #include <vector>
 
-#include "support/gl_fixture.h"   // ranryu::test::Random only; no context is made here
+#include "support/phi_fields.h"   // random fields; no context is made here
 #include "surface/marching_cubes.h"
 #include "surface/mesh.h"
 
@@ -179,15 +179,8 @@ TEST_CASE("CPU marching cubes: random fields give closed, consistently oriented 
     INFO("seed " << rng.seed());
     for (int trial = 0; trial < 20; ++trial) {
         const glm::uvec3 dims(4 + rng.below(10), 4 + rng.below(10), 4 + rng.below(10));
-        PhiGrid g{glm::vec3(rng.uniform(-1, 1)), rng.uniform(0.01f, 1.0f), dims, {}};
-        g.phi.resize(g.nodes());
-        for (std::uint32_t k = 0; k < dims.z; ++k)
-            for (std::uint32_t j = 0; j < dims.y; ++j)
-                for (std::uint32_t i = 0; i < dims.x; ++i) {
-                    const bool border = i == 0 || j == 0 || k == 0 || i + 1 == dims.x || j + 1 == dims.y || k + 1 == dims.z;
-                    const float m = rng.uniform(0.1f, 1.0f);
-                    g.phi[g.index({i, j, k})] = border || rng.below(2) ? -m : m;
-                }
+        const glm::vec3 origin(rng.uniform(-1, 1));
+        const PhiGrid g = ranryu::test::random_closed_field(rng, origin, rng.uniform(0.01f, 1.0f), dims);
         const auto soup = ranryu::surface::polygonise_cpu(g);
         const auto topo = ranryu::surface::topology(ranryu::surface::weld(soup));
         INFO("trial " << trial << ", dims " << dims.x << "x" << dims.y << "x" << dims.z << ", " << topo.faces << " triangles");
