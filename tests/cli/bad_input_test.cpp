@@ -63,6 +63,25 @@ TEST_CASE("bad input: an out-of-range value in a scene", "[cli][bad-input]") {
 
 // ---- options ----
 
+TEST_CASE("bad input: --spacing outside [0.0001, 1] m or one that leaves no particle", "[cli][bad-input]") {
+    TempDir tmp;
+    for (const std::string dx : {"0", "-0.01", "abc", "2", "0.01m"}) {
+        INFO("--spacing " << dx);
+        check_bad_input(run_ranryu(tmp.path(), {"record", "--spacing", dx, "--frames", "1", "--out", tmp.str("out")}),
+                        {"--spacing " + dx});
+    }
+    // Coarser than the dam break's 0.2 x 0.4 x 0.1 m column: no particle fits in its block.
+    check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.5", "--frames", "1"}),
+                    {"--spacing", "no particle"});
+}
+
+TEST_CASE("bad input: validate without a case or with an unknown one", "[cli][bad-input]") {
+    TempDir tmp;
+    check_bad_input(run_ranryu(tmp.path(), {"validate"}), {"validate", "dam-break"});
+    check_bad_input(run_ranryu(tmp.path(), {"validate", "bogus"}), {"bogus", "dam-break", "hydrostatic"});
+    check_bad_input(run_ranryu(tmp.path(), {"validate", "dam-break", "--spacing", "-1"}), {"--spacing -1"});
+}
+
 TEST_CASE("bad input: --size 0x0 and other sizes that are not WIDTHxHEIGHT in [16, 8192]", "[cli][bad-input]") {
     TempDir tmp;
     for (const std::string size : {"0x0", "64", "64x", "x48", "15x48", "64x8193", "axb", "64x48x2", "-64x48"}) {
