@@ -242,13 +242,25 @@ Scene parse(const std::string& text, const std::string& origin) {
         // 2^16 x stays well inside float's exact range for tanks of metres.
         Reader t = r.object("turbulence");
         TurbulenceSettings& u = s.turbulence;
-        u.amplitude = float(t.number("amplitude", u.amplitude, 0.0, 10.0));
+        u.amplitude = float(t.number("amplitude", u.amplitude, 0.0, 1e4));
         u.scale = float(t.number("scale", u.scale, 1e-3, 1.0 / 3.0 + 1e-7));
         const auto oct = t.int_pair("octaves", {u.lmin, u.lmax}, -4, 16);
         u.lmin = oct.first;
         u.lmax = oct.second;
         u.beta = float(t.number("beta", u.beta, 0.0, 4.0));
         u.seed = std::uint32_t(t.integer("seed", int(u.seed), 0, 2147483647));
+        u.coherence_time = float(t.number("coherence_time", u.coherence_time, 1e-3, 1e3));
+        {
+            // levels <= 3: 512 sub-particles a particle; budget >= 8, one split particle.
+            Reader sp = t.object("subparticles");
+            SubparticleSettings& q = u.subparticles;
+            q.levels = sp.integer("levels", q.levels, 0, 3);
+            q.threshold = float(sp.number("threshold", q.threshold, 1e-9, 1e6));
+            q.budget = sp.integer("budget", q.budget, 8, 1 << 28);
+            sp.finish();
+            if (q.enabled() && !u.enabled())
+                t.fail("\"turbulence.subparticles.levels\" > 0 needs \"turbulence.amplitude\" > 0 (the wavelet energy it splits by)");
+        }
         if (u.enabled() && s.model != Model::sph) t.fail("\"turbulence.amplitude\" > 0 needs \"model\": \"sph\"");
         t.finish();
     }

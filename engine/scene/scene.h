@@ -43,14 +43,28 @@ struct SphSettings {
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
 };
 
+// Sub-particles (METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches
+// `threshold` split into 8^L sub-particles, L = 1 + floor(log2(ê/threshold) / (2β)) up to `levels`.
+// levels = 0 (the default): nothing is built and no pass runs.
+struct SubparticleSettings {
+    int levels = 0;                 // L_max, the finest level (0..3); 0: no sub-particles
+    float threshold = 0.01f;        // e_th (m²/s²): the ê at which a particle splits to level 1
+    int budget = 1 << 22;           // most sub-particles a frame holds; above it the finest levels are dropped
+    bool enabled() const { return levels > 0; }
+};
+
 // The turbulence force (METHOD.md §5; engine/turbulence/force.h): off unless amplitude > 0, and
 // then only with model "sph". With amplitude 0 nothing is constructed and no pass runs.
 struct TurbulenceSettings {
-    float amplitude = 0.0f;           // A (s): the velocity kick a substep gives is A·ê·y (force.h)
+    float amplitude = 0.0f;           // A (1/m): the force per unit mass is A·ê·y (force.h)
     float scale = 1.0f / 3.0f;        // wavelet scale s in units of h (at most 1/3: s·3 <= the grid cell h)
     int lmin = 3, lmax = 5;           // noise octaves (octave i: wavelengths of about 2..4 · 2^-i m)
     float beta = 1.0f / 3.0f;         // octave falloff 2^(-β(i - lmin)); 1/3: E(k) ∝ k^(-5/3)
     std::uint32_t seed = 1;           // noise tiles' seed
+    // The noise is carried with the fluid (glsl/turbulence/carried_noise.glsl): each particle's noise
+    // coordinates are re-seeded every `coherence_time`, in two phases half a period apart.
+    float coherence_time = 0.5f;      // T (s)
+    SubparticleSettings subparticles;
     bool enabled() const { return amplitude > 0.0f; }
 };
 

@@ -59,6 +59,7 @@ NeighbourGrid::NeighbourGrid(const shader::FileSource& shaders, profile::GpuTime
       hash_(shader::Program::compute(shaders, "sim/grid/hash_particles.comp")),
       ranges_(shader::Program::compute(shaders, "sim/grid/find_cell_ranges.comp")),
       reorder_(shader::Program::compute(shaders, "sim/grid/reorder_particles.comp")),
+      reorder_carried_(shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_REORDER_NOISE_SEED 1\n")),
       sort_(shaders, timer, capacity),
       layout_(layout),
       method_(method),
@@ -79,7 +80,8 @@ void NeighbourGrid::bind_params(std::size_t count) {
 }
 
 void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
-                          gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear) {
+                          gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
+                          const gl::Buffer* carried, gl::Buffer* sorted_carried) {
     bind_params(count);
     {
         auto pass = timer_.scope(hash_pass_);
@@ -114,7 +116,13 @@ void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity
         velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
         sorted_position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_POSITION);
         sorted_velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_VELOCITY);
-        reorder_.dispatch(count);
+        if (carried && sorted_carried) {
+            carried->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_SEED);
+            sorted_carried->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_NOISE_SEED);
+            reorder_carried_.dispatch(count);
+        } else {
+            reorder_.dispatch(count);
+        }
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

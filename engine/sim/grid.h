@@ -45,9 +45,12 @@ public:
     // the empty run 0, 0; without it (the per-substep case: clearing every cell costs more than the
     // sort), other cells keep stale entries, which readers reject by checking that the sorted key
     // at an entry's start is the cell's own (glsl/sim/sph/sph_common.glsl, fluid_run). Leaves
-    // RANRYU_UBO_GRID bound to this grid.
+    // RANRYU_UBO_GRID bound to this grid. `carried`, when given, is a per-particle NoiseSeed array
+    // that the reorder gathers into `sorted_carried` with the positions (the turbulence's carried
+    // noise coordinates); without it the reorder moves positions and velocities only.
     void build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
-               gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear);
+               gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
+               const gl::Buffer* carried = nullptr, gl::Buffer* sorted_carried = nullptr);
 
     const KeySort& sort() const { return sort_; }
     void bind_params(std::size_t count);
@@ -55,7 +58,7 @@ public:
 private:
     profile::GpuTimer& timer_;
     profile::PassId hash_pass_, ranges_pass_, reorder_pass_;
-    shader::Program hash_, ranges_, reorder_;
+    shader::Program hash_, ranges_, reorder_, reorder_carried_;
     KeySort sort_;
     GridLayout layout_;
     SortMethod method_;

@@ -164,8 +164,12 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     timer_.end_frame();
     timer_.drain();
     timer_.reset_samples();
-    if (scene.turbulence.enabled())
+    if (scene.turbulence.enabled()) {
         turbulence_ = std::make_unique<turbulence::TurbulenceForce>(shaders, timer_, scene.turbulence, params_.h, count_);
+        const std::vector<gpu::NoiseSeed> unseeded(n, turbulence::unseeded_noise());
+        for (int k = 0; k < 2; ++k)
+            seed_[k] = gl::Buffer::from<gpu::NoiseSeed>(unseeded, GL_DYNAMIC_COPY, "sph.noise_seed." + std::to_string(k));
+    }
 }
 
 Sph::~Sph() = default;
@@ -246,7 +250,8 @@ void Sph::choose_time_step() {
 
 void Sph::rebuild_grid() {
     const int next = 1 - current_;
-    grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_, /*clear=*/false);
+    grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_, /*clear=*/false,
+                turbulence_ ? &seed_[current_] : nullptr, turbulence_ ? &seed_[next] : nullptr);
     current_ = next;
 }
 

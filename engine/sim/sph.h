@@ -61,6 +61,9 @@ public:
     void analyse_turbulence();   // "wavelet": after compute_density(), on the current cell order
     void apply_turbulence();     // "turbulence-force": after compute_forces(), before integrate()
     const turbulence::TurbulenceForce* turbulence() const { return turbulence_.get(); }
+    // The carried noise's seeds (gpu::NoiseSeed per particle, in the current cell order; the
+    // reorder moves them with the particles), or null when the turbulence is off.
+    gl::Buffer* noise_seeds() { return turbulence_ ? &seed_[current_] : nullptr; }
     void integrate();          // "integrate"
     int substeps_this_frame() const { return substeps_; }
 
@@ -106,6 +109,7 @@ private:
     NeighbourGrid grid_;
     std::size_t count_ = 0, boundary_count_ = 0;
     gl::Buffer position_[2], velocity_[2];
+    gl::Buffer seed_[2];   // turbulence only (noise_seeds())
     int current_ = 0;
     gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
     CellRanges ranges_, boundary_ranges_;

@@ -26,6 +26,7 @@ TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::Gpu
     p.tile_size = std::uint32_t(tiles_.n);
     noise_params_.upload_value(p);   // the sampling grid's fields are unused by the force pass
     glProgramUniform1f(program_.id(), RANRYU_LOC_TURBULENCE_AMPLITUDE, settings.amplitude);
+    glProgramUniform1f(program_.id(), RANRYU_LOC_COHERENCE_TIME, settings.coherence_time);
 }
 
 void TurbulenceForce::analyse(sim::Sph& sph) { wavelet_.analyse(sph, scale_); }
@@ -36,6 +37,7 @@ void TurbulenceForce::apply(sim::Sph& sph) {
     noise_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_NOISE);
     noise_.tiles().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_TILES);
     wavelet_.energy().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
+    sph.noise_seeds()->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_SEED);
     program_.dispatch(sph.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -3,20 +3,25 @@
 //
 //     f_i = A · (P_i / Δt) · ê_i · y(x_i)
 //
-// Reading of P_i: P_i = m_i, the particle's mass. The pass adds f_i / m_i to the acceleration, so
+// Reading of P_i: P_i = m_i·Δt, the particle's mass times the substep. The pass adds f_i / m_i to
+// the acceleration:
 //
-//     a_i += A · ê_i · y(x_i) / Δt,        i.e. the substep's velocity kick is Δv_i = A · ê_i · y(x_i).
+//     a_i += A · ê_i · y_c(x_i)        (per unit mass; the same whatever the substep or resolution)
 //
-// Why mass: f/m is then independent of the particle's mass and of the resolution's m = ρ0 dx³, and
-// the 1/Δt makes the model a velocity kick per substep (what the method's "P/Δt" reads as: a
-// momentum P delivered over one step) whose size depends on ê and y only, not on the SPH's dt.
-// Units: ê_i is m/s² (wavelet.h: (m/s)²/m from the 1/√s normalisation), y is dimensionless (the curl
-// of the noise in noise coordinates, noise.h), Δt is s: A carries seconds, Δv = A·ê·y is m/s and a is
-// m/s². Δt is the substep's dt as chosen on the GPU (StepState.dt), read by the pass.
+// Why: the force per unit mass must not depend on the particle's mass (m = ρ0 dx³ changes with the
+// resolution) nor on the SPH's dt (smaller at finer resolution). An earlier reading, P_i = m_i, made
+// the model a velocity kick A·ê·y per substep, i.e. an acceleration ∝ 1/dt: with ê ∝ 1/s on top
+// (wavelet.h), a jet stable at 5k particles went non-finite in its first frame at 943k on the H100.
+// Units: ê_i is m²/s² (wavelet.h), y_c is dimensionless (noise.h), so A is 1/m: A·ê is the
+// acceleration of an eddy of kinetic energy ê and size 1/A. As the resolution refines, the SPH resolves
+// more of the flow and the unresolved ê at s ∝ h falls, and with it the force: the model converges.
+// y_c is the noise carried with the fluid (glsl/turbulence/carried_noise.glsl), re-seeded every
+// settings.coherence_time.
 //
 // Each substep, when enabled: "wavelet" (WaveletAnalysis::analyse at s = scale·h) after the density
 // pass, on the current cell order, and "turbulence-force" after the forces pass and before integrate.
-// The force pass also folds its |a_i| into StepState.max_accel (the next substep's dt, eq. (7)).
+// The force pass also folds its |a_i| into StepState.max_accel (the next substep's dt, eq. (7)), and
+// re-seeds the carried noise (Sph::noise_seeds(), moved with the particles by the reorder).
 #include <cstddef>
 
 #include "gl/objects.h"
@@ -37,8 +42,8 @@ public:
                     float h, std::size_t capacity);
 
     void analyse(sim::Sph& sph);   // "wavelet": ê of sph's current cell order
-    // "turbulence-force": a_i += A ê_i y(x_i) / dt on sph.accelerations(); binds the SPH's fields
-    // first (the caller's bind), then the noise and wavelet buffers.
+    // "turbulence-force": a_i += A ê_i y_c,i on sph.accelerations(), re-seeding sph.noise_seeds();
+    // binds the SPH's fields first (the caller's bind), then the noise, wavelet and seed buffers.
     void apply(sim::Sph& sph);
 
     const WaveletAnalysis& wavelet() const { return wavelet_; }

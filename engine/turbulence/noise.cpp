@@ -121,6 +121,44 @@ glm::vec3 curl_noise_octaves(const NoiseTiles& tiles, glm::vec3 x, int lmin, int
     return y;
 }
 
+glm::vec3 epoch_offset(float m, int n, int lmin) {
+    // Keep in step with epoch_offset() in glsl/turbulence/carried_noise.glsl.
+    return glm::fract(m * glm::vec3(0.7548777f, 0.5698403f, 0.6180340f) + glm::vec3(0.1f, 0.3f, 0.7f)) *
+           (float(n) * std::exp2(-float(lmin)));
+}
+
+float noise_epoch(int p, float t, float period) { return std::floor(t / period + 0.5f * float(p)); }
+
+gpu::NoiseSeed reseed_noise(gpu::NoiseSeed s, glm::vec3 x, float t, float period) {
+    for (int p = 0; p < 2; ++p) {
+        const float k = noise_epoch(p, t, period);
+        if (s.phase[p].w != k) s.phase[p] = glm::vec4(x, k);
+    }
+    return s;
+}
+
+glm::vec3 carried_noise(const NoiseTiles& tiles, const gpu::NoiseSeed& s, glm::vec3 d, float t, float period, int lmin,
+                        int lmax, float beta) {
+    glm::vec3 y(0.0f);
+    float norm = 0.0f;
+    for (int p = 0; p < 2; ++p) {
+        float w = std::sin(3.14159265f * glm::fract(t / period + 0.5f * float(p)));
+        w *= w;
+        norm += w * w;
+        if (w > 0.0f) {
+            const glm::vec3 q = glm::vec3(s.phase[p]) + epoch_offset(2.0f * s.phase[p].w + float(p), tiles.n, lmin) + d;
+            y += w * curl_noise_octaves(tiles, q, lmin, lmax, beta);
+        }
+    }
+    return y / std::sqrt(norm);
+}
+
+gpu::NoiseSeed unseeded_noise() {
+    gpu::NoiseSeed s{};
+    s.phase[0] = s.phase[1] = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    return s;
+}
+
 CurlNoise::CurlNoise(const shader::FileSource& shaders, profile::GpuTimer& timer, const NoiseTiles& tiles)
     : timer_(timer),
       pass_(timer.pass("noise.sample")),

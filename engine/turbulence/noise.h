@@ -59,6 +59,17 @@ glm::vec3 octave_offset(int i);
 glm::vec3 curl_noise(const NoiseTiles& tiles, glm::vec3 q);
 glm::vec3 curl_noise_octaves(const NoiseTiles& tiles, glm::vec3 x, int lmin, int lmax, float beta);
 
+// The noise carried with the fluid (glsl/turbulence/carried_noise.glsl states the scheme), CPU
+// references (tests): the per-epoch offset o(m) (m), phase p's epoch at t, the re-seeding of the
+// phases whose epoch changed (s_p = x), and y_c at offset d (m) from the seeded positions.
+glm::vec3 epoch_offset(float m, int n, int lmin);
+float noise_epoch(int p, float t, float period);
+gpu::NoiseSeed reseed_noise(gpu::NoiseSeed s, glm::vec3 x, float t, float period);
+glm::vec3 carried_noise(const NoiseTiles& tiles, const gpu::NoiseSeed& s, glm::vec3 d, float t, float period, int lmin,
+                        int lmax, float beta);
+// Seeds that no epoch matches (w = −1): the first re-seeding sets every phase.
+gpu::NoiseSeed unseeded_noise();
+
 // A regular grid of points origin + spacing·(i, j, k), 0 ≤ i, j, k < dims, and the octave sum.
 struct FieldSpec {
     glm::uvec3 dims{64u};

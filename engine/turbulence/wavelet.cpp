@@ -31,7 +31,7 @@ void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
     if (count == 0) return;
 
     auto pass = timer_.scope(pass_);
-    const gpu::WaveletParams p{scale, float(1.0 / std::sqrt(double(scale))), kTruncation, std::uint32_t(count)};
+    const gpu::WaveletParams p{scale, kTruncation, std::uint32_t(count), 0u};
     params_.upload_value(p);
     sph_params_.upload_value(sph.params());   // 112 bytes: fluid_run() reads particle_count
     sph_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);

@@ -2,7 +2,7 @@
 // Wavelet analysis of the SPH velocity: where is the flow turbulent (METHOD.md §3). Per fluid
 // particle i and scale s, the pass "wavelet" (glsl/turbulence/analyse_velocity.comp) computes
 //
-//     û_i = 1/(√s·ψ_sum,i) · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²
+//     û_i = 1/ψ_sum,i · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²
 //
 // with the 3-D Mexican hat ψ(x) = (3 − |x|²)·e^(−|x|²/2) = −∇²e^(−|x|²/2). The choices METHOD.md §3
 // leaves open:
@@ -29,7 +29,13 @@
 //     at r = 3s is sampled by shells of particles and moves the energy by a few % (wavelet_test.cpp).
 //   - The response peaks at k s = 1.455 for R = 3 (√2 for R = ∞): wavelength λ* = 4.32 s.
 // The output: energy() holds vec4(û_i, ê_i) per particle (binding RANRYU_SSBO_WAVELET_ENERGY), in the
-// cell order of the positions analysed. The 1/√s makes ê carry units of m/s², (m/s)²/m.
+// cell order of the positions analysed.
+// Units: û is a velocity (m/s), the ψ-weighted mean of the neighbours' velocity differences, and ê a
+// kinetic energy per unit mass (m²/s²). The continuous transform's 1/√s is left out: with ψ_sum's
+// normalisation it would only give ê a factor 1/s, which grows as the resolution (s ∝ h) refines and
+// made the turbulence force of a scene blow up at a million particles that was stable at five
+// thousand. Without it, the same velocity field at the same physical scale has the same ê at every
+// resolution, and ê compares directly with ½|u|² (the sub-particles' threshold is in m²/s²).
 #include <cstddef>
 
 #include "gl/objects.h"

@@ -242,9 +242,9 @@ RANRYU_STRUCT_END(MeshVertex, 32)
 // The wavelet pass's constants (METHOD.md §3), written by WaveletAnalysis::analyse().
 RANRYU_STRUCT(WaveletParams) {
     float scale;            // s (m): ψ is evaluated at (x_i - x_j)/s
-    float inv_sqrt_scale;   // 1/√s, the transform's normalisation (1/√m)
     float truncation;       // R: neighbours with |x_i - x_j|/s < R are summed; R·s <= the grid's cell
     uint particle_count;    // particles analysed
+    uint pad0;
 }
 RANRYU_STRUCT_END(WaveletParams, 16)
 // Noise synthesis (engine/turbulence/noise.h, glsl/turbulence/curl_noise.glsl, sample_field.comp): 30, 31, UBO 5.
@@ -263,8 +263,24 @@ RANRYU_STRUCT(NoiseParams) {
 }
 RANRYU_STRUCT_END(NoiseParams, 48)
 // Turbulence force (engine/turbulence/force.h, glsl/turbulence/apply_turbulence_force.comp): reads
-// 0, 13, 16, 28, 30, UBO 3 and 5 (NoiseParams: lmin, lmax, beta, tile_size), and this uniform.
-#define RANRYU_LOC_TURBULENCE_AMPLITUDE 1   // float: A (s), the force's amplitude
+// 0, 13, 16, 28, 30, UBO 3 and 5 (NoiseParams: lmin, lmax, beta, tile_size), these uniforms, and
+// reads and re-seeds the carried noise coordinates (31).
+#define RANRYU_LOC_TURBULENCE_AMPLITUDE 1   // float: A (1/m), the force's amplitude
+#define RANRYU_LOC_COHERENCE_TIME 2         // float: T (s), the carried noise's re-seeding period
+
+// Carried noise (glsl/turbulence/carried_noise.glsl): per fluid particle, the positions at which its
+// two noise phases were last seeded. Binding 31 is the noise field's too (export-field's sampling
+// pass binds no seeds); the reorder pass gathers the seeds from 31 into SORTED_NOISE_SEED, which
+// shares 4 with the sort's alternate keys (the reorder pass binds no sort keys but its values).
+#define RANRYU_SSBO_NOISE_SEED 31          // NoiseSeed[particles], in the fluid's cell order
+#define RANRYU_SSBO_SORTED_NOISE_SEED 4    // NoiseSeed[particles]: the reorder pass's output
+RANRYU_STRUCT(NoiseSeed) {
+    vec4 phase[2];   // xyz: where the phase was seeded (m); w: the epoch it was seeded in (float, -1: never)
+}
+RANRYU_STRUCT_END(NoiseSeed, 32)
+
+// Sub-particles (engine/turbulence/subparticles.h, glsl/turbulence/subparticles/): they share the
+// marching cubes' bindings 22-27 (no pass binds both) and UBO 6; their section follows.
 // ---- end turbulence
 
 #ifdef __cplusplus

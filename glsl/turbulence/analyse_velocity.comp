@@ -2,7 +2,7 @@
 // Wavelet analysis of the velocity at every fluid particle (METHOD.md §3; engine/turbulence/wavelet.h
 // states the choices and their reasons):
 //
-//     û_i = 1/(√s·ψ_sum,i) · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²
+//     û_i = 1/ψ_sum,i · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²   (m/s, m²/s²)
 //     ψ(x) = (3 − |x|²)·e^(−|x|²/2)          (3-D Mexican hat, −∇² of e^(−|x|²/2), zero mean)
 //     ψ_sum,i = Σ_j |ψ((x_i − x_j)/s)|       (j = i included: ψ(0) = 3, so ψ_sum,i >= 3 > 0)
 //
@@ -45,6 +45,6 @@ void main() {
             }
         }
     }
-    vec3 u_hat = sum * (wavelet.inv_sqrt_scale / psi_sum);
+    vec3 u_hat = sum / psi_sum;
     energy[i] = vec4(u_hat, 0.5 * dot(u_hat, u_hat));
 }

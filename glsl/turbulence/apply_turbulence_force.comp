@@ -1,9 +1,11 @@
 #version 430
 // The turbulence force (METHOD.md §5; engine/turbulence/force.h states the choices):
-//     f_i = A (P_i/dt) ê_i y(x_i),  P_i = m_i  =>  a_i += A ê_i y(x_i) / dt
-// A (s) the amplitude, ê_i (m/s²) the wavelet energy of the current cell order (analyse_velocity.comp),
-// y(x_i) the curl-noise octave sum (curl_noise.glsl, dimensionless), dt the substep's dt (StepState,
-// chosen on the GPU this substep): the substep's velocity kick is A ê_i y(x_i) (m/s).
+//     f_i = A (P_i/dt) ê_i y_c,i,   P_i = m_i·dt   =>   a_i += A ê_i y_c,i
+// A (1/m) the amplitude, ê_i (m²/s²) the wavelet energy of the current cell order
+// (analyse_velocity.comp), y_c,i the curl-noise octave sum carried with particle i
+// (carried_noise.glsl, dimensionless). The pass first re-seeds the particle's noise phases whose
+// epoch began since the last substep (s_p = x_i at the substep's time), so the seeds follow the
+// fluid's cell order (the reorder moves them) and the sub-particles read them after the frame.
 // Runs after the forces pass, before integrate. Folds the new |a_i| into step.max_accel with one
 // atomic per workgroup (the next substep's dt, eq. (7), reads it).
 #include "../sim/sph/sph_common.glsl"
@@ -13,22 +15,28 @@ layout(std140, binding = RANRYU_UBO_NOISE) uniform NoiseBlock { NoiseParams nois
 layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
 layout(std430, binding = RANRYU_SSBO_ACCEL) buffer Accel { vec4 accel[]; };
 layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) readonly buffer Energy { vec4 energy[]; };
+layout(std430, binding = RANRYU_SSBO_NOISE_SEED) buffer Seeds { NoiseSeed seed[]; };
 layout(location = RANRYU_LOC_TURBULENCE_AMPLITUDE) uniform float amplitude;
+layout(location = RANRYU_LOC_COHERENCE_TIME) uniform float coherence_time;
 
 #include "curl_noise.glsl"
+#include "carried_noise.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
     float magnitude = 0.0;
-    float dt = step.dt;
     if (live) {
         vec3 a = accel[i].xyz;
+        float t = step.time;
+        NoiseSeed s = seed[i];
+        NoiseSeed r = reseed_noise(s, position[i].xyz, t, coherence_time);
+        if (r.phase[0] != s.phase[0] || r.phase[1] != s.phase[1]) seed[i] = r;
         float e = energy[i].w;
-        // dt = 0 (NaN maxima: no step is taken) or e = 0 (no turbulence here): no force, and no 0/0.
-        if (e > 0.0 && dt > 0.0) {
-            vec3 y = curl_noise_octaves(position[i].xyz, noise.lmin, noise.lmax, noise.beta, int(noise.tile_size));
-            a += (amplitude * e / dt) * y;
+        // dt = 0: NaN maxima, no step is taken; e = 0: no turbulence here. Either way, no force.
+        if (e > 0.0 && step.dt > 0.0) {
+            vec3 y = carried_noise(r, vec3(0.0), t, coherence_time, noise.lmin, noise.lmax, noise.beta, int(noise.tile_size));
+            a += (amplitude * e) * y;
             accel[i] = vec4(a, 0.0);
         }
         magnitude = length(a);

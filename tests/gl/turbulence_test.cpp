@@ -1,11 +1,13 @@
 // The turbulence force of METHOD.md §5 in the SPH substep (engine/turbulence/force.h,
-// glsl/turbulence/apply_turbulence_force.comp). Reading: P_i = m_i, so the pass adds
-//     a_i += A · ê_i · y(x_i) / dt        (A in s, ê in m/s², y dimensionless, dt the GPU's substep dt)
-// and the substep's velocity kick is A · ê_i · y(x_i).
+// glsl/turbulence/apply_turbulence_force.comp). Reading: P_i = m_i·dt, so the pass adds
+//     a_i += A · ê_i · y_c,i        (A in 1/m, ê in m²/s², y_c dimensionless)
+// with y_c,i the noise carried with particle i (glsl/turbulence/carried_noise.glsl), and the noise
+// seeds that carry it move with the particles through every reorder.
 #include "support/gl_fixture.h"
 #include "support/sph_rig.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -34,12 +36,15 @@ std::string block_json(const std::string& turbulence, const std::string& velocit
         "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.6, 0.3, 0.3], "velocity": )" +
            velocity + "}]}" + (turbulence.empty() ? "" : R"(, "turbulence": )" + turbulence) + "}";
 }
-std::string turbulence_json(double amplitude) {
-    char b[160];
-    std::snprintf(b, sizeof b, R"({"amplitude": %.9g, "scale": 0.3333333, "octaves": [3, 5], "beta": 0.3333333, "seed": 7})",
-                  amplitude);
+std::string turbulence_json(double amplitude, double coherence_time = 0.5) {
+    char b[200];
+    std::snprintf(b, sizeof b,
+                  R"({"amplitude": %.9g, "scale": 0.3333333, "octaves": [3, 5], "beta": 0.3333333, "seed": 7, "coherence_time": %.9g})",
+                  amplitude, coherence_time);
     return b;
 }
+
+std::vector<ranryu::gpu::NoiseSeed> read_seeds(SphRig& r) { return r.sph.noise_seeds()->read<ranryu::gpu::NoiseSeed>(r.sph.count()); }
 
 // The sheared flow u = u0 sin(2π y/λ) e_x, λ = 8 dx, on the block's lattice jittered by ±0.1 dx
 // (fixed seed, so the tolerances below hold for this state).
@@ -131,8 +136,8 @@ TEST_CASE("turbulence: a uniform flow (ê = 0) gets exactly the SPH acceleration
     ranryu::test::require_no_gl_errors();
 }
 
-TEST_CASE("turbulence: the GPU's added acceleration is A ê y(x) / dt (CPU noise, read-back ê and dt)", "[turbulence]") {
-    const double A = 2e-3;
+TEST_CASE("turbulence: the GPU's added acceleration is A ê y_c (CPU carried noise, read-back ê and seeds)", "[turbulence]") {
+    const double A = 20.0;
     SphRig r(block_json(turbulence_json(A)), "turbulence_test");
     upload_shear(r);
     r.timer.begin_frame();
@@ -143,19 +148,24 @@ TEST_CASE("turbulence: the GPU's added acceleration is A ê y(x) / dt (CPU noise
     const auto a1 = r.read(r.sph.accelerations());
     const auto x = r.read(r.sph.positions());
     const auto e = r.sph.turbulence()->wavelet().energy().read<glm::vec4>(r.sph.count());
-    const float dt = r.step().dt;
+    const auto seeds = read_seeds(r);
+    const ranryu::gpu::StepState step = r.step();
     r.sph.integrate();
     r.sph.end_frame();
     r.timer.end_frame();
     r.finish();
-    REQUIRE(dt > 0.0f);
+    REQUIRE(step.dt > 0.0f);
     const auto& t = *r.sph.turbulence();
     const auto& cfg = t.settings();
     std::size_t energetic = 0, checked = 0;
     double worst = 0.0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        const glm::dvec3 y(ranryu::turbulence::curl_noise_octaves(t.tiles(), glm::vec3(x[i]), cfg.lmin, cfg.lmax, cfg.beta));
-        const glm::dvec3 expect = A * double(e[i].w) / double(dt) * y;
+        // The first substep seeds both phases where the particle is, in the epochs of t.
+        for (int p = 0; p < 2; ++p)
+            REQUIRE(seeds[i].phase[p] == glm::vec4(glm::vec3(x[i]), ranryu::turbulence::noise_epoch(p, step.time, cfg.coherence_time)));
+        const glm::dvec3 y(ranryu::turbulence::carried_noise(t.tiles(), seeds[i], glm::vec3(0.0f), step.time, cfg.coherence_time,
+                                                             cfg.lmin, cfg.lmax, cfg.beta));
+        const glm::dvec3 expect = A * double(e[i].w) * y;
         const glm::dvec3 got = glm::dvec3(a1[i]) - glm::dvec3(a0[i]);
         energetic += e[i].w > 0.0f;
         // Relative 1e-4 of the added acceleration, plus the float rounding of a0 + added (a few ulp of
@@ -177,10 +187,10 @@ TEST_CASE("turbulence: the GPU's added acceleration is A ê y(x) / dt (CPU noise
 }
 
 TEST_CASE("turbulence: kinetic energy injected in one substep is proportional to A at small A", "[turbulence]") {
-    // ΔKE(A) − ΔKE(0) = Σ m (v + dt a_sph)·Δv_t + Σ ½ m |Δv_t|², Δv_t = A ê y: linear in A plus a
+    // ΔKE(A) − ΔKE(0) = Σ m (v + dt a_sph)·Δv_t + Σ ½ m |Δv_t|², Δv_t = dt A ê y_c: linear in A plus a
     // quadratic remainder Q. With Q/|L| = q the ratio of the 2A and A injections is 2 + 2q/(1 + q):
     // for the A below q is measured (and required) under 0.5 %, so the ratio must lie within 2 ± 0.01.
-    const double A = 1e-4;
+    const double A = 5.0;
     std::vector<double> de;
     std::vector<std::vector<glm::vec4>> v;
     for (double a : {0.0, A, 2.0 * A}) {
@@ -264,4 +274,123 @@ TEST_CASE("turbulence: the bundled turbulent-jet scene runs 30 frames without th
     CHECK(run_frames(s, 30, &vmax).empty());
     INFO("max speed " << vmax);
     CHECK(vmax < 10.0f);
+}
+
+// ---- the noise carried with the fluid (glsl/turbulence/carried_noise.glsl) ----
+
+namespace {
+
+// The block in a shear flow with particle k's id in position.w (integrate keeps w), uploaded.
+std::vector<glm::vec4> upload_tagged_shear(SphRig& r) {
+    upload_shear(r);
+    std::vector<glm::vec4> x = r.read(r.sph.positions()), v = r.read(r.sph.velocities());
+    for (std::size_t k = 0; k < x.size(); ++k) x[k].w = float(k);
+    r.sph.upload_state(x, v);
+    return x;
+}
+
+}  // namespace
+
+TEST_CASE("turbulence: each particle's noise seeds move with it through the reorders and re-seed once an epoch",
+          "[turbulence]") {
+    // T = 3 ms against substeps of about 1 ms: 12 substeps cross several epochs of both phases. After
+    // every substep, for every particle (found by its id), phase p's seed must be exactly where that
+    // particle was at the start of the substep in which epoch floor(t/T + p/2) began, and carry that
+    // epoch: the seeds followed their particles through 12 sorts, and were re-seeded exactly when due.
+    SphRig r(block_json(turbulence_json(20.0, 0.003)), "turbulence_test");
+    const std::size_t n = r.sph.count();
+    upload_tagged_shear(r);
+    const float T = r.scene.turbulence.coherence_time;
+    std::vector<std::array<glm::vec4, 2>> expect(n);   // by id: the expected seed of each phase
+    int reseeds = 0;
+    r.timer.begin_frame();
+    r.sph.begin_frame(0);
+    for (int k = 0; k < 12; ++k) {
+        r.sph.choose_time_step();
+        const float t = r.step().time;   // the time the substep advances to: what the force pass reads
+        const auto x = r.read(r.sph.positions());
+        for (const glm::vec4& p : x)
+            for (int ph = 0; ph < 2; ++ph) {
+                std::array<glm::vec4, 2>& e = expect[std::size_t(p.w)];
+                const float epoch = ranryu::turbulence::noise_epoch(ph, t, T);
+                if (e[std::size_t(ph)].w != epoch || k == 0) {
+                    reseeds += p.w == 0.0f;
+                    e[std::size_t(ph)] = glm::vec4(glm::vec3(p), epoch);
+                }
+            }
+        r.sph.rebuild_grid();
+        r.sph.compute_density();
+        r.sph.analyse_turbulence();
+        r.sph.compute_forces();
+        r.sph.apply_turbulence();
+        r.sph.integrate();
+        const auto seeds = read_seeds(r);
+        const auto after = r.read(r.sph.positions());
+        for (std::size_t i = 0; i < n; ++i)
+            for (int ph = 0; ph < 2; ++ph) {
+                const glm::vec4 want = expect[std::size_t(after[i].w)][std::size_t(ph)];
+                if (seeds[i].phase[ph] != want) {
+                    INFO("substep " << k << ", particle id " << after[i].w << ", phase " << ph);
+                    REQUIRE(seeds[i].phase[ph] == want);
+                }
+            }
+    }
+    r.sph.end_frame();
+    r.timer.end_frame();
+    r.finish();
+    INFO("time reached " << r.step().time << " s");
+    CHECK(r.step().time > 2.0f * T);   // both phases re-seeded at least once after the first
+    CHECK(reseeds >= 2 + 3);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("turbulence: the carried noise changes smoothly along a trajectory, across re-seeding", "[turbulence]") {
+    // A particle moving at 2 m/s for three periods T = 0.25 s, re-seeded as the force pass does, in
+    // steps δ = T/500. Within an epoch y_c changes through the weights only: |dw_p/dt| <= π/T, so a
+    // step changes y_c by at most about δ·(π/T)·(|y(q_0)| + |y(q_1)|)·√2 (the normaliser's derivative
+    // adds less than the weights'). The bound below allows 2x that. Re-seeding happens where the
+    // phase's weight is 0, so the steps that cross it obey the same bound: no jump. The carried noise's
+    // path length is set by T (each phase's weight rises and falls once a period), whatever the speed;
+    // the noise sampled where the particle is now, y(x(t)), travels |∇y|·|U| per second: at 2 m/s
+    // through octaves of 0.25-0.5 m waves, 5x the carried path (3x required).
+    using namespace ranryu::turbulence;
+    const NoiseTiles tiles = NoiseTiles::generate(3);
+    const int lmin = 3, lmax = 5;
+    const float beta = 1.0f / 3.0f, T = 0.25f, delta = T / 500.0f;
+    const glm::vec3 x0(0.3f, 0.2f, 0.1f), U(2.0f, 0.0f, 0.5f);
+    ranryu::gpu::NoiseSeed s = unseeded_noise();
+    glm::vec3 prev_c(0.0f), prev_e(0.0f);
+    double worst = 0.0, worst_bound = 0.0, carried_path = 0.0, eulerian_path = 0.0;
+    int crossings = 0;
+    for (int k = 0; k <= 1500; ++k) {
+        const float t = float(k) * delta;
+        const glm::vec3 x = x0 + U * t;
+        const ranryu::gpu::NoiseSeed r = reseed_noise(s, x, t, T);
+        crossings += k > 0 && (r.phase[0].w != s.phase[0].w || r.phase[1].w != s.phase[1].w);
+        s = r;
+        const glm::vec3 yc = carried_noise(tiles, s, glm::vec3(0.0f), t, T, lmin, lmax, beta);
+        const glm::vec3 ye = curl_noise_octaves(tiles, x, lmin, lmax, beta);
+        if (k > 0) {
+            double ymax = 0.0;
+            for (int p = 0; p < 2; ++p)
+                ymax += glm::length(curl_noise_octaves(
+                    tiles, glm::vec3(s.phase[p]) + epoch_offset(2.0f * s.phase[p].w + float(p), tiles.n, lmin), lmin, lmax, beta));
+            const double bound = 2.0 * double(delta) * 3.14159265 / double(T) * ymax * std::sqrt(2.0);
+            const double step = glm::length(yc - prev_c);
+            worst = std::max(worst, step / bound);
+            worst_bound = std::max(worst_bound, bound);
+            carried_path += step;
+            eulerian_path += glm::length(ye - prev_e);
+            if (step > bound) {
+                INFO("t = " << t << ": |Δy_c| = " << step << " > " << bound);
+                CHECK(step <= bound);
+            }
+        }
+        prev_c = yc;
+        prev_e = ye;
+    }
+    INFO("worst step / bound " << worst << ", path carried " << carried_path << ", Eulerian " << eulerian_path);
+    CHECK(crossings == 6);   // both phases, every T, over 3T: the scheme was exercised
+    CHECK(worst > 0.05);     // the bound is not vacuous
+    CHECK(eulerian_path > 3.0 * carried_path);
 }

@@ -132,8 +132,8 @@ double peak_q(double R) {
 //     (N − 1)u·Σ|t_j| (Higham 2002 §4.2, first order): |δS| <= Σ_j |Δu_j|(δψ_j + (N + 1)u|ψ_j|)
 //     (a vector bound by Minkowski's inequality on the components);
 //   - P = Σ|ψ_j|: δP <= Σ_j δψ_j + (N − 1)u·P;
-//   - û = S·fl(fl(1/√s)/P): the factor within δP/P + 4u, so
-//     |δû| <= (|δS| + |S|(δP/P + 4u)) / (√s·P);   |δê| <= |û||δû| + ½|δû|² + 3u·ê.
+//   - û = fl(S/P): within δP/P + u of S/P, so
+//     |δû| <= (|δS| + |S|(δP/P + u)) / P;   |δê| <= |û||δû| + ½|δû|² + 3u·ê.
 struct Bound {
     double u_hat, energy;
 };
@@ -152,8 +152,8 @@ Bound wavelet_bound(std::size_t i, const std::vector<dvec3>& x, const std::vecto
     }
     const double P = r.psi_sum[i];
     dP += (N - 1) * kU * P;
-    const double S = glm::length(r.u_hat[i]) * std::sqrt(s) * P;
-    const double du = (dS + S * (dP / P + 4.0 * kU)) / (std::sqrt(s) * P);
+    const double S = glm::length(r.u_hat[i]) * P;
+    const double du = (dS + S * (dP / P + kU)) / P;
     const double uh = glm::length(r.u_hat[i]);
     return {du, uh * du + 0.5 * du * du + 3.0 * kU * r.energy[i]};
 }
@@ -231,10 +231,10 @@ TEST_CASE("wavelet: a uniform flow and a rigid translation give zero energy", "[
 
 TEST_CASE("wavelet: a sinusoidal flow's energy peaks at the wavelet's scale and grows as A^2", "[wavelet]") {
     // u = A sin(2πx/λ) e_y. Continuum limit (Σ_j → n∫d³y, reference::wavelet_gain()): û_i =
-    // gain(ks)·u(x_i)/√s with gain(q) = (ψ̂_R(q) − ψ̂_R(0))/∫_{r<R}|ψ|, ψ̂_R the transform of the
+    // gain(ks)·u(x_i) with gain(q) = (ψ̂_R(q) − ψ̂_R(0))/∫_{r<R}|ψ|, ψ̂_R the transform of the
     // truncated hat. Untruncated, ψ̂(q) ∝ q²e^(−q²/2), largest at q = √2; truncated at R = 3 the
     // peak moves to q* = 1.455: λ* = 2πs/q* = 4.32 s. The mean of ê over interior particles is
-    // ½gain²A²·mean(sin²)/s, so its argmax over λ is λ*.
+    // ½gain²A²·mean(sin²), so its argmax over λ is λ*.
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     Rig rig;
@@ -262,7 +262,7 @@ TEST_CASE("wavelet: a sinusoidal flow's energy peaks at the wavelet's scale and 
             if (!rig.interior(out.x[i])) continue;
             cpu += r.energy[i];
             gpu += double(out.e[i].w);
-            predicted += 0.5 * gain * gain * v[i].y * v[i].y / s;   // ê_i of the continuum at x_i
+            predicted += 0.5 * gain * gain * v[i].y * v[i].y;   // ê_i of the continuum at x_i
             ++n;
         }
         REQUIRE(n == 25 * 2 * 2);
@@ -274,7 +274,7 @@ TEST_CASE("wavelet: a sinusoidal flow's energy peaks at the wavelet's scale and 
         // The reference first: the particle sums match the continuum's up to the lattice sampling of
         // the truncation and the jitter (header): within 15 % of the continuum's peak energy, the
         // energy at λ* (1-9 % measured; an error in the gain's derivation or the sums would be O(1)).
-        const double peak = 0.5 * std::pow(ref::wavelet_gain(q_star, R), 2) * double(A) * double(A) * 0.5 / s;
+        const double peak = 0.5 * std::pow(ref::wavelet_gain(q_star, R), 2) * double(A) * double(A) * 0.5;
         CHECK(std::abs(cpu - predicted) <= 0.15 * peak);
         // GPU vs CPU: a mean of positive terms, each within its float bound (first test case): 1e-4.
         CHECK(std::abs(gpu - cpu) <= 1e-4 * cpu);

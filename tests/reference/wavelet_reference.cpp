@@ -41,7 +41,7 @@ WaveletResult wavelet_analysis(const std::vector<glm::dvec3>& x, const std::vect
             psi_sum += std::abs(psi);
             ++terms;
         }
-        out.u_hat[i] = sum / (std::sqrt(scale) * psi_sum);
+        out.u_hat[i] = sum / psi_sum;
         out.energy[i] = 0.5 * glm::dot(out.u_hat[i], out.u_hat[i]);
         out.psi_sum[i] = psi_sum;
         out.terms[i] = terms;
