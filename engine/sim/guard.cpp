@@ -14,10 +14,13 @@ float from_bits(std::uint32_t b) {
 }  // namespace
 
 std::string Instability::message() const {
+    // NaN and escape have no value to compare: they name the particle only.
+    char detail[96];
+    if (limit > 0.0) std::snprintf(detail, sizeof detail, "particle %u: %.6g, limit %.6g", particle, value, limit);
+    else std::snprintf(detail, sizeof detail, "particle %u", particle);
     char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "simulation unstable at frame %llu, step %u, t = %.6f s: %s (particle %u: %.6g, limit %.6g); stopped",
-                  static_cast<unsigned long long>(frame), step, time, criterion.c_str(), particle, value, limit);
+    std::snprintf(buf, sizeof buf, "simulation unstable at frame %llu, step %u, t = %.6f s: %s (%s); stopped",
+                  static_cast<unsigned long long>(frame), step, time, criterion.c_str(), detail);
     return buf;
 }
 
