@@ -54,6 +54,13 @@ public:
             fail("\"" + name + "\" = " + fmt(x) + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
         return x;
     }
+    bool boolean(const std::string& k, bool def) {
+        used_.insert(k);
+        if (!j_.contains(k)) return def;
+        const json& v = j_.at(k);
+        if (!v.is_boolean()) fail("\"" + key(k) + "\" must be true or false, not " + v.dump());
+        return v.get<bool>();
+    }
     int integer(const std::string& k, int def, int lo, int hi) {
         const double x = number(k, def, lo, hi);
         if (x != std::floor(x)) fail("\"" + key(k) + "\" = " + fmt(x) + " must be a whole number");
@@ -232,6 +239,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.sort = p.string("sort", h.sort);
         if (h.sort != "radix" && h.sort != "bitonic") p.fail("\"sph.sort\" = \"" + h.sort + "\" is not one of \"radix\", \"bitonic\"");
         h.max_substeps = p.integer("max_substeps", h.max_substeps, 1, 10000);
+        h.neighbour_masks = p.boolean("neighbour_masks", h.neighbour_masks);
         h.density_limit = float(p.number("density_limit", h.density_limit, 1.01, 100.0));
         h.speed_limit = float(p.number("speed_limit", h.speed_limit, 0.0, 1e5));
         p.finish();

@@ -37,6 +37,16 @@ std::string neighbour_defines(const scene::Scene& s) {
     return "#define RANRYU_MERGE_ROWS 1\n";
 }
 
+// Runs a neighbour walk visits: 9 merged x-rows, or 27 cells (neighbour_defines()).
+int neighbour_runs(const scene::Scene& s) { return neighbour_defines(s).empty() ? 27 : 9; }
+
+// Density records, per run, which candidates lie inside h, for forces to read instead of testing every
+// candidate again (glsl/sim/sph/compute_density.comp, compute_forces.comp).
+std::string list_defines(const scene::Scene& s) {
+    if (!s.sph.neighbour_masks) return neighbour_defines(s);
+    return neighbour_defines(s) + "#define RANRYU_NEIGHBOUR_MASKS 1\n";
+}
+
 }  // namespace
 
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary) {
@@ -92,11 +102,12 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
       boundary_pass_(timer.pass("boundary-volume")),
       begin_(shader::Program::compute(shaders, "sim/sph/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/sph/choose_time_step.comp")),
-      density_prog_(shader::Program::compute(shaders, "sim/sph/compute_density.comp", neighbour_defines(scene))),
-      forces_(shader::Program::compute(shaders, "sim/sph/compute_forces.comp", neighbour_defines(scene))),
+      density_prog_(shader::Program::compute(shaders, "sim/sph/compute_density.comp", list_defines(scene))),
+      forces_(shader::Program::compute(shaders, "sim/sph/compute_forces.comp", list_defines(scene))),
       integrate_(shader::Program::compute(shaders, "sim/sph/integrate_particles.comp")),
       boundary_volume_(
           shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", neighbour_defines(scene))),
+      flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", neighbour_defines(scene))),
       limits_(guard_limits(scene)),
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),
@@ -124,6 +135,10 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     velocity_[0].upload(v.data(), v.size() * sizeof(glm::vec4));
     density_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "sph.density");
     accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "sph.accel");
+    pair_terms_ = gl::Buffer(n * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "sph.pair_terms");
+    if (scene.sph.neighbour_masks)   // (start, mask) per run and particle
+        neighbours_ = gl::Buffer(n * 2 * std::size_t(neighbour_runs(scene)) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
+                                 "sph.neighbour_masks");
     ranges_ = grid_.make_ranges("sph.cells");
     boundary_ranges_ = grid_.make_ranges("sph.boundary_cells");
 
@@ -160,6 +175,25 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(boundary_count_ * sizeof(glm::vec4)));
         glBindBuffer(GL_COPY_READ_BUFFER, 0);
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    }
+    {
+        // Which cells have boundary particles around them (start-up; the boundary is static).
+        const GridLayout& g = grid_.layout();
+        boundary_near_ = gl::Buffer(std::size_t(g.key_count) * sizeof(std::uint32_t), GL_STATIC_DRAW, nullptr, "sph.boundary_near");
+        const GLuint zero = 0;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_near_.id());
+        glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);   // Morton keys between cells
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        auto pass = timer_.scope(boundary_pass_);
+        params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+        grid_.bind_params(boundary_count_);
+        boundary_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY);
+        boundary_ranges_.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_CELL_START);
+        boundary_ranges_.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_CELL_END);
+        boundary_near_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_NEAR);
+        if (boundary_count_ > 0) flag_boundary_.dispatch(std::size_t(g.dims.x) * g.dims.y * g.dims.z);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     timer_.end_frame();
     timer_.drain();
@@ -218,6 +252,9 @@ void Sph::bind_fields() {
     boundary_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY);
     boundary_ranges_.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_CELL_START);
     boundary_ranges_.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_CELL_END);
+    if (neighbours_.id()) neighbours_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NEIGHBOURS);
+    boundary_near_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY_NEAR);
+    pair_terms_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_PAIR_TERMS);
 }
 
 void Sph::substep() {

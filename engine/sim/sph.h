@@ -72,6 +72,8 @@ public:
     const gl::Buffer& velocities() const { return velocity_[current_]; }
     const gl::Buffer& densities() const { return density_; }
     const gl::Buffer& accelerations() const { return accel_; }
+    // The density pass's (run start, mask) pairs, 2·runs·count() uints (sph.neighbour_masks; tests).
+    const gl::Buffer& neighbour_masks() const { return neighbours_; }
     const gl::Buffer& boundary() const { return boundary_; }
     const gl::Buffer& step_state() const { return step_; }
     const CellRanges& cell_ranges() const { return ranges_; }
@@ -101,7 +103,7 @@ private:
     profile::GpuTimer& timer_;
     profile::PassId begin_pass_, step_pass_, density_pass_, forces_pass_, integrate_pass_, diag_pass_,
         boundary_pass_;
-    shader::Program begin_, choose_, density_prog_, forces_, integrate_, boundary_volume_;
+    shader::Program begin_, choose_, density_prog_, forces_, integrate_, boundary_volume_, flag_boundary_;
     gpu::SphParams params_{};
     GuardLimits limits_;
     float frame_dt_;
@@ -112,6 +114,9 @@ private:
     gl::Buffer seed_[2];   // turbulence only (noise_seeds())
     int current_ = 0;
     gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
+    gl::Buffer neighbours_;   // sph.neighbour_masks only
+    gl::Buffer pair_terms_;      // vec2 per particle: (rho, p/rho^2) for the forces pass's gathers
+    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)
     CellRanges ranges_, boundary_ranges_;
     gl::AsyncReadback readback_;
     std::optional<gpu::StepState> last_;

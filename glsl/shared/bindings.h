@@ -47,12 +47,19 @@ using mat4 = glm::mat4;
 #define RANRYU_SSBO_SORTED_VELOCITY 11 // vec4[n]
 #define RANRYU_SSBO_DENSITY 12         // vec4[n]: x density, y pressure, z pressure / density^2
 #define RANRYU_SSBO_ACCEL 13           // vec4[n]: xyz acceleration
-#define RANRYU_SSBO_REDUCE 14          // uint[]: reductions (max speed, max acceleration, guard)
+#define RANRYU_SSBO_NEIGHBOURS 14      // uint[2·runs·n]: the density pass's neighbour masks (compute_density.comp)
 #define RANRYU_SSBO_BOUNDARY 15        // vec4[m]: boundary particles, xyz position, w volume psi
 #define RANRYU_SSBO_STEP 16            // StepState: the adaptive time step, on the GPU
 #define RANRYU_SSBO_SCRATCH 17         // uint[]: pass-local scratch
 #define RANRYU_SSBO_BOUNDARY_CELL_START 18  // uint[cells]: boundary particles' cell ranges
 #define RANRYU_SSBO_BOUNDARY_CELL_END 19
+// uint[keys]: 1 where the 27 cells around the cell hold a boundary particle (flag_boundary_cells.comp,
+// once at start); the density pass walks the boundary runs only there. Shares 20 with the surface's
+// SurfaceGrid: no SPH pass binds a surface buffer.
+#define RANRYU_SSBO_BOUNDARY_NEAR 20
+// vec2[n]: (rho_i, p_i / rho_i^2), the two density terms the forces pass gathers per pair, half the
+// bytes of the density array. Shares 11 with the reorder's sorted velocities: no other pass binds it.
+#define RANRYU_SSBO_PAIR_TERMS 11
 
 // ---- explicit uniform locations (small per-dispatch values; never looked up by name) ----
 #define RANRYU_LOC_COUNT 0     // uint: number of items this dispatch covers
@@ -198,7 +205,7 @@ RANRYU_STRUCT(SurfaceParams) {
     float iso;             // the level: φ = 0 where V·ΣW = iso
     uint particle_count;
     float search_margin;   // (m): the gather also searches cells this much beyond R (particles moved since the sort)
-    uint pad0;
+    float bounds_margin;   // (m): the grid reaches this much beyond R around the particles (sub-particles' reach; else 0)
     uint pad1;
 }
 RANRYU_STRUCT_END(SurfaceParams, 48)
@@ -281,6 +288,60 @@ RANRYU_STRUCT_END(NoiseSeed, 32)
 
 // Sub-particles (engine/turbulence/subparticles.h, glsl/turbulence/subparticles/): they share the
 // marching cubes' bindings 22-27 (no pass binds both) and UBO 6; their section follows.
+// The sub-particle passes run after the SPH substeps and before the level set; marching cubes runs
+// after the level set and binds 22-27 afresh, so the aliasing is safe as long as no one program
+// declares both sets (none does: the level set's splat and gather bind 22, 23, 24, 26 of this set,
+// and no marching-cubes buffer). Binding 24 is the classify passes' block counts and, in the level
+// set's passes, which bind no blocks, the fixed-point splat grid.
+#define RANRYU_UBO_SUBPARTICLES 6                 // SubparticleParams
+#define RANRYU_SSBO_SUBPARTICLE_STATE 22          // SubparticleState: counts, cap, indirect arguments (std430)
+#define RANRYU_SSBO_SUBPARTICLE_LEVELS 23         // uint[particles]: L_i | E_i << RANRYU_SUBPARTICLE_SPLIT_SHIFT, in the fluid's cell order
+#define RANRYU_SSBO_SUBPARTICLE_BLOCKS 24         // uvec4[classify workgroups]: xyz per-level counts, then their exclusive prefix sums
+#define RANRYU_SSBO_SUBPARTICLE_SPLAT 24          // uint[φ nodes]: the sub-particles' V·ΣW in fixed point (level set only)
+#define RANRYU_SSBO_SUBPARTICLE_LISTS 25          // uint[levels · particles]: level L's split parents at (L-1)·particles, in cell order
+#define RANRYU_SSBO_SUBPARTICLE_POSITION 26       // vec4[capacity]: xyz (m); w: effective level E (1..3), as a float
+#define RANRYU_SSBO_SUBPARTICLE_VELOCITY 27       // vec4[capacity]: xyz (m/s); w: e_E (m²/s²), the energy of level E
+#define RANRYU_LOC_SUBPARTICLE_GROUP 6            // uvec4 uniform: x classify's local size, y spawn's local size
+#define RANRYU_SUBPARTICLE_MAX_LEVEL 3            // L_max <= 3: 512 sub-particles a particle (scene.cpp checks)
+#define RANRYU_SUBPARTICLE_SPLIT_SHIFT 8          // levels[i] >> this is E_i: 0 unless the spawn pass split particle i
+// The splat grid's fixed point: one unit is 2^-24 of V·ΣW (≈ 1 inside liquid at rest), so a uint
+// holds sums up to 256 and a sub-particle's term is rounded by at most 2^-25 (engine/surface/level_set.h).
+#define RANRYU_SUBPARTICLE_SPLAT_SCALE 16777216.0
+// The level set's kernel radius of a level-E sub-particle, R_E = max(R·2^-E, this · node spacing):
+// a narrower kernel is sampled by too few nodes to keep its volume (engine/surface/level_set.h).
+#define RANRYU_SUBPARTICLE_KERNEL_FLOOR 2.0
+
+// The sub-particle passes' constants (std140), written once by Subparticles (and when the particle
+// count changes). Level L_i = the number of k in [0, levels) with ê_i >= level_energy[k].
+RANRYU_STRUCT(SubparticleParams) {
+    vec4 level_energy;      // xyz: ê (m²/s²) at which L reaches 1, 2, 3: e_th·2^(2βk); +inf past `levels`
+    vec4 energy_scale;      // xyz: e_E / ê at E = 1, 2, 3: 2^(-2βE)
+    float spacing;          // dx (m): the parents' spacing
+    float beta;             // the noise's octave falloff β
+    float coherence_time;   // T (s) of the carried noise
+    float inv_sigma;        // 1/σ, σ the rms of |w| over one octave of the curl noise
+    int noise_lmax;         // the force's finest octave; level E samples octave noise_lmax + E
+    uint tile_size;         // n: noise tiles of n³
+    uint levels;            // L_max (1..3)
+    uint budget;            // most sub-particles (<= the buffers' capacity)
+    uint particle_count;    // parents
+    uint pad0;
+    uint pad1;
+    uint pad2;
+}
+RANRYU_STRUCT_END(SubparticleParams, 80)
+
+// The sub-particles' GPU-side state (std430 SSBO); also the indirect argument buffer: dispatch at
+// byte 0 (glDispatchComputeIndirect of the spawn and splat passes), draw at 16 (glDrawArraysIndirect).
+RANRYU_STRUCT(SubparticleState) {
+    uvec4 dispatch;   // xyz: workgroups of the spawn and splat passes (rows, surface/dispatch_2d.glsl); w: sub-particles
+    uvec4 draw;       // glDrawArraysIndirect: 4 vertices (an impostor quad), instances = sub-particles, 0, 0
+    uvec4 counts;     // xyz: n_1, n_2, n_3, the particles whose raw level L_i is 1, 2, 3; w: their sum
+    uvec4 offsets;    // xyz: first sub-particle of level list 1, 2, 3; w: particles split (0 when C = 0)
+    uvec4 limits;     // x: the cap C; y: the raw finest level max L_i; z: sub-particles the raw levels
+                      // would need (saturates at 2^32 - 1); w: the budget
+}
+RANRYU_STRUCT_END(SubparticleState, 80)
 // ---- end turbulence
 
 #ifdef __cplusplus

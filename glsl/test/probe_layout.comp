@@ -14,7 +14,9 @@
 //   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
 //   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
 //   StepState:    its 20 scalars in order                                            20 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               34 words
+//   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
+//   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               46 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -25,23 +27,30 @@ layout(std140, binding = RANRYU_UBO_FRAME) uniform FrameBlock { FrameParams fram
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
 layout(std430, binding = RANRYU_SSBO_STEP) readonly buffer Step { StepState step; };
+layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams subp; };
+layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) readonly buffer SubparticleStateBlock { SubparticleState subs; };
 layout(std430, binding = RANRYU_SSBO_PROBE_OUT) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[34] = uint[34](
+const uint kMacros[46] = uint[46](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
     RANRYU_SSBO_POSITION, RANRYU_SSBO_VELOCITY,
     RANRYU_SSBO_SORT_KEYS, RANRYU_SSBO_SORT_VALUES, RANRYU_SSBO_SORT_KEYS_ALT, RANRYU_SSBO_SORT_VALUES_ALT,
     RANRYU_SSBO_SORT_HISTOGRAM, RANRYU_SSBO_PROBE_OUT,
     RANRYU_SSBO_CELL_START, RANRYU_SSBO_CELL_END, RANRYU_SSBO_SORTED_POSITION, RANRYU_SSBO_SORTED_VELOCITY,
-    RANRYU_SSBO_DENSITY, RANRYU_SSBO_ACCEL, RANRYU_SSBO_REDUCE, RANRYU_SSBO_BOUNDARY, RANRYU_SSBO_STEP,
+    RANRYU_SSBO_DENSITY, RANRYU_SSBO_ACCEL, RANRYU_SSBO_NEIGHBOURS, RANRYU_SSBO_BOUNDARY, RANRYU_SSBO_STEP,
     RANRYU_SSBO_SCRATCH, RANRYU_SSBO_BOUNDARY_CELL_START, RANRYU_SSBO_BOUNDARY_CELL_END,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
     RANRYU_ATTR_POSITION, RANRYU_ATTR_VELOCITY,
-    RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD);
+    RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
+    RANRYU_UBO_SUBPARTICLES, RANRYU_SSBO_SUBPARTICLE_STATE, RANRYU_SSBO_SUBPARTICLE_LEVELS,
+    RANRYU_SSBO_SUBPARTICLE_BLOCKS, RANRYU_SSBO_SUBPARTICLE_SPLAT, RANRYU_SSBO_SUBPARTICLE_LISTS,
+    RANRYU_SSBO_SUBPARTICLE_POSITION, RANRYU_SSBO_SUBPARTICLE_VELOCITY, RANRYU_LOC_SUBPARTICLE_GROUP,
+    RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE));
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }
 void put(uint x) { words[k++] = x; }
+void put(int x) { words[k++] = uint(x); }
 void put(vec4 x) { for (int i = 0; i < 4; ++i) put(x[i]); }
 void put(uvec4 x) { for (int i = 0; i < 4; ++i) put(x[i]); }
 void put(mat4 x) { for (int c = 0; c < 4; ++c) put(x[c]); }
@@ -69,6 +78,12 @@ void main() {
     put(step.frame_substeps); put(step.nan_count); put(step.nan_index); put(step.escaped_count);
     put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
     put(step.frame); put(step.steps); put(step.pad0);
+
+    put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);
+    put(subp.inv_sigma); put(subp.noise_lmax); put(subp.tile_size); put(subp.levels); put(subp.budget);
+    put(subp.particle_count); put(subp.pad0); put(subp.pad1); put(subp.pad2);
+
+    put(subs.dispatch); put(subs.draw); put(subs.counts); put(subs.offsets); put(subs.limits);
 
     for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
 }

@@ -1,9 +1,9 @@
 // glsl/shared/bindings.h is compiled by C++ and by GLSL. These cases hold the two readings equal:
 // (a) every member the driver reports in the blocks (std140 uniform blocks; StepState a std430
-//     storage block, as the SPH passes declare it) sits at the C++ offsetof and has the C++ type,
-//     and each block is sizeof bytes;
+//     storage block, as the SPH passes declare it, and SubparticleState likewise) sits at the C++
+//     offsetof and has the C++ type, and each block is sizeof bytes;
 // (b) random values written through the C++ structs come back bit for bit through the shader;
-// (c) the shared macros (binding points, locations, sort constants) agree in both languages.
+// (c) the shared macros (binding points, locations, sort and sub-particle constants) agree in both languages.
 // The probe shader is glsl/test/probe_layout.comp; its header comment gives the output order.
 #include "support/gl_fixture.h"
 
@@ -115,6 +115,27 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.frame", {offsetof(gpu::StepState, frame), GL_UNSIGNED_INT}},
         {"step.steps", {offsetof(gpu::StepState, steps), GL_UNSIGNED_INT}},
         {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+
+        {"subp.level_energy", {offsetof(gpu::SubparticleParams, level_energy), GL_FLOAT_VEC4}},
+        {"subp.energy_scale", {offsetof(gpu::SubparticleParams, energy_scale), GL_FLOAT_VEC4}},
+        {"subp.spacing", {offsetof(gpu::SubparticleParams, spacing), GL_FLOAT}},
+        {"subp.beta", {offsetof(gpu::SubparticleParams, beta), GL_FLOAT}},
+        {"subp.coherence_time", {offsetof(gpu::SubparticleParams, coherence_time), GL_FLOAT}},
+        {"subp.inv_sigma", {offsetof(gpu::SubparticleParams, inv_sigma), GL_FLOAT}},
+        {"subp.noise_lmax", {offsetof(gpu::SubparticleParams, noise_lmax), GL_INT}},
+        {"subp.tile_size", {offsetof(gpu::SubparticleParams, tile_size), GL_UNSIGNED_INT}},
+        {"subp.levels", {offsetof(gpu::SubparticleParams, levels), GL_UNSIGNED_INT}},
+        {"subp.budget", {offsetof(gpu::SubparticleParams, budget), GL_UNSIGNED_INT}},
+        {"subp.particle_count", {offsetof(gpu::SubparticleParams, particle_count), GL_UNSIGNED_INT}},
+        {"subp.pad0", {offsetof(gpu::SubparticleParams, pad0), GL_UNSIGNED_INT}},
+        {"subp.pad1", {offsetof(gpu::SubparticleParams, pad1), GL_UNSIGNED_INT}},
+        {"subp.pad2", {offsetof(gpu::SubparticleParams, pad2), GL_UNSIGNED_INT}},
+
+        {"subs.dispatch", {offsetof(gpu::SubparticleState, dispatch), GL_UNSIGNED_INT_VEC4}},
+        {"subs.draw", {offsetof(gpu::SubparticleState, draw), GL_UNSIGNED_INT_VEC4}},
+        {"subs.counts", {offsetof(gpu::SubparticleState, counts), GL_UNSIGNED_INT_VEC4}},
+        {"subs.offsets", {offsetof(gpu::SubparticleState, offsets), GL_UNSIGNED_INT_VEC4}},
+        {"subs.limits", {offsetof(gpu::SubparticleState, limits), GL_UNSIGNED_INT_VEC4}},
     };
     return table;
 }
@@ -137,6 +158,9 @@ const Block kBlocks[] = {
     {"GridBlock", "grid.", sizeof(gpu::GridParams), RANRYU_UBO_GRID, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"SphBlock", "sph.", sizeof(gpu::SphParams), RANRYU_UBO_SPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"Step", "step.", sizeof(gpu::StepState), RANRYU_SSBO_STEP, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"SubparticleBlock", "subp.", sizeof(gpu::SubparticleParams), RANRYU_UBO_SUBPARTICLES, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"SubparticleStateBlock", "subs.", sizeof(gpu::SubparticleState), RANRYU_SSBO_SUBPARTICLE_STATE, GL_SHADER_STORAGE_BLOCK,
+     GL_BUFFER_VARIABLE},
 };
 
 // The binding macros in the order of kMacros in probe_layout.comp.
@@ -160,7 +184,7 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SSBO_SORTED_VELOCITY", RANRYU_SSBO_SORTED_VELOCITY},
     {"RANRYU_SSBO_DENSITY", RANRYU_SSBO_DENSITY},
     {"RANRYU_SSBO_ACCEL", RANRYU_SSBO_ACCEL},
-    {"RANRYU_SSBO_REDUCE", RANRYU_SSBO_REDUCE},
+    {"RANRYU_SSBO_NEIGHBOURS", RANRYU_SSBO_NEIGHBOURS},
     {"RANRYU_SSBO_BOUNDARY", RANRYU_SSBO_BOUNDARY},
     {"RANRYU_SSBO_STEP", RANRYU_SSBO_STEP},
     {"RANRYU_SSBO_SCRATCH", RANRYU_SSBO_SCRATCH},
@@ -175,6 +199,18 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SORT_RADIX_BITS", RANRYU_SORT_RADIX_BITS},
     {"RANRYU_SORT_RADIX_ITEMS_PER_THREAD", RANRYU_SORT_RADIX_ITEMS_PER_THREAD},
     {"RANRYU_SORT_BITONIC_ITEMS_PER_THREAD", RANRYU_SORT_BITONIC_ITEMS_PER_THREAD},
+    {"RANRYU_UBO_SUBPARTICLES", RANRYU_UBO_SUBPARTICLES},
+    {"RANRYU_SSBO_SUBPARTICLE_STATE", RANRYU_SSBO_SUBPARTICLE_STATE},
+    {"RANRYU_SSBO_SUBPARTICLE_LEVELS", RANRYU_SSBO_SUBPARTICLE_LEVELS},
+    {"RANRYU_SSBO_SUBPARTICLE_BLOCKS", RANRYU_SSBO_SUBPARTICLE_BLOCKS},
+    {"RANRYU_SSBO_SUBPARTICLE_SPLAT", RANRYU_SSBO_SUBPARTICLE_SPLAT},
+    {"RANRYU_SSBO_SUBPARTICLE_LISTS", RANRYU_SSBO_SUBPARTICLE_LISTS},
+    {"RANRYU_SSBO_SUBPARTICLE_POSITION", RANRYU_SSBO_SUBPARTICLE_POSITION},
+    {"RANRYU_SSBO_SUBPARTICLE_VELOCITY", RANRYU_SSBO_SUBPARTICLE_VELOCITY},
+    {"RANRYU_LOC_SUBPARTICLE_GROUP", RANRYU_LOC_SUBPARTICLE_GROUP},
+    {"RANRYU_SUBPARTICLE_MAX_LEVEL", RANRYU_SUBPARTICLE_MAX_LEVEL},
+    {"RANRYU_SUBPARTICLE_SPLIT_SHIFT", RANRYU_SUBPARTICLE_SPLIT_SHIFT},
+    {"RANRYU_SUBPARTICLE_SPLAT_SCALE", std::uint32_t(RANRYU_SUBPARTICLE_SPLAT_SCALE)},
 };
 
 const Program& probe() {
@@ -218,6 +254,7 @@ struct Words {
     std::vector<std::uint32_t> w;
     void put(float x) { w.push_back(bits(x)); }
     void put(std::uint32_t x) { w.push_back(x); }
+    void put(std::int32_t x) { w.push_back(std::uint32_t(x)); }
     void put(const glm::vec4& x) { for (int i = 0; i < 4; ++i) put(x[i]); }
     void put(const glm::uvec4& x) { for (int i = 0; i < 4; ++i) put(x[i]); }
     void put(const glm::mat4& x) { for (int c = 0; c < 4; ++c) put(x[c]); }
@@ -348,6 +385,16 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
                              &st.speed_index, &st.density_index, &st.front, &st.frame, &st.steps, &st.pad0})
         *u = d.u();
 
+    gpu::SubparticleParams pp{};
+    pp.level_energy = d.v4();
+    pp.energy_scale = d.v4();
+    for (float* f : {&pp.spacing, &pp.beta, &pp.coherence_time, &pp.inv_sigma}) *f = d.f();
+    pp.noise_lmax = std::int32_t(d.u());
+    for (std::uint32_t* u : {&pp.tile_size, &pp.levels, &pp.budget, &pp.particle_count, &pp.pad0, &pp.pad1, &pp.pad2}) *u = d.u();
+
+    gpu::SubparticleState ps{};
+    for (glm::uvec4* u : {&ps.dispatch, &ps.draw, &ps.counts, &ps.offsets, &ps.limits}) *u = d.u4();
+
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
     expect.put(lp.u0); expect.put(lp.u1);
@@ -374,6 +421,13 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
     expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.pad0);
     const std::size_t step_end = expect.w.size();
+    expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);
+    expect.put(pp.coherence_time); expect.put(pp.inv_sigma); expect.put(pp.noise_lmax); expect.put(pp.tile_size);
+    expect.put(pp.levels); expect.put(pp.budget); expect.put(pp.particle_count); expect.put(pp.pad0); expect.put(pp.pad1);
+    expect.put(pp.pad2);
+    const std::size_t subp_end = expect.w.size();
+    expect.put(ps.dispatch); expect.put(ps.draw); expect.put(ps.counts); expect.put(ps.offsets); expect.put(ps.limits);
+    const std::size_t subs_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.
     REQUIRE(probe_end == 28);
@@ -382,6 +436,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     REQUIRE(grid_end - frame_end == sizeof(gpu::GridParams) / 4);
     REQUIRE(sph_end - grid_end == sizeof(gpu::SphParams) / 4);
     REQUIRE(step_end - sph_end == sizeof(gpu::StepState) / 4);
+    REQUIRE(subp_end - step_end == sizeof(gpu::SubparticleParams) / 4);
+    REQUIRE(subs_end - subp_end == sizeof(gpu::SubparticleState) / 4);
 
     // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
     // keep it, so the shader wrote exactly expect.w.size() words.
@@ -395,6 +451,10 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     Buffer ubo_grid(sizeof gp, GL_DYNAMIC_DRAW, &gp, "probe.GridParams");
     Buffer ubo_sph(sizeof hp, GL_DYNAMIC_DRAW, &hp, "probe.SphParams");
     Buffer ssbo_step(sizeof st, GL_DYNAMIC_DRAW, &st, "probe.StepState");
+    Buffer ubo_subp(sizeof pp, GL_DYNAMIC_DRAW, &pp, "probe.SubparticleParams");
+    Buffer ssbo_subs(sizeof ps, GL_DYNAMIC_DRAW, &ps, "probe.SubparticleState");
+    ubo_subp.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
+    ssbo_subs.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_STATE);
     ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
     ubo_sim.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SIM);
     ubo_frame.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
@@ -414,7 +474,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         if (i < grid_end) return "GridParams word " + std::to_string(i - frame_end);
         if (i < sph_end) return "SphParams word " + std::to_string(i - grid_end);
         if (i < step_end) return "StepState word " + std::to_string(i - sph_end);
-        if (i < expect.w.size()) return kMacros[i - step_end].first;
+        if (i < subp_end) return "SubparticleParams word " + std::to_string(i - step_end);
+        if (i < subs_end) return "SubparticleState word " + std::to_string(i - subp_end);
+        if (i < expect.w.size()) return kMacros[i - subs_end].first;
         return "past the end, word " + std::to_string(i);
     };
     for (std::size_t i = 0; i < total; ++i) {
