@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -189,6 +190,7 @@ int profile_cmd(const Options& o) {
     for (int f = 0; f < o.warmup; ++f) one_frame();
     pipeline.drain();
     pipeline.timer().reset_samples();
+    if (turbulence::Subparticles* sub = pipeline.subparticles()) sub->count_from(pipeline.frames());
     for (int f = 0; f < frames; ++f) one_frame();
     pipeline.drain();
     pipeline.poll();
@@ -205,8 +207,37 @@ int profile_cmd(const Options& o) {
         extra["surface"] = {{"triangles", m.draw.x / 3}, {"active_cells", m.totals.x}, {"cells", m.cell_dispatch.w},
                             {"cut_to_capacity", m.totals.z != 0}};
     }
+    std::string csv = profile::to_csv(report);
+    if (const turbulence::Subparticles* sub = pipeline.subparticles()) {
+        // The budget's stats came back with the frames (drained above): whether levels were dropped.
+        const turbulence::SubparticleStats& st = sub->stats();
+        const std::string note = turbulence::budget_note(st);
+        const gpu::SubparticleState last = st.last.value_or(gpu::SubparticleState{});
+        std::printf("sub-particles (last frame): %u from %u split of %u particles (levels 1-3: %u, %u, %u), cap %u\n",
+                    last.dispatch.w, last.offsets.w, unsigned(pipeline.particle_count()), last.counts.x, last.counts.y,
+                    last.counts.z, last.limits.x);
+        if (!note.empty()) std::printf("%s\n", note.c_str());
+        extra["subparticles"] = {{"budget", st.budget},
+                                 {"levels", sub->levels_max()},
+                                 {"frames", st.frames},
+                                 {"frames_levels_dropped", st.dropped_frames},
+                                 {"lowest_cap", st.dropped_frames ? st.lowest_cap : sub->levels_max()},
+                                 {"most", st.most},
+                                 {"last", {{"subparticles", last.dispatch.w}, {"split", last.offsets.w},
+                                           {"counts", {last.counts.x, last.counts.y, last.counts.z}},
+                                           {"cap", last.limits.x}, {"finest", last.limits.y}, {"wanted", last.limits.z}}},
+                                 {"note", note}};
+        // CSV: one more column with the note, the same on every row as the run's other facts.
+        std::string with_note;
+        std::size_t row = 0;
+        for (std::size_t begin = 0, end; begin < csv.size(); begin = end + 1, ++row) {
+            end = std::min(csv.find('\n', begin), csv.size());
+            with_note += csv.substr(begin, end - begin) + ',' + (row == 0 ? std::string("note") : "\"" + note + "\"") + '\n';
+        }
+        csv = with_note;
+    }
     if (!o.json.empty()) profile::write_text_file(o.json, extra.dump(2) + "\n", "--json " + o.json);
-    if (!o.csv.empty()) profile::write_text_file(o.csv, profile::to_csv(report), "--csv " + o.csv);
+    if (!o.csv.empty()) profile::write_text_file(o.csv, csv, "--csv " + o.csv);
     return 0;
 }
 

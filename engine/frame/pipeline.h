@@ -2,11 +2,14 @@
 // One frame of ranryu as a list of GPU passes. The callers (app/commands) read as:
 //
 //     pipeline.begin_frame();
-//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: see sim/sph.h, then, when
-//                                 // the shading draws a surface, "surface.bounds", "level-set" and
-//                                 // "mc.classify", "mc.compact", "mc.emit" (surface/level_set.h,
-//                                 // surface/marching_cubes.h) mesh the liquid after the last substep
-//     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" or "draw-surface"
+//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: see sim/sph.h, then, with
+//                                 // sub-particles (turbulence/subparticles.h) "subparticles.classify",
+//                                 // "subparticles.budget", "subparticles.spawn"; then, when the
+//                                 // shading draws a surface, "surface.bounds", ("subparticles.splat"),
+//                                 // "level-set" and "mc.classify", "mc.compact", "mc.emit"
+//                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
+//     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
+//                                 // sub-particles, coloured by level) or "draw-surface"
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //
@@ -26,6 +29,7 @@
 #include "sim/sph.h"
 #include "surface/level_set.h"
 #include "surface/marching_cubes.h"
+#include "turbulence/subparticles.h"
 
 namespace ranryu::frame {
 
@@ -43,7 +47,7 @@ public:
     void draw();
     void end_frame();
 
-    // Collects the guard's records that have arrived. Returns the last frame known to be sound
+    // Collects the guard's records (and the sub-particles' stats) that have arrived. Returns the last frame known to be sound
     // (every frame for the ballistic model, which has no guard), or nothing yet.
     std::optional<std::uint64_t> poll();
     const std::optional<sim::Instability>& instability() const;
@@ -64,6 +68,10 @@ public:
     // The surface's mesh (null when the shading draws particles): vertices() and state() as
     // MarchingCubes documents them, written by this frame's simulate().
     const surface::MarchingCubes* mesh() const { return mc_.get(); }
+    // The sub-particles (null unless scene.turbulence.subparticles.enabled(): then nothing of them
+    // is built and no pass of theirs runs), written by this frame's simulate().
+    turbulence::Subparticles* subparticles() { return sub_.get(); }
+    const turbulence::Subparticles* subparticles() const { return sub_.get(); }
     // Simulated time: the GPU's clock as last read back for SPH (frames late), else frames x frame_dt.
     double simulated_time() const;
     std::uint64_t frames() const { return frames_; }
@@ -73,6 +81,7 @@ private:
     profile::GpuTimer timer_;
     std::unique_ptr<sim::Particles> ballistic_;
     std::unique_ptr<sim::Sph> sph_;
+    std::unique_ptr<turbulence::Subparticles> sub_;
     std::unique_ptr<surface::LevelSet> level_set_;
     std::unique_ptr<surface::MarchingCubes> mc_;
     render::Renderer renderer_;

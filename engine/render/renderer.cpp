@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/error.h"
 #include "render/shading.h"
 #include "scene/scene.h"
 
@@ -62,7 +63,7 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
     return p;
 }
 
-Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading)
+Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles)
     : timer_(timer),
       shading_(shading),
       clear_pass_(timer.pass("clear")),
@@ -85,6 +86,22 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
     glVertexBindingDivisor(1, 1);
     glBindVertexArray(0);
     gl::label(GL_VERTEX_ARRAY, particle_vao_.id(), "particles.vao");
+    if (subparticles) {
+        impostor_levels_ = shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag",
+                                                     "#define RANRYU_BY_LEVEL 1\n");
+        // The parents: position, velocity and their levels word (uint), one each per instance.
+        glBindVertexArray(parent_vao_.id());
+        for (GLuint a : {GLuint(RANRYU_ATTR_POSITION), GLuint(RANRYU_ATTR_VELOCITY), GLuint(RANRYU_ATTR_LEVEL)}) {
+            glEnableVertexAttribArray(a);
+            glVertexAttribBinding(a, a);
+            glVertexBindingDivisor(a, 1);
+        }
+        glVertexAttribFormat(RANRYU_ATTR_POSITION, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexAttribFormat(RANRYU_ATTR_VELOCITY, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexAttribIFormat(RANRYU_ATTR_LEVEL, 1, GL_UNSIGNED_INT, 0);
+        glBindVertexArray(0);
+        gl::label(GL_VERTEX_ARRAY, parent_vao_.id(), "particles.parents.vao");
+    }
 
     if (needs_surface(shading_)) {
         surface_pass_ = timer.pass("draw-surface");
@@ -113,7 +130,7 @@ void Renderer::set_frame(const gpu::FrameParams& p) {
 }
 
 void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-                    std::size_t count, const SurfaceMesh* surface) {
+                    std::size_t count, const SurfaceMesh* surface, const SubparticleDraw* sub) {
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
     glViewport(0, 0, target.width(), target.height());
     frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
@@ -144,6 +161,25 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         glBindVertexBuffer(0, surface->vertices.id(), 0, sizeof(gpu::MeshVertex));
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, surface->indirect.id());
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(surface->draw_offset));
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    } else if (sub) {
+        if (!impostor_levels_.id()) throw Error("Renderer::draw: sub-particles given to a renderer built without them");
+        auto pass = timer_.scope(particles_pass_);
+        impostor_levels_.use();
+        // The parents not split (the vertex shader drops the others), then the sub-particles, whose
+        // count only the GPU knows. The level attribute is disabled there; the shader ignores it.
+        glProgramUniform1ui(impostor_levels_.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 0u);
+        glBindVertexArray(parent_vao_.id());
+        glBindVertexBuffer(RANRYU_ATTR_POSITION, positions.id(), 0, sizeof(glm::vec4));
+        glBindVertexBuffer(RANRYU_ATTR_VELOCITY, velocities.id(), 0, sizeof(glm::vec4));
+        glBindVertexBuffer(RANRYU_ATTR_LEVEL, sub->parent_levels.id(), 0, sizeof(std::uint32_t));
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
+        glProgramUniform1ui(impostor_levels_.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 1u);
+        glBindVertexArray(particle_vao_.id());
+        glBindVertexBuffer(0, sub->positions.id(), 0, sizeof(glm::vec4));
+        glBindVertexBuffer(1, sub->velocities.id(), 0, sizeof(glm::vec4));
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, sub->indirect.id());
+        glDrawArraysIndirect(GL_TRIANGLE_STRIP, reinterpret_cast<const void*>(sub->draw_offset));
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     } else {
         auto pass = timer_.scope(particles_pass_);

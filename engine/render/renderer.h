@@ -34,6 +34,17 @@ struct SurfaceMesh {
     std::size_t draw_offset;
 };
 
+// Sub-particles to draw with the particles (turbulence/subparticles.h): the parents' levels words
+// (uint per parent, same order as the parents' positions), the sub-particles' positions (w = level)
+// and velocities, and the buffer holding their glDrawArraysIndirect arguments at byte draw_offset.
+struct SubparticleDraw {
+    const gl::Buffer& parent_levels;
+    const gl::Buffer& positions;
+    const gl::Buffer& velocities;
+    const gl::Buffer& indirect;
+    std::size_t draw_offset;
+};
+
 struct Camera {
     glm::vec3 eye{2.0f, 1.5f, 2.5f};
     glm::vec3 target{0.5f, 0.3f, 0.3f};
@@ -47,8 +58,10 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
 class Renderer {
 public:
     // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
-    // its pass "draw-surface") when it is not particles.
-    Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles);
+    // its pass "draw-surface") when it is not particles. `subparticles`: also the impostor variant that
+    // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL).
+    Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
+             bool subparticles = false);
 
     void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO
     const gpu::FrameParams& frame() const { return frame_; }
@@ -59,15 +72,18 @@ public:
     // Passes "clear", "draw-floor", "draw-tank", then "draw-particles" into `target` (`count`
     // particles whose positions and velocities are vec4 arrays) or, when the shading is not
     // particles and `surface` is given, "draw-surface": glDrawArraysIndirect of the mesh, no readback.
+    // With `sub` (particles shading, built with subparticles), "draw-particles" draws the parents
+    // that were not split and then the sub-particles (glDrawArraysIndirect), coloured by level and of
+    // radius r/2^level.
     void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-              std::size_t count, const SurfaceMesh* surface = nullptr);
+              std::size_t count, const SurfaceMesh* surface = nullptr, const SubparticleDraw* sub = nullptr);
 
 private:
     profile::GpuTimer& timer_;
     Shading shading_;
     profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{};
-    shader::Program floor_, tank_, impostor_, surface_;
-    gl::VertexArray empty_vao_, particle_vao_, mesh_vao_;
+    shader::Program floor_, tank_, impostor_, surface_, impostor_levels_;
+    gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, parent_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};
 };

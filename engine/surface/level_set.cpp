@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -42,7 +43,26 @@ gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particl
     p.iso = s.iso;
     p.particle_count = std::uint32_t(particle_count);
     p.search_margin = s.search_margin;
+    p.bounds_margin = subparticle_bounds_margin(s);
     return p;
+}
+
+float subparticle_kernel_radius(float R, int level, float h) {   // splat_subparticles.comp
+    return level == 0 ? R : std::max(std::ldexp(R, -level), float(RANRYU_SUBPARTICLE_KERNEL_FLOOR) * h);
+}
+
+float subparticle_bounds_margin(const LevelSetSettings& s) {
+    // Per axis a level-E child lies within (dx/2)(1 - 2^-E) (its lattice offset) + ½(dx/2^E)·4 (its
+    // displacement at |ŷ_a| = 4) of its parent, and reaches R_E beyond (at the finest node spacing).
+    constexpr float kDisplacement = 4.0f;
+    const float dx = s.particle_spacing, R = s.kernel_radius;
+    float margin = 0.0f;
+    for (int E = 1; E <= s.subparticle_levels; ++E) {
+        const float sub = std::ldexp(dx, -E);
+        const float reach = 0.5f * (dx - sub) + 0.5f * sub * kDisplacement + subparticle_kernel_radius(R, E, s.node_spacing);
+        margin = std::max(margin, reach - R);
+    }
+    return margin;
 }
 
 std::uint32_t ordered_bits(float f) {
@@ -59,8 +79,9 @@ float from_ordered_bits(std::uint32_t u) {
 }
 
 PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s) {   // place_grid.comp
-    lo -= s.kernel_radius;
-    hi += s.kernel_radius;
+    const float reach = s.kernel_radius + subparticle_bounds_margin(s);
+    lo -= reach;
+    hi += reach;
     const glm::vec3 fit = (hi - lo) / (glm::vec3(s.max_dims) - 3.0f);
     const float h = std::max(s.node_spacing, std::max(fit.x, std::max(fit.y, fit.z)));
     PhiGrid g;
@@ -87,13 +108,41 @@ void level_set_cpu(std::span<const glm::vec4> positions, const LevelSetSettings&
             }
 }
 
+void level_set_cpu(std::span<const glm::vec4> positions, std::span<const std::uint32_t> levels,
+                   std::span<const glm::vec4> children, const LevelSetSettings& s, PhiGrid& grid) {
+    std::vector<glm::vec4> kept;
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if ((levels[i] >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) == 0u) kept.push_back(positions[i]);
+    level_set_cpu(kept, s, grid);
+    const double V = double(s.particle_spacing) * s.particle_spacing * s.particle_spacing;
+    std::vector<double> sum(grid.nodes(), 0.0);
+    for (const glm::vec4& c : children) {
+        const int E = int(c.w);
+        const double R = subparticle_kernel_radius(s.kernel_radius, E, grid.spacing), w = std::ldexp(V, -3 * E);
+        // The nodes of the box around the child's support, one node wider than needed on each side.
+        const glm::dvec3 rel = (glm::dvec3(glm::vec3(c)) - glm::dvec3(grid.origin)) / double(grid.spacing);
+        const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(rel - R / grid.spacing)) - 1, glm::ivec3(0));
+        const glm::ivec3 hi = glm::min(glm::ivec3(glm::ceil(rel + R / grid.spacing)) + 1, glm::ivec3(grid.dims) - 1);
+        for (int k = lo.z; k <= hi.z; ++k)
+            for (int j = lo.y; j <= hi.y; ++j)
+                for (int i = lo.x; i <= hi.x; ++i) {
+                    const glm::uvec3 n(i, j, k);
+                    const glm::dvec3 d = glm::dvec3(grid.node(n)) - glm::dvec3(glm::vec3(c));
+                    const double r2 = glm::dot(d, d);
+                    if (r2 < R * R) sum[grid.index(n)] += w * kernel_w(std::sqrt(r2), R);
+                }
+    }
+    for (std::size_t i = 0; i < sum.size(); ++i) grid.phi[i] = float(double(grid.phi[i]) + sum[i]);
+}
+
 LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings)
     : timer_(timer),
       bounds_pass_(timer.pass("surface.bounds")),
       level_set_pass_(timer.pass("level-set")),
       find_bounds_(shader::Program::compute(shaders, "surface/find_bounds.comp")),
       place_grid_(shader::Program::compute(shaders, "surface/place_grid.comp")),
-      compute_(shader::Program::compute(shaders, "surface/compute_level_set.comp")),
+      compute_(shader::Program::compute(shaders, "surface/compute_level_set.comp",
+                                        settings.subparticle_levels > 0 ? "#define RANRYU_SUBPARTICLES 1\n" : "")),
       settings_(settings),
       max_nodes_(std::size_t(settings.max_dims.x) * settings.max_dims.y * settings.max_dims.z) {
     const auto& s = settings;
@@ -111,10 +160,22 @@ LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, 
     phi_ = gl::Buffer(max_nodes_ * sizeof(float), GL_DYNAMIC_COPY, nullptr, "surface.phi");
     const auto group = compute_.local_size();
     glProgramUniform4ui(place_grid_.id(), RANRYU_LOC_SURFACE_GROUP, group[0], group[1], group[2], 0u);
+    if (s.subparticle_levels > 0) {
+        splat_pass_ = timer.pass("subparticles.splat");
+        splat_ = shader::Program::compute(shaders, "surface/splat_subparticles.comp");
+        // All zero from here on: the gather sets every node it reads back to 0.
+        const std::vector<std::uint32_t> zero(max_nodes_, 0u);
+        splat_grid_ = gl::Buffer::from<std::uint32_t>(zero, GL_DYNAMIC_COPY, "surface.subparticle_splat");
+    }
 }
 
 void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_position, const sim::CellRanges& ranges,
-                       std::size_t count) {
+                       std::size_t count, const SubparticleSurface* sub) {
+    if ((settings_.subparticle_levels > 0) != (sub != nullptr))
+        throw Error(sub ? "LevelSet::compute: sub-particles given to a level set built without them"
+                        : "LevelSet::compute: this level set was built for sub-particles; pass them");
+    if (sub && sub->dispatch_group != splat_.local_size()[0])
+        throw Error("LevelSet::compute: splat_subparticles.comp must have the spawn pass's local size");
     if (params_count_ != count) {   // the settings are fixed; only the count changes
         params_.upload_value(surface_params(settings_, count));
         params_count_ = count;
@@ -139,6 +200,18 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
         place_grid_.use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+    if (sub) {
+        auto pass = timer_.scope(splat_pass_);
+        sub->state.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_STATE);
+        sub->positions.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_POSITION);
+        sub->levels.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_LEVELS);
+        splat_grid_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_SPLAT);
+        splat_.use();
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->state.id());
+        glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // levels and splat stay bound for the gather
     }
     {
         auto pass = timer_.scope(level_set_pass_);

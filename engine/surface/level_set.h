@@ -27,6 +27,36 @@
 //   "level-set"       compute_level_set.comp   φ at every node: a gather over the neighbour
 //                                        grid's cells, glDispatchComputeIndirect
 // Nothing is read back; compute() allocates and compiles nothing.
+//
+// Sub-particles (turbulence/subparticles.h; METHOD.md §7, "φ from the sub-particles, each with a
+// kernel sized to its level"), when settings.subparticle_levels > 0:
+//
+//     φ(x) = V·Σ_{parents with E_i = 0} W(|x - x_i|, R) + Σ_children (V/8^E)·W(|x - x_c|, R_E) - iso
+//     R_E = max(R/2^E, 2·h)        (h the φ grid's node spacing; RANRYU_SUBPARTICLE_KERNEL_FLOOR)
+//
+//   "subparticles.splat"  splat_subparticles.comp   between the two passes above: each child adds
+//                                        its term to the nodes within R_E, in fixed point (2^-24
+//                                        units, round to nearest) with atomicAdd: integer sums
+//                                        commute, so φ is the same every run
+//   "level-set"           compute_level_set.comp built with RANRYU_SUBPARTICLES: the gather skips
+//                                        the split parents (E_i > 0 in the levels word the spawn
+//                                        pass wrote, cell order) and adds the splat, resetting it
+// V/8^E: the children share their parent's volume (W is normalised, so each keeps V/8^E at any R_E).
+// R/2^E: with the iso of a lone particle of radius dx/2 (above), a lone child's surface is a sphere of
+// radius dx/2^(E+1), its own particle radius. The floor: a kernel must be sampled by enough nodes to
+// keep its volume wherever it sits between them, or the surface flickers as it moves. h³·Σ_nodes W
+// (1 for the continuous kernel), over random positions of the centre, spans 0.9985-1.002 at R = 2h,
+// 0.984-1.004 at 1.75h, 0.917-1.087 at 1.5h, 0.11-2.5 at 1h. So R_E >= 2h. At the default h = dx/2
+// the floor is dx: every level is then as smooth as a kernel of support dx (R_1 = 0.75 dx already
+// falls below it), and the levels differ in where their volume sits, not in sharpness; a finer
+// scene surface.node_spacing (dx/8: R_E = R/2^E up to level 2) resolves them.
+// The fixed point rounds each child's term at a node by at most 2^-25: k children within R_E of a
+// node move its φ by at most k·2^-25 (k ≈ 2100 at level 3 with R_E = dx: 6e-5 at worst; as a random
+// walk about 1e-6), against ≈1 inside the liquid.
+// The grid's box grows by bounds_margin: children lie within dx/2 per axis (lattice) plus their
+// displacement ½(dx/2^E)|ŷ_a| of their parent; the margin covers |ŷ_a| <= 4 (ŷ has unit rms, so a
+// component's rms is about 0.58: 7 standard deviations); a child beyond adds to the nodes the grid has.
+// Without sub-particles nothing of this is built and φ is bit for bit what it was.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -52,11 +82,22 @@ struct LevelSetSettings {
     float search_margin = 0.01f;      // (m) how far particles may have moved since the neighbour grid
                                       // sorted them (the gather searches R + margin; exact for any value
                                       // at least the largest displacement, slower for larger ones)
+    int subparticle_levels = 0;       // L_max of the sub-particles φ includes; 0: none (nothing built)
 
     // R = 1.5 dx, iso = iso_for_radius(dx, R, dx/2), nodes dx/2 apart, at most 160 per axis, margin
     // dx/2: R + margin = 2 dx = h, one SPH cell, so the search spans at most 3 cells per axis as it
     // does with no margin, and covers a substep's displacement (CFL: |v| dt < 0.4 dx).
     static LevelSetSettings for_spacing(float dx);
+};
+
+// The sub-particles' inputs to compute(): Subparticles::levels(), positions(), state() (the indirect
+// dispatch at dispatch_offset, workgroups dispatch_group wide).
+struct SubparticleSurface {
+    const gl::Buffer& levels;
+    const gl::Buffer& positions;
+    const gl::Buffer& state;
+    std::size_t dispatch_offset;
+    GLuint dispatch_group;
 };
 
 // W(r) with support R: the cubic spline of glsl/sim/kernel.glsl, in double.
@@ -65,6 +106,10 @@ double kernel_w(double r, double R);
 float iso_for_radius(float dx, float R, float r);
 
 gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particle_count);
+// R_E, the kernel radius of a level-E sub-particle on a grid of node spacing h (E = 0: R).
+float subparticle_kernel_radius(float R, int level, float h);
+// How far beyond R the grid must reach for sub-particles up to subparticle_levels (0 without; above).
+float subparticle_bounds_margin(const LevelSetSettings& s);
 
 // Order-preserving float bits, as glsl/surface/ordered_float.glsl.
 std::uint32_t ordered_bits(float f);
@@ -75,6 +120,10 @@ PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s);
 // CPU reference of the level set: φ at every node of `grid` (already placed), a brute-force sum over
 // all particles in double. Slow: tests only.
 void level_set_cpu(std::span<const glm::vec4> positions, const LevelSetSettings& s, PhiGrid& grid);
+// The same with sub-particles: parents whose levels word has E_i > 0 are left out, and every child
+// (xyz, w = E) adds (V/8^E)·W(|x - x_c|, R_E) on the grid's node spacing.
+void level_set_cpu(std::span<const glm::vec4> positions, std::span<const std::uint32_t> levels,
+                   std::span<const glm::vec4> children, const LevelSetSettings& s, PhiGrid& grid);
 
 class LevelSet {
 public:
@@ -85,9 +134,10 @@ public:
     // cell ranges `ranges` and the sorted keys of `grid`'s last build() (cleared or not); the
     // particles may have moved by up to search_margin since. Binds the grid's GridParams. Runs
     // inside a GpuTimer frame; ends with a shader-storage barrier, so marching cubes may read φ and
-    // grid().
+    // grid(). With sub-particles (settings().subparticle_levels > 0) `sub` is required, and their
+    // passes must have run (Subparticles::generate, after the particles' last move).
     void compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_position, const sim::CellRanges& ranges,
-                 std::size_t count);
+                 std::size_t count, const SubparticleSurface* sub = nullptr);
 
     const gl::Buffer& phi() const { return phi_; }     // float[max nodes], first grid().dims.w used
     const gl::Buffer& grid() const { return grid_; }   // SurfaceGrid, written on the GPU
@@ -98,11 +148,11 @@ public:
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId bounds_pass_, level_set_pass_;
-    shader::Program find_bounds_, place_grid_, compute_;
+    profile::PassId bounds_pass_, level_set_pass_, splat_pass_{};
+    shader::Program find_bounds_, place_grid_, compute_, splat_;
     LevelSetSettings settings_;
     std::size_t max_nodes_;
-    gl::Buffer params_, grid_, phi_;
+    gl::Buffer params_, grid_, phi_, splat_grid_;
     std::size_t params_count_ = ~std::size_t(0);
 };
 

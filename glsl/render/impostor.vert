@@ -3,23 +3,43 @@
 // cover the sphere's silhouette exactly. The quad lies in the plane through the centre c
 // perpendicular to the eye ray, where the silhouette cone of a sphere of radius r at distance
 // d = |c| has radius r·d / sqrt(d² − r²).
+// Built with RANRYU_BY_LEVEL (sub-particles, render/renderer.h): a sphere of level E has radius
+// r/2^E and the level's colour. Parents (children == 0) carry their levels word: one the spawn pass
+// split (E > 0) is not drawn, its sub-particles are. Sub-particles (children == 1) carry E in position.w.
 #include "../common/frame.glsl"
 
 layout(location = RANRYU_ATTR_POSITION) in vec4 in_position;
 layout(location = RANRYU_ATTR_VELOCITY) in vec4 in_velocity;
+#ifdef RANRYU_BY_LEVEL
+layout(location = RANRYU_ATTR_LEVEL) in uint in_level;
+layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uint children;
+flat out vec3 v_base;
+const vec3 kLevelColor[4] = vec3[4](vec3(RANRYU_LEVEL_COLOR_0), vec3(RANRYU_LEVEL_COLOR_1), vec3(RANRYU_LEVEL_COLOR_2),
+                                    vec3(RANRYU_LEVEL_COLOR_3));
+#endif
 
 out vec3 v_view_pos;          // this corner, view space
 flat out vec3 v_center;       // sphere centre, view space
 flat out float v_speed;
+flat out float v_radius;
 
 void main() {
     vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
     vec3 c = (frame.view * vec4(in_position.xyz, 1.0)).xyz;
     float r = frame.material.w;
+#ifdef RANRYU_BY_LEVEL
+    uint level = children != 0u ? min(uint(in_position.w), 3u) : 0u;
+    r = ldexp(r, -int(level));
+    v_base = kLevelColor[level];
+    bool split = children == 0u && (in_level >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) != 0u;
+#else
+    bool split = false;
+#endif
     float d = length(c);
     v_center = c;
     v_speed = length(in_velocity.xyz);
-    if (d <= r * 1.001) {   // eye inside the sphere: draw nothing
+    v_radius = r;
+    if (split || d <= r * 1.001) {   // split into sub-particles, or the eye inside the sphere: draw nothing
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         v_view_pos = c;
         return;

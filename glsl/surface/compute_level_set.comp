@@ -14,6 +14,7 @@
 //   - Cell ranges need not have been cleared (NeighbourGrid::build with clear = false): a run is taken
 //     only if the sorted key at its start is the cell's own, as fluid_run() in sim/sph/sph_common.glsl.
 // Dispatch: glDispatchComputeIndirect with surface_grid.dispatch; one invocation per node.
+// Built with RANRYU_SUBPARTICLES (level_set.h), split parents are skipped and the children's splat added.
 #include "../shared/bindings.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -25,6 +26,12 @@ layout(std430, binding = RANRYU_SSBO_CELL_END) readonly buffer End { uint cell_e
 layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer SortedKeys { uint sorted_keys[]; };
 layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
 layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) writeonly buffer Phi { float phi[]; };
+#ifdef RANRYU_SUBPARTICLES
+// Sub-particles (splat_subparticles.comp): parents split by the spawn pass are left out of the gather
+// (their children stand for them), and the children's fixed-point splat is added, then reset to 0.
+layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LEVELS) readonly buffer Levels { uint sub_level[]; };
+layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_SPLAT) buffer Splat { uint splat[]; };
+#endif
 
 #include "../sim/grid.glsl"
 #include "../sim/kernel.glsl"
@@ -48,7 +55,19 @@ void main() {
         for (int cy = lo.y; cy <= hi.y; ++cy)
             for (int cx = lo.x; cx <= hi.x; ++cx) {
                 uvec2 run = cell_run(cell_key(ivec3(cx, cy, cz)));
-                for (uint j = run.x; j < run.y; ++j) sum += kernel_w(length(x - sorted_position[j].xyz), r);
+                for (uint j = run.x; j < run.y; ++j) {
+#ifdef RANRYU_SUBPARTICLES
+                    if ((sub_level[j] >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) != 0u) continue;
+#endif
+                    sum += kernel_w(length(x - sorted_position[j].xyz), r);
+                }
             }
-    phi[node.x + dims.x * (node.y + dims.y * node.z)] = surface.volume * sum - surface.iso;
+    uint index = node.x + dims.x * (node.y + dims.y * node.z);
+#ifdef RANRYU_SUBPARTICLES
+    float children = float(splat[index]) * (1.0 / RANRYU_SUBPARTICLE_SPLAT_SCALE);
+    splat[index] = 0u;
+    phi[index] = (surface.volume * sum + children) - surface.iso;
+#else
+    phi[index] = surface.volume * sum - surface.iso;
+#endif
 }

@@ -5,6 +5,7 @@
 //
 // W vanishes at distance >= R, so φ = -iso < 0 outside [lo, hi] = [min - R, max + R]: nodes on or
 // beyond that box are outside, and a grid whose first and last nodes lie there closes the surface.
+// With sub-particles the box grows by surface.bounds_margin, their reach beyond R (level_set.h).
 //     h      = max(node_spacing, max over axes of (hi - lo) / (max_dims - 3))   (coarser only to fit)
 //     origin = h * floor(lo / h)          on the lattice of multiples of h: the grid does not shift
 //                                          by fractions of a node as the box moves, so neither do
@@ -23,8 +24,9 @@ layout(location = RANRYU_LOC_SURFACE_GROUP) uniform uvec4 group;   // xyz: compu
 #include "ordered_float.glsl"
 
 void main() {
-    vec3 lo = from_ordered_bits(surface_grid.bounds_min.xyz) - surface.kernel_radius;
-    vec3 hi = from_ordered_bits(surface_grid.bounds_max.xyz) + surface.kernel_radius;
+    float reach = surface.kernel_radius + surface.bounds_margin;   // bounds_margin: 0 without sub-particles
+    vec3 lo = from_ordered_bits(surface_grid.bounds_min.xyz) - reach;
+    vec3 hi = from_ordered_bits(surface_grid.bounds_max.xyz) + reach;
     bool finite = !any(isnan(lo)) && !any(isinf(lo)) && !any(isnan(hi)) && !any(isinf(hi));
     if (surface.particle_count == 0u || !finite || any(greaterThan(lo, hi))) {
         surface_grid.origin = vec4(0.0, 0.0, 0.0, surface.node_spacing);

@@ -28,6 +28,7 @@
 //   - Phong and Gouraud once more, exactly: against a CPU ray cast of the read-back triangles with
 //     the rasteriser's interpolation (see that test); measured within 0.5/255 on llvmpipe.
 #include "support/gl_fixture.h"
+#include "support/phong.h"
 
 #include <algorithm>
 #include <cmath>
@@ -191,15 +192,8 @@ std::vector<glm::dvec3> cone(glm::dvec3 n, double eps) {
     return out;
 }
 
-// Phong of glsl/common/frame.glsl, display-encoded, in 0..255.
-glm::dvec3 phong(const gpu::FrameParams& f, glm::dvec3 base, glm::dvec3 n, glm::dvec3 v) {
-    const glm::dvec3 l(f.light_dir);
-    const double ndl = glm::dot(n, l);
-    const double spec = ndl > 0.0 ? std::pow(std::max(glm::dot(glm::reflect(-l, n), v), 0.0), double(f.material.z)) : 0.0;
-    const glm::dvec3 c = glm::dvec3(f.light_color) *
-                         (double(f.light_color.a) * base + double(f.material.x) * std::max(ndl, 0.0) * base + double(f.material.y) * spec);
-    return 255.0 * glm::pow(glm::clamp(c, 0.0, 1.0), glm::dvec3(1.0 / 2.2));
-}
+// Phong of glsl/common/frame.glsl, display-encoded, in 0..255 (support/phong.h).
+using ranryu::test::phong;
 
 std::vector<std::uint8_t> read_colour(const ranryu::gl::RenderTarget& t) {
     std::vector<std::uint8_t> rgba(std::size_t(kWidth) * kHeight * 4);
