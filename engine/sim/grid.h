@@ -1,8 +1,8 @@
 #pragma once
 // The uniform-grid neighbour search (METHOD.md §1; Green 2008): hash -> sort -> cell ranges ->
 // reorder. After build(), the particles are in cell order and a cell's particles are the run
-// [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, "cell-ranges",
-// "reorder".
+// [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, and
+// "reorder", which finds the cell ranges and gathers the particles in one pass.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -57,8 +57,8 @@ public:
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId hash_pass_, ranges_pass_, reorder_pass_;
-    shader::Program hash_, ranges_, reorder_, reorder_carried_;
+    profile::PassId hash_pass_, reorder_pass_;
+    shader::Program hash_, reorder_, reorder_carried_;
     KeySort sort_;
     GridLayout layout_;
     SortMethod method_;

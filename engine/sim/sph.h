@@ -3,7 +3,7 @@
 //
 //     begin_frame()                       "begin-frame"       opens the frame's StepState record
 //     substep() × N                       "choose-time-step"  eq. (7), on the GPU
-//                                         "hash", "sort.*", "cell-ranges", "reorder"   (NeighbourGrid)
+//                                         "hash", "sort.*", "reorder"   (NeighbourGrid)
 //                                         "density"           eqs. (2), (3)
 //                                         "wavelet"           turbulence only: ê (METHOD.md §3)
 //                                         "forces"            eqs. (4), (5) and gravity
@@ -53,7 +53,7 @@ public:
 
     // A substep's stages, public for tests that compare each with the CPU reference.
     void choose_time_step();   // "choose-time-step"
-    void rebuild_grid();       // "hash", "sort.*", "cell-ranges", "reorder": state now in cell order
+    void rebuild_grid();       // "hash", "sort.*", "reorder": state now in cell order
     void compute_density();    // "density"
     void compute_forces();     // "forces"
     // The turbulence force (engine/turbulence/force.h), only when the scene's turbulence is on

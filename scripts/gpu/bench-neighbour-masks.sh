@@ -37,3 +37,8 @@ for p in passes:
 print(sys.argv[1].split("/")[-1], "substep ms", round(tot, 4))
 PY
 done
+# The sub-particle passes at 1M parents, 10/50/100 % energetic (tests/gl/subparticle_test.cpp).
+build/gpu/tests/ranryu_gl_tests "[subparticle],[turbulence],[grid]" > "$out/sub-tests.txt" 2>&1
+grep -E "FAILED|with expansion" -A4 "$out/sub-tests.txt" | head -30; tail -2 "$out/sub-tests.txt"
+build/gpu/tests/ranryu_gl_tests "[subparticle-bench]" > "$out/subparticle-bench.txt" 2>&1
+grep -E "^sub-particles,|^(subparticles|level-set|surface)" "$out/subparticle-bench.txt"
