@@ -288,9 +288,12 @@ TEST_CASE("sph: boundary psi, density and pressure match the reference", "[sph]"
 namespace {
 
 // Compares the GPU's accelerations with the reference's (a) on the GPU's own ρ and p, so only the force
-// pass's rounding differs: per particle |δa| ≤ (N + 16)·u·(Σ|pressure terms| + Σ|viscous terms|) + u|g|,
-// 16u per term for ∇W (q, the branch polynomial, l·f/(r·h)·d: ≤ 8u) and its factors (p/ρ², the sum of
-// two, 2/(ρ_i + ρ_j), v_ij·x_ij/(r² + ε): ≤ 8u); and (b) end to end, from the reference's own ρ and p,
+// pass's rounding differs: per particle |δa| ≤ (N + 32)·u·(Σ|pressure terms| + Σ|viscous terms|) + u|g|:
+// with correctly rounded operations 16u a term, for ∇W (q, the branch polynomial, l·f/(r·h)·d: ≤ 8u)
+// and its factors (p/ρ², the sum of two, 2/(ρ_i + ρ_j), v_ij·x_ij/(r² + ε): ≤ 8u), doubled because
+// GLSL 4.30 (§4.7.1) lets a division be off by 2.5 ULP and inversesqrt (hence sqrt) by 2, not ½: the
+// term has two divisions and a square root. Mesa rounds correctly; NVIDIA's 580 driver reached 1.21
+// of the 16u bound (seed 3186491863). And (b) end to end, from the reference's own ρ and p,
 // adding what a density error of eps_i·ρ_i (the density test's bound) does to every P = p/ρ²:
 // dP = (7B/ρ0·(ρ/ρ0)^6/ρ² + 2p/ρ³)·eps_i·ρ_i.
 // Also the brief's global form: max |δa| ≤ 1e-4·max|a_ref| for (a).
@@ -311,7 +314,7 @@ void check_forces(const Rig& rig, const Fields& f, bool expect_pressure) {
     for (std::size_t i = 0; i < x.size(); ++i) {
         const TermSums s = term_sums(i, x, v, rho, p, f.boundary, f.psi, c);
         const double e = glm::length(d3(f.accel[i]) - want[i]);
-        worst.add(i, e, double(s.terms + 16) * kU * (s.pressure + s.viscous) + kU * g);
+        worst.add(i, e, double(s.terms + 32) * kU * (s.pressure + s.viscous) + kU * g);
         a_max = std::max(a_max, glm::length(want[i]));
         err_max = std::max(err_max, e);
         viscous_max = std::max(viscous_max, s.viscous);
@@ -342,7 +345,7 @@ void check_forces(const Rig& rig, const Fields& f, bool expect_pressure) {
     for (std::size_t i = 0; i < x.size(); ++i) {
         const TermSums s = term_sums(i, x, v, r.density, r.pressure, f.boundary, f.psi, c, &dP);
         // ρ also enters the viscous weight 2m/(ρ_i + ρ_j): relative max eps of each viscous term.
-        const double bound = double(s.terms + 16) * kU * (s.pressure + s.viscous) + kU * g + s.perturbed +
+        const double bound = double(s.terms + 32) * kU * (s.pressure + s.viscous) + kU * g + s.perturbed +
                              eps_rho * s.viscous;
         e2e.add(i, glm::length(d3(f.accel[i]) - r.accel[i]), bound);
     }
