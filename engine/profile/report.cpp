@@ -62,7 +62,9 @@ std::string table(const Report& r) {
     out << r.info.renderer << " | " << r.info.driver << " | " << r.info.date << "\n";
     out << "scene " << r.info.scene << ": " << r.info.particles << " particles, " << r.info.width << "x"
         << r.info.height << ", " << r.info.frames << " frames timed after " << r.info.warmup << " warm-up, "
-        << r.info.substeps << " substeps/frame\n";
+        << (r.info.substeps > 0 ? std::to_string(r.info.substeps) + " substeps/frame"
+                                : std::string("adaptive substeps (see integrate's calls/fr)"))
+        << "\n";
     std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
                   "max ms", "ms/call", "share");
     out << line;
