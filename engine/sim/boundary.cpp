@@ -8,20 +8,40 @@
 namespace ranryu::sim {
 namespace {
 
-// Lattice coordinates along one axis for the interval [lo, hi]: `inside` sites lo + (i + 1/2) dx
-// and `layers` sites beyond each end, at lo - (l + 1/2) dx and hi + (l + 1/2) dx.
+constexpr float kPi = 3.14159265358979f;
+constexpr float kShellPitch = 0.7f;   // a sphere's shell points, in spacings (see sample_boundary)
+
+// Cells of at most `dx` filling [lo, hi] exactly: ceil(extent / dx) of them (the 1e-4 absorbs the
+// rounding of extents that are whole multiples of dx), at least one.
+int cells(float lo, float hi, float dx) { return std::max(1, int(std::ceil((hi - lo) / dx - 1e-4f))); }
+
+// Lattice coordinates along one axis for the interval [lo, hi]: cells() sites inside, at
+// lo + (i + 1/2)·pitch, and `layers` sites of pitch dx beyond each end, at lo - (l + 1/2)·dx and
+// hi + (l + 1/2)·dx; with each site's pitch.
 struct Axis {
-    std::vector<float> at;
+    std::vector<float> at, pitch;
     std::vector<int> side;   // -1 below lo, 0 inside, +1 above hi
 };
 Axis axis(float lo, float hi, float dx, int layers) {
     Axis a;
-    for (int l = layers - 1; l >= 0; --l) a.at.push_back(lo - (float(l) + 0.5f) * dx), a.side.push_back(-1);
-    const int n = std::max(1, int(std::floor((hi - lo) / dx + 1e-4f)));
-    const float pitch = (hi - lo) / float(n);   // fits the interval exactly: no gap at the far wall
-    for (int i = 0; i < n; ++i) a.at.push_back(lo + (float(i) + 0.5f) * pitch), a.side.push_back(0);
-    for (int l = 0; l < layers; ++l) a.at.push_back(hi + (float(l) + 0.5f) * dx), a.side.push_back(+1);
+    auto put = [&](float x, float p, int side) { a.at.push_back(x), a.pitch.push_back(p), a.side.push_back(side); };
+    for (int l = layers - 1; l >= 0; --l) put(lo - (float(l) + 0.5f) * dx, dx, -1);
+    const int n = cells(lo, hi, dx);
+    const float pitch = (hi - lo) / float(n);   // <= dx, and fits the interval: no gap at the far end
+    for (int i = 0; i < n; ++i) put(lo + (float(i) + 0.5f) * pitch, pitch, 0);
+    for (int l = 0; l < layers; ++l) put(hi + (float(l) + 0.5f) * dx, dx, +1);
     return a;
+}
+
+// N points spread evenly over the sphere of radius r about c (the Fibonacci lattice: equal-area bands
+// in z, successive points turned by the golden angle), each standing for volume `cell`.
+void fibonacci_shell(glm::vec3 c, float r, int n, float cell, std::vector<glm::vec4>& out) {
+    const float golden = kPi * (3.0f - std::sqrt(5.0f));
+    for (int k = 0; k < n; ++k) {
+        const float z = 1.0f - (2.0f * float(k) + 1.0f) / float(n);
+        const float rho = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = golden * float(k);
+        out.emplace_back(c + r * glm::vec3(rho * std::cos(phi), z, rho * std::sin(phi)), cell);
+    }
 }
 
 }  // namespace
@@ -38,27 +58,58 @@ std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers) {
         for (std::size_t j = 0; j < ay.at.size(); ++j) {
             if (ay.side[j] > 0) continue;
             for (std::size_t i = 0; i < ax.at.size(); ++i)
-                if (ax.side[i] != 0 || ay.side[j] != 0 || az.side[k] != 0) out.emplace_back(ax.at[i], ay.at[j], az.at[k], 0.0f);
+                if (ax.side[i] != 0 || ay.side[j] != 0 || az.side[k] != 0)
+                    out.emplace_back(ax.at[i], ay.at[j], az.at[k], ax.pitch[i] * ay.pitch[j] * az.pitch[k]);
         }
-    // Obstacles: lattice sites inside the solid within `layers` spacings of its surface.
     const float depth = float(layers) * dx;
     for (const scene::Obstacle& o : s.obstacles) {
-        const glm::vec3 lo = o.kind == scene::Obstacle::Kind::box ? o.min : o.center - o.radius;
-        const glm::vec3 hi = o.kind == scene::Obstacle::Kind::box ? o.max : o.center + o.radius;
-        const glm::ivec3 n = glm::max(glm::ivec3(glm::floor((hi - lo) / dx + 1e-4f)), glm::ivec3(1));
-        const glm::vec3 pitch = (hi - lo) / glm::vec3(n);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::vec3 p = lo + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * pitch;
-                    float inside;   // distance from p to the surface, positive inside
-                    if (o.kind == scene::Obstacle::Kind::sphere) inside = o.radius - glm::length(p - o.center);
-                    else {
+        if (o.kind == scene::Obstacle::Kind::box) {
+            // Lattice sites inside the box within `depth` of its surface (all of them in a box thinner
+            // than 2·depth): the outer layer half a pitch inside every face, edges and corners included.
+            const glm::ivec3 n(cells(o.min.x, o.max.x, dx), cells(o.min.y, o.max.y, dx), cells(o.min.z, o.max.z, dx));
+            const glm::vec3 pitch = (o.max - o.min) / glm::vec3(n);
+            const float cell = pitch.x * pitch.y * pitch.z;
+            for (int k = 0; k < n.z; ++k)
+                for (int j = 0; j < n.y; ++j)
+                    for (int i = 0; i < n.x; ++i) {
+                        const glm::vec3 p = o.min + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * pitch;
                         const glm::vec3 d = glm::min(p - o.min, o.max - p);
-                        inside = std::min({d.x, d.y, d.z});
+                        if (std::min({d.x, d.y, d.z}) < depth) out.emplace_back(p, cell);
                     }
-                    if (inside > 0.0f && inside < depth) out.emplace_back(p, 0.0f);
+        } else {
+            // Shells of thickness dx from the surface inward, `layers` of them or down to the centre,
+            // each a Fibonacci lattice at its mid radius (half a spacing inside the surface for the
+            // outer one, as on a flat wall) sharing the shell's volume equally. Its points are kShellPitch
+            // apart, finer than the fluid: an irregular lattice as coarse as dx leaves holes where the
+            // boundary density a resting fluid particle sees drops by 25 % (a Fibonacci lattice's
+            // local spacing varies); at 0.7 dx it stays within about 15 % of the flat wall's.
+            for (int l = 0; l < layers; ++l) {
+                const float r_out = o.radius - float(l) * dx, r_in = o.radius - float(l + 1) * dx;
+                if (r_out <= 0.0f) break;
+                if (r_in <= 0.0f) {   // what is left is a ball thinner than a shell: one particle at the centre
+                    out.emplace_back(o.center, 4.0f / 3.0f * kPi * r_out * r_out * r_out);
+                    break;
                 }
+                const float r = 0.5f * (r_in + r_out), pitch = kShellPitch * dx;
+                const int n = std::max(1, int(std::lround(4.0f * kPi * r * r / (pitch * pitch))));
+                const float volume = 4.0f / 3.0f * kPi * (r_out * r_out * r_out - r_in * r_in * r_in);
+                fibonacci_shell(o.center, r, n, volume / float(n), out);
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s) {
+    std::vector<glm::vec4> out{glm::vec4(float(s.obstacles.size()), 0.0f, 0.0f, 0.0f)};
+    for (const scene::Obstacle& o : s.obstacles) {
+        if (o.kind == scene::Obstacle::Kind::box) {
+            out.emplace_back(o.min, 0.0f);
+            out.emplace_back(o.max, 0.0f);
+        } else {
+            out.emplace_back(o.center, 1.0f);
+            out.emplace_back(o.radius, 0.0f, 0.0f, 0.0f);
+        }
     }
     return out;
 }

@@ -1,7 +1,9 @@
 #pragma once
 // Boundary particles (docs/SPH.md eq. (8)): the tank's floor and four walls (the top is open) and
-// every obstacle, sampled on lattices of the fluid's spacing in `layers` layers on the solid side of
-// each surface. Positions only (w = 0); the GPU computes each particle's psi_b at start.
+// every obstacle, sampled in `layers` layers on the solid side of each surface, never sparser than the
+// fluid's spacing. Each particle is (x_b, V_cell): its position and the volume of the lattice cell it
+// stands for, which caps its Akinci volume on the GPU (glsl/sim/boundary/compute_boundary_volume.comp
+// replaces w with psi_b at start).
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -10,9 +12,20 @@ namespace ranryu::scene { struct Scene; }
 
 namespace ranryu::sim {
 
-// Enough layers that a fluid particle touching a surface has a full kernel of boundary behind it.
+// Enough layers that a fluid particle touching a surface has a full kernel of boundary behind it:
+// layers·spacing > support.
 int boundary_layers(float spacing, float support);
 
+// Boxes (the tank's shell and box obstacles) on cell-centred lattices whose pitch along each axis is
+// the extent divided into ceil(extent / spacing) cells, so <= spacing: the outer layer lies half a pitch
+// inside every face, edges and corners included. Spheres in concentric shells at R - (l + 1/2)·spacing,
+// each a Fibonacci lattice with points 0.7 spacings apart, and a centre particle where the shells
+// reach it.
 std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers);
+
+// The obstacles as the integrate pass's last-resort projection reads them (glsl/sim/sph/
+// integrate_particles.comp, RANRYU_SSBO_OBSTACLES): element 0 is (count, 0, 0, 0); then two vec4 an
+// obstacle: a box as (min, 0), (max, 0); a sphere as (center, 1), (radius, 0, 0, 0).
+std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s);
 
 }  // namespace ranryu::sim

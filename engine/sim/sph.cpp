@@ -125,6 +125,7 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     boundary_count_ = wall.size();
     params_ = sph_params(scene, count_, boundary_count_);
     params_ubo_ = gl::Buffer(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, &params_, "SphParams");
+    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), GL_STATIC_DRAW, "sph.obstacles");
 
     const std::size_t n = std::max<std::size_t>(count_, 1);
     for (int k = 0; k < 2; ++k) {
@@ -309,6 +310,7 @@ void Sph::compute_forces() {
 void Sph::integrate() {
     auto pass = timer_.scope(integrate_pass_);
     bind_fields();
+    obstacles_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_OBSTACLES);
     integrate_.dispatch(count_);
     // The next substep's hash, the time step and the impostor draw read what this wrote.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);

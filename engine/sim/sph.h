@@ -115,6 +115,7 @@ private:
     int current_ = 0;
     gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
     gl::Buffer neighbours_;   // sph.neighbour_masks only
+    gl::Buffer obstacles_;   // obstacle_shapes(): integrate's last-resort projection (docs/SPH.md (8))
     gl::Buffer pair_terms_;      // vec2 per particle: (rho, p/rho^2) for the forces pass's gathers
     gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)
     CellRanges ranges_, boundary_ranges_;

@@ -53,6 +53,9 @@ using mat4 = glm::mat4;
 #define RANRYU_SSBO_SCRATCH 17         // uint[]: pass-local scratch
 #define RANRYU_SSBO_BOUNDARY_CELL_START 18  // uint[cells]: boundary particles' cell ranges
 #define RANRYU_SSBO_BOUNDARY_CELL_END 19
+// vec4[]: the obstacles' shapes (sim/boundary.h obstacle_shapes()), read by integrate's last-resort
+// projection (docs/SPH.md (8)); shares 17 with the start-up passes' scratch, which integrate never binds.
+#define RANRYU_SSBO_OBSTACLES 17
 // uint[keys]: 1 where the 27 cells around the cell hold a boundary particle (flag_boundary_cells.comp,
 // once at start); the density pass walks the boundary runs only there. Shares 20 with the surface's
 // SurfaceGrid: no SPH pass binds a surface buffer.

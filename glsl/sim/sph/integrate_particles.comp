@@ -1,6 +1,13 @@
 #version 430
 // Symplectic Euler (docs/SPH.md eq. (6)) with the substep's dt from the GPU (choose_time_step):
 //     v_i += dt a_i,   x_i += dt v_i.
+// Then the last-resort projection of docs/SPH.md (8): a particle whose centre the step put more than
+// kSlack spacings inside a solid (the tank's walls and floor, and the obstacles where their shapes
+// are bound) goes back to that depth, and the part of its velocity into the solid is removed. The
+// particle boundary keeps resting fluid half a spacing off every surface, and under load lets it
+// dip to 0.15 dx past it (the floor under a column in its start-up ringing: the boundary term of (4)
+// is half strength); the slack leaves that alone, so the projection catches only what the particle
+// boundary lets through (splash particles too sparse for any pressure, thin obstacles).
 // Guard records (StepState): non-finite values, particles outside the domain, the frame's and the
 // substep's max |v|; and the surge front, the largest x - domain_min.x among particles within
 // sph.front_band of domain_min.y. Maxima go through workgroup reductions: one atomic a workgroup.
@@ -11,14 +18,82 @@ layout(std430, binding = RANRYU_SSBO_POSITION) buffer Positions { vec4 position[
 layout(std430, binding = RANRYU_SSBO_VELOCITY) buffer Velocities { vec4 velocity[]; };
 layout(std430, binding = RANRYU_SSBO_ACCEL) readonly buffer Accel { vec4 accel[]; };
 
+const float kSlack = 0.25;   // spacings a centre may lie inside a solid before it is projected
+
+#ifdef RANRYU_SSBO_OBSTACLES
+// engine/sim/boundary.h obstacle_shapes(): (count, 0, 0, 0), then per obstacle a box as (min, 0),
+// (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0).
+layout(std430, binding = RANRYU_SSBO_OBSTACLES) readonly buffer Obstacles { vec4 obstacle[]; };
+#endif
+
+// The tank's walls and floor. The guard's domain is the tank grown by one spacing at the walls and
+// floor (engine/sim/sph.cpp, sph_params), so the tank is the domain less that spacing. A wall is a slab
+// as thick as its boundary layers, ceil(h/dx) + 1 spacings (engine/sim/boundary.cpp); the side walls
+// bound the fluid at every height (the guard's domain does), so a splash thrown above the open top
+// comes back down into the tank. A particle beyond a slab's far face went through the wall: it is left
+// where it is, for the guard to report.
+void keep_in_tank(inout vec3 x, inout vec3 v) {
+    float slack = kSlack * sph.spacing;
+    vec3 lo = sph.domain_min.xyz + sph.spacing - slack;
+    vec3 hi = vec3(sph.domain_max.x, 0.0, sph.domain_max.z) - sph.spacing + slack;
+    float thick = (ceil(sph.h / sph.spacing) + 1.0) * sph.spacing - slack;
+    for (int a = 0; a < 3; ++a) {
+        if (x[a] < lo[a] && x[a] > lo[a] - thick) { x[a] = lo[a]; v[a] = max(v[a], 0.0); }
+        if (a != 1 && x[a] > hi[a] && x[a] < hi[a] + thick) { x[a] = hi[a]; v[a] = min(v[a], 0.0); }
+    }
+}
+
+#ifdef RANRYU_SSBO_OBSTACLES
+// Obstacles are solid throughout: a centre more than the slack inside one goes back to that depth
+// (a sphere: radially; a box: through the face it entered by, which is the face of least depth among
+// those the particle was outside of before the step, so it cannot tunnel through a thin box). The
+// slack is at most a quarter of a box's thickness or half a sphere's radius.
+void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
+    uint n = uint(obstacle[0].x);
+    float slack = kSlack * sph.spacing;
+    for (uint k = 0u; k < n; ++k) {
+        vec4 a = obstacle[1u + 2u * k], b = obstacle[2u + 2u * k];
+        if (a.w > 0.5) {   // sphere: centre a.xyz, radius b.x
+            float inner = b.x - min(slack, 0.5 * b.x);
+            vec3 d = x - a.xyz;
+            float r = length(d);
+            if (r >= inner) continue;
+            vec3 normal = r > 1e-6 * b.x ? d / r : (length(x0 - a.xyz) > 0.0 ? normalize(x0 - a.xyz) : vec3(0.0, 1.0, 0.0));
+            x = a.xyz + inner * normal;
+            v -= min(dot(v, normal), 0.0) * normal;
+        } else {           // box [a, b], its solid for this purpose [lo, hi]
+            vec3 inset = min(vec3(slack), 0.25 * (b.xyz - a.xyz));
+            vec3 lo = a.xyz + inset, hi = b.xyz - inset;
+            if (any(lessThanEqual(x, lo)) || any(greaterThanEqual(x, hi))) continue;
+            vec3 below = x - lo, above = hi - x;   // depths past the lower and upper faces
+            bool entered = any(lessThanEqual(x0, lo)) || any(greaterThanEqual(x0, hi));
+            float best = 3.4e38;
+            int axis = 0;
+            float side = -1.0;
+            for (int c = 0; c < 3; ++c) {
+                if ((!entered || x0[c] <= lo[c]) && below[c] < best) { best = below[c]; axis = c; side = -1.0; }
+                if ((!entered || x0[c] >= hi[c]) && above[c] < best) { best = above[c]; axis = c; side = 1.0; }
+            }
+            x[axis] = side < 0.0 ? lo[axis] : hi[axis];
+            v[axis] = side < 0.0 ? min(v[axis], 0.0) : max(v[axis], 0.0);
+        }
+    }
+}
+#endif
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
     uint speed = 0u, front = 0u;
     if (live) {
         float dt = step.dt;
+        vec3 x0 = position[i].xyz;
         vec3 v = velocity[i].xyz + dt * accel[i].xyz;
-        vec3 x = position[i].xyz + dt * v;
+        vec3 x = x0 + dt * v;
+#ifdef RANRYU_SSBO_OBSTACLES
+        keep_out_of_obstacles(x0, x, v);
+#endif
+        keep_in_tank(x, v);
         position[i] = vec4(x, position[i].w);
         velocity[i] = vec4(v, velocity[i].w);
         if (any(isnan(x)) || any(isinf(x)) || any(isnan(v)) || any(isinf(v))) {
