@@ -25,8 +25,13 @@ PY
   rc=$?
   end=$(date +%s.%N)
   echo "== A=$A rc=$rc wall $(python3 -c "print(round($end-$start,1))") s: $(tail -2 "$out/jet-A$A.txt" | tr '\n' ' ')"
-  for f in 20 44; do
+  for f in 20 30 44; do
     p=$(printf "/tmp/jet-A%s/frame_%05d.png" "$A" "$f")
     [ -f "$p" ] && cp "$p" "$out/jet-A$A-frame$f.png"
   done
 done
+# Per-pass timings of the bundled jet (force, carried noise, sub-particles) at the same resolution.
+$B profile --scene turbulent-jet --spacing "$dx" --size 960x540 --frames 6 --warmup 14 \
+   --json "$out/jet-profile.json" > "$out/jet-profile.txt" 2>&1
+echo "== profile jet (rc $?)"
+grep -E "particles,|^(density|wavelet|forces|turbulence|integrate|subparticles|level-set|mc\.|draw)|sub-particles" "$out/jet-profile.txt"
