@@ -16,18 +16,20 @@ for A in $amps; do
 import json, sys
 s = json.load(open("media/scenes/turbulent-jet.json"))
 s["turbulence"]["amplitude"] = float(sys.argv[2]); s["name"] = f"turbulent-jet-A{sys.argv[2]}"
+if float(sys.argv[2]) == 0.0: del s["turbulence"]["subparticles"]   # they split by the force's ê
+s["camera"] = {"eye": [1.25, 0.42, 0.62], "target": [0.78, 0.12, 0.1], "fov_deg": 40}   # closer to the jet's impact
 json.dump(s, open(f"{sys.argv[1]}/jet-A{sys.argv[2]}.json", "w"))
 PY
   rm -rf /tmp/jet-A$A
   start=$(date +%s.%N)
-  $B record --scene "$out/jet-A$A.json" --spacing "$dx" --frames "$frames" --size 960x540 --shading fresnel \
+  $B record --scene "$out/jet-A$A.json" --spacing "$dx" --frames "$frames" --size 960x540 --shading ${SHADING:-fresnel} \
      --out /tmp/jet-A$A > "$out/jet-A$A.txt" 2>&1
   rc=$?
   end=$(date +%s.%N)
   echo "== A=$A rc=$rc wall $(python3 -c "print(round($end-$start,1))") s: $(tail -2 "$out/jet-A$A.txt" | tr '\n' ' ')"
-  for f in 20 30 44; do
+  for f in ${KEEP:-20 30 44}; do
     p=$(printf "/tmp/jet-A%s/frame_%05d.png" "$A" "$f")
-    [ -f "$p" ] && cp "$p" "$out/jet-A$A-frame$f.png"
+    [ -f "$p" ] && cp "$p" "$out/jet-A$A-${SHADING:-fresnel}-frame$f.png"
   done
 done
 # Per-pass timings of the bundled jet (force, carried noise, sub-particles) at the same resolution.
