@@ -33,6 +33,7 @@ PY
   done
 done
 # Per-pass timings of the bundled jet (force, carried noise, sub-particles) at the same resolution.
+[ -n "${NOPROFILE:-}" ] && exit 0
 $B profile --scene turbulent-jet --spacing "$dx" --size 960x540 --frames 6 --warmup 14 \
    --json "$out/jet-profile.json" > "$out/jet-profile.txt" 2>&1
 echo "== profile jet (rc $?)"
