@@ -100,6 +100,7 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
       integrate_pass_(timer.pass("integrate")),
       diag_pass_(timer.pass("diagnostics")),
       boundary_pass_(timer.pass("boundary-volume")),
+      boundary_cells_pass_(timer.pass("boundary-cells")),
       begin_(shader::Program::compute(shaders, "sim/sph/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/sph/choose_time_step.comp")),
       density_prog_(shader::Program::compute(shaders, "sim/sph/compute_density.comp", list_defines(scene))),
@@ -186,7 +187,7 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
         glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);   // Morton keys between cells
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        auto pass = timer_.scope(boundary_pass_);
+        auto pass = timer_.scope(boundary_cells_pass_);
         params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
         grid_.bind_params(boundary_count_);
         boundary_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_BOUNDARY);

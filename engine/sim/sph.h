@@ -102,7 +102,7 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId begin_pass_, step_pass_, density_pass_, forces_pass_, integrate_pass_, diag_pass_,
-        boundary_pass_;
+        boundary_pass_, boundary_cells_pass_;
     shader::Program begin_, choose_, density_prog_, forces_, integrate_, boundary_volume_, flag_boundary_;
     gpu::SphParams params_{};
     GuardLimits limits_;
