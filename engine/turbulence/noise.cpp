@@ -129,10 +129,14 @@ glm::vec3 epoch_offset(float m, int n, int lmin) {
 
 float noise_epoch(int p, float t, float period) { return std::floor(t / period + 0.5f * float(p)); }
 
-gpu::NoiseSeed reseed_noise(gpu::NoiseSeed s, glm::vec3 x, float t, float period) {
+gpu::NoiseSeed reseed_noise(const NoiseTiles& tiles, gpu::NoiseSeed s, glm::vec3 x, float t, float period, int lmin, int lmax,
+                            float beta) {
     for (int p = 0; p < 2; ++p) {
         const float k = noise_epoch(p, t, period);
-        if (s.phase[p].w != k) s.phase[p] = glm::vec4(x, k);
+        if (s.phase[p].w != k) {
+            s.phase[p] = glm::vec4(x, k);
+            s.value[p] = glm::vec4(curl_noise_octaves(tiles, x + epoch_offset(2.0f * k + float(p), tiles.n, lmin), lmin, lmax, beta), 0.0f);
+        }
     }
     return s;
 }
@@ -156,6 +160,7 @@ glm::vec3 carried_noise(const NoiseTiles& tiles, const gpu::NoiseSeed& s, glm::v
 gpu::NoiseSeed unseeded_noise() {
     gpu::NoiseSeed s{};
     s.phase[0] = s.phase[1] = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    s.value[0] = s.value[1] = glm::vec4(0.0f);
     return s;
 }
 

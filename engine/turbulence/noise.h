@@ -61,10 +61,12 @@ glm::vec3 curl_noise_octaves(const NoiseTiles& tiles, glm::vec3 x, int lmin, int
 
 // The noise carried with the fluid (glsl/turbulence/carried_noise.glsl states the scheme), CPU
 // references (tests): the per-epoch offset o(m) (m), phase p's epoch at t, the re-seeding of the
-// phases whose epoch changed (s_p = x), and y_c at offset d (m) from the seeded positions.
+// phases whose epoch changed (s_p = x and the phase's value y(q_p)), and y_c at offset d (m) from the
+// seeded positions.
 glm::vec3 epoch_offset(float m, int n, int lmin);
 float noise_epoch(int p, float t, float period);
-gpu::NoiseSeed reseed_noise(gpu::NoiseSeed s, glm::vec3 x, float t, float period);
+gpu::NoiseSeed reseed_noise(const NoiseTiles& tiles, gpu::NoiseSeed s, glm::vec3 x, float t, float period, int lmin, int lmax,
+                            float beta);
 glm::vec3 carried_noise(const NoiseTiles& tiles, const gpu::NoiseSeed& s, glm::vec3 d, float t, float period, int lmin,
                         int lmax, float beta);
 // Seeds that no epoch matches (w = −1): the first re-seeding sets every phase.

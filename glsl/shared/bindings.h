@@ -286,8 +286,9 @@ RANRYU_STRUCT_END(NoiseParams, 48)
 #define RANRYU_SSBO_SORTED_NOISE_SEED 4    // NoiseSeed[particles]: the reorder pass's output
 RANRYU_STRUCT(NoiseSeed) {
     vec4 phase[2];   // xyz: where the phase was seeded (m); w: the epoch it was seeded in (float, -1: never)
+    vec4 value[2];   // xyz: the phase's octave sum y(q_p), fixed for the epoch (carried_noise.glsl); w: 0
 }
-RANRYU_STRUCT_END(NoiseSeed, 32)
+RANRYU_STRUCT_END(NoiseSeed, 64)
 
 // Sub-particles (engine/turbulence/subparticles.h, glsl/turbulence/subparticles/): they share the
 // marching cubes' bindings 22-27 (no pass binds both) and UBO 6; their section follows.

@@ -4,8 +4,10 @@
 // A (1/m) the amplitude, ê_i (m²/s²) the wavelet energy of the current cell order
 // (analyse_velocity.comp), y_c,i the curl-noise octave sum carried with particle i
 // (carried_noise.glsl, dimensionless). The pass first re-seeds the particle's noise phases whose
-// epoch began since the last substep (s_p = x_i at the substep's time), so the seeds follow the
-// fluid's cell order (the reorder moves them) and the sub-particles read them after the frame.
+// epoch began since the last substep (s_p = x_i at the substep's time, and the phase's octave sum
+// y(q_p), which is fixed for the epoch: the noise is evaluated once a phase and coherence time, not
+// every substep), so the seeds follow the fluid's cell order (the reorder moves them) and the
+// sub-particles read them after the frame.
 // Runs after the forces pass, before integrate. Folds the new |a_i| into step.max_accel with one
 // atomic per workgroup (the next substep's dt, eq. (7), reads it).
 #include "../sim/sph/sph_common.glsl"
@@ -30,12 +32,13 @@ void main() {
         vec3 a = accel[i].xyz;
         float t = step.time;
         NoiseSeed s = seed[i];
-        NoiseSeed r = reseed_noise(s, position[i].xyz, t, coherence_time);
+        int n = int(noise.tile_size);
+        NoiseSeed r = reseed_noise(s, position[i].xyz, t, coherence_time, noise.lmin, noise.lmax, noise.beta, n);
         if (r.phase[0] != s.phase[0] || r.phase[1] != s.phase[1]) seed[i] = r;
         float e = energy[i].w;
         // dt = 0: NaN maxima, no step is taken; e = 0: no turbulence here. Either way, no force.
         if (e > 0.0 && step.dt > 0.0) {
-            vec3 y = carried_noise(r, vec3(0.0), t, coherence_time, noise.lmin, noise.lmax, noise.beta, int(noise.tile_size));
+            vec3 y = carried_value(r, t, coherence_time);   // the octave sums were evaluated at re-seeding
             a += (amplitude * e) * y;
             accel[i] = vec4(a, 0.0);
         }

@@ -26,30 +26,45 @@ vec3 epoch_offset(float m, int n, int lmin) {
 // The epoch of phase p at time t: floor(t/T + p/2).
 float noise_epoch(int p, float t, float period) { return floor(t / period + 0.5 * float(p)); }
 
-// Re-seeds the phases whose epoch has changed since they were seeded: s_p = x.
-NoiseSeed reseed_noise(NoiseSeed s, vec3 x, float t, float period) {
+// Re-seeds the phases whose epoch has changed since they were seeded: s_p = x, and the phase's value
+// y(q_p) for the octaves lmin..lmax, which stays fixed until the next re-seeding (q_p does).
+NoiseSeed reseed_noise(NoiseSeed s, vec3 x, float t, float period, int lmin, int lmax, float beta, int n) {
     for (int p = 0; p < 2; ++p) {
         float k = noise_epoch(p, t, period);
-        if (s.phase[p].w != k) s.phase[p] = vec4(x, k);
+        if (s.phase[p].w != k) {
+            s.phase[p] = vec4(x, k);
+            s.value[p] = vec4(curl_noise_octaves(x + epoch_offset(2.0 * k + float(p), n, lmin), lmin, lmax, beta, n), 0.0);
+        }
     }
     return s;
 }
 
+// The weights w_p of the two phases at t, and 1/√(w_0² + w_1²).
+vec3 carried_weights(float t, float period) {
+    vec2 w = sin(3.14159265 * fract(vec2(t / period) + vec2(0.0, 0.5)));   // fract: sin's argument stays in [0, π]
+    w *= w;
+    return vec3(w, inversesqrt(dot(w, w)));
+}
+
+// y_c at offset 0 from the seeded positions, from the values the re-seeding stored: the blend alone,
+// with no noise to evaluate (the value of carried_noise(s, vec3(0), ...) once s is re-seeded at t).
+vec3 carried_value(NoiseSeed s, float t, float period) {
+    vec3 w = carried_weights(t, period);
+    return (w.x * s.value[0].xyz + w.y * s.value[1].xyz) * w.z;
+}
+
 // y_c at time t for the seeds s, sampled at offset d (m) from the seeded positions, octaves lmin..lmax.
 vec3 carried_noise(NoiseSeed s, vec3 d, float t, float period, int lmin, int lmax, float beta, int n) {
+    vec3 w = carried_weights(t, period);
     vec3 y = vec3(0.0);
-    float norm = 0.0;
     for (int p = 0; p < 2; ++p) {
-        float w = sin(3.14159265 * fract(t / period + 0.5 * float(p)));   // fract: sin's argument stays in [0, π]
-        w *= w;
-        norm += w * w;
-        if (w > 0.0) {
+        if (w[p] > 0.0) {
             // The seeded epoch (= k_p once the force pass has re-seeded at t) names the offset.
             vec3 q = s.phase[p].xyz + epoch_offset(2.0 * s.phase[p].w + float(p), n, lmin) + d;
-            y += w * curl_noise_octaves(q, lmin, lmax, beta, n);
+            y += w[p] * curl_noise_octaves(q, lmin, lmax, beta, n);
         }
     }
-    return y * inversesqrt(norm);
+    return y * w.z;
 }
 
 #endif

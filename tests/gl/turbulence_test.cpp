@@ -289,7 +289,7 @@ std::vector<glm::vec4> upload_tagged_shear(SphRig& r) {
 
 }  // namespace
 
-TEST_CASE("turbulence: each particle's noise seeds move with it through the reorders and re-seed once an epoch",
+TEST_CASE("turbulence: each particle's noise seeds and values move with it through the reorders and re-seed once an epoch",
           "[turbulence]") {
     // T = 3 ms against substeps of about 1 ms: 12 substeps cross several epochs of both phases. After
     // every substep, for every particle (found by its id), phase p's seed must be exactly where that
@@ -331,6 +331,18 @@ TEST_CASE("turbulence: each particle's noise seeds move with it through the reor
                     INFO("substep " << k << ", particle id " << after[i].w << ", phase " << ph);
                     REQUIRE(seeds[i].phase[ph] == want);
                 }
+                // The phase's value, y(q_p) evaluated at re-seeding, travelled with it: within the GPU
+                // noise's agreement with the CPU's (noise_test.cpp: 1e-4 of the field's rms; |y| here).
+                const auto& cfg = r.scene.turbulence;
+                const glm::vec3 y = ranryu::turbulence::curl_noise_octaves(
+                    r.sph.turbulence()->tiles(),
+                    glm::vec3(want) + ranryu::turbulence::epoch_offset(2.0f * want.w + float(ph), r.sph.turbulence()->tiles().n, cfg.lmin),
+                    cfg.lmin, cfg.lmax, cfg.beta);
+                const float err = glm::length(glm::vec3(seeds[i].value[ph]) - y);
+                if (!(err <= 1e-4f * std::max(glm::length(y), 1.0f))) {
+                    INFO("substep " << k << ", particle id " << after[i].w << ", phase " << ph << ": value off by " << err);
+                    REQUIRE(err <= 1e-4f * std::max(glm::length(y), 1.0f));
+                }
             }
     }
     r.sph.end_frame();
@@ -363,7 +375,7 @@ TEST_CASE("turbulence: the carried noise changes smoothly along a trajectory, ac
     for (int k = 0; k <= 1500; ++k) {
         const float t = float(k) * delta;
         const glm::vec3 x = x0 + U * t;
-        const ranryu::gpu::NoiseSeed r = reseed_noise(s, x, t, T);
+        const ranryu::gpu::NoiseSeed r = reseed_noise(tiles, s, x, t, T, lmin, lmax, beta);
         crossings += k > 0 && (r.phase[0].w != s.phase[0].w || r.phase[1].w != s.phase[1].w);
         s = r;
         const glm::vec3 yc = carried_noise(tiles, s, glm::vec3(0.0f), t, T, lmin, lmax, beta);
