@@ -334,18 +334,18 @@ TEST_CASE("turbulence: each particle's noise seeds and values move with it throu
                 // The phase's value, y(q_p) evaluated at re-seeding, travelled with it. Tolerance: q_p
                 // includes the epoch offset (up to n·2^−lmin = 4 m), so 2^lmax·q reaches ~130 noise
                 // units, where a float's spacing (1.5e-5) times the noise's gradient lets two correct
-                // evaluations (CPU, and GPU with its own FMA contraction) differ by a few 1e-4 of |y|:
-                // measured 1.3e-4 |y| on NVIDIA 580. 1e-3 of max(|y|, 1) allowed; a stale or
-                // misplaced value differs by O(|y|).
+                // evaluations (CPU, and GPU with its own FMA contraction and GLSL's looser ceil/fract
+                // chain) differ: measured up to 1.0e-3 on NVIDIA 580 (|y| ~ 1), under 1e-4 on Mesa. 1e-2 of
+                // max(|y|, 1) allowed: a stale or misplaced value differs by O(|y|).
                 const auto& cfg = r.scene.turbulence;
                 const glm::vec3 y = ranryu::turbulence::curl_noise_octaves(
                     r.sph.turbulence()->tiles(),
                     glm::vec3(want) + ranryu::turbulence::epoch_offset(2.0f * want.w + float(ph), r.sph.turbulence()->tiles().n, cfg.lmin),
                     cfg.lmin, cfg.lmax, cfg.beta);
                 const float err = glm::length(glm::vec3(seeds[i].value[ph]) - y);
-                if (!(err <= 1e-3f * std::max(glm::length(y), 1.0f))) {
+                if (!(err <= 1e-2f * std::max(glm::length(y), 1.0f))) {
                     INFO("substep " << k << ", particle id " << after[i].w << ", phase " << ph << ": value off by " << err);
-                    REQUIRE(err <= 1e-3f * std::max(glm::length(y), 1.0f));
+                    REQUIRE(err <= 1e-2f * std::max(glm::length(y), 1.0f));
                 }
             }
     }
