@@ -38,7 +38,7 @@ std::string neighbour_defines(const scene::Scene& s) {
 }
 
 // Runs a neighbour walk visits: 9 merged x-rows, or 27 cells (neighbour_defines()).
-int neighbour_runs(const scene::Scene& s) { return neighbour_defines(s).empty() ? 27 : 9; }
+int runs_of(const scene::Scene& s) { return neighbour_defines(s).empty() ? 27 : 9; }
 
 // Density records, per run, which candidates lie inside h, for forces to read instead of testing every
 // candidate again (glsl/sim/sph/compute_density.comp, compute_forces.comp).
@@ -138,8 +138,9 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     density_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "sph.density");
     accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "sph.accel");
     pair_terms_ = gl::Buffer(n * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "sph.pair_terms");
+    runs_ = runs_of(scene);
     if (scene.sph.neighbour_masks)   // (start, mask) per run and particle
-        neighbours_ = gl::Buffer(n * 2 * std::size_t(neighbour_runs(scene)) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
+        neighbours_ = gl::Buffer(n * 2 * std::size_t(runs_) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
                                  "sph.neighbour_masks");
     ranges_ = grid_.make_ranges("sph.cells");
     boundary_ranges_ = grid_.make_ranges("sph.boundary_cells");
@@ -217,6 +218,7 @@ void Sph::upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::v
     if (x.size() != count_ || v.size() != count_) throw Error("Sph::upload_state: expected " + std::to_string(count_) + " particles");
     position_[current_].upload(x.data(), x.size() * sizeof(glm::vec4));
     velocity_[current_].upload(v.data(), v.size() * sizeof(glm::vec4));
+    masks_current_ = false;
 }
 
 void Sph::begin_frame(std::uint64_t frame_index) {
@@ -288,6 +290,7 @@ void Sph::choose_time_step() {
 }
 
 void Sph::rebuild_grid() {
+    masks_current_ = false;
     const int next = 1 - current_;
     grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_, /*clear=*/false,
                 turbulence_ ? &seed_[current_] : nullptr, turbulence_ ? &seed_[next] : nullptr);
@@ -299,6 +302,7 @@ void Sph::compute_density() {
     bind_fields();
     density_prog_.dispatch(count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    masks_current_ = neighbours_.id() != 0;
 }
 
 void Sph::compute_forces() {
@@ -309,6 +313,7 @@ void Sph::compute_forces() {
 }
 
 void Sph::integrate() {
+    masks_current_ = false;
     auto pass = timer_.scope(integrate_pass_);
     bind_fields();
     obstacles_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_OBSTACLES);

@@ -72,8 +72,12 @@ public:
     const gl::Buffer& velocities() const { return velocity_[current_]; }
     const gl::Buffer& densities() const { return density_; }
     const gl::Buffer& accelerations() const { return accel_; }
-    // The density pass's (run start, mask) pairs, 2·runs·count() uints (sph.neighbour_masks; tests).
+    // The density pass's (run start, mask) pairs, 2·runs·count() uints (sph.neighbour_masks; tests),
+    // and whether they describe the current cell order and positions: set by compute_density(),
+    // cleared by rebuild_grid() and integrate() (which move or reorder the particles).
     const gl::Buffer& neighbour_masks() const { return neighbours_; }
+    bool neighbour_masks_current() const { return masks_current_; }
+    int neighbour_runs() const { return runs_; }   // runs a neighbour walk visits: 9 merged rows or 27 cells
     const gl::Buffer& boundary() const { return boundary_; }
     const gl::Buffer& step_state() const { return step_; }
     const CellRanges& cell_ranges() const { return ranges_; }
@@ -115,6 +119,8 @@ private:
     int current_ = 0;
     gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
     gl::Buffer neighbours_;   // sph.neighbour_masks only
+    bool masks_current_ = false;
+    int runs_ = 9;
     gl::Buffer obstacles_;   // obstacle_shapes(): integrate's last-resort projection (docs/SPH.md (8))
     gl::Buffer pair_terms_;      // vec2 per particle: (rho, p/rho^2) for the forces pass's gathers
     gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)

@@ -14,6 +14,9 @@ WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::Gpu
       pass_(timer.pass("wavelet")),
       // 27 cells per particle, never RANRYU_MERGE_ROWS: correct for linear and Morton keys alike.
       program_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp")),
+      // The density pass's masks, for its 9 merged rows or 27 cells (sim::Sph::neighbour_runs()).
+      masked_9_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp", "#define RANRYU_NEIGHBOUR_RUNS 9u\n")),
+      masked_27_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp", "#define RANRYU_NEIGHBOUR_RUNS 27u\n")),
       capacity_(capacity),
       energy_(std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
       params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams"),
@@ -43,7 +46,14 @@ void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
     sph.grid().sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
     params_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_PARAMS);
     energy_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
-    program_.dispatch(count);
+    last_masks_ = sph.neighbour_masks_current() ? 1 : 0;
+    if (last_masks_) {
+        sph.densities().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_DENSITY);
+        sph.neighbour_masks().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NEIGHBOURS);
+        (sph.neighbour_runs() == 9 ? masked_9_ : masked_27_).dispatch(count);
+    } else {
+        program_.dispatch(count);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 

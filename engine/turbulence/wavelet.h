@@ -67,13 +67,17 @@ public:
     void analyse(sim::Sph& sph, float scale);
 
     const gl::Buffer& energy() const { return energy_; }   // vec4[capacity]: (û_i, ê_i)
+    // Passes run by analyse(): walks (the grid walk) or masks (from the density pass's neighbour
+    // masks, when sph.neighbour_masks_current(); analyse_velocity.comp). Tests.
+    int last_path_masks() const { return last_masks_; }
     std::size_t capacity() const { return capacity_; }
 
 private:
     profile::GpuTimer& timer_;
     profile::PassId pass_;
-    shader::Program program_;
+    shader::Program program_, masked_9_, masked_27_;
     std::size_t capacity_;
+    int last_masks_ = 0;
     gl::Buffer energy_, params_, sph_params_;
 };
 

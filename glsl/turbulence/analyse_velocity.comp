@@ -12,6 +12,11 @@
 // (sph_common.glsl's fluid_run() tells stale ranges from current ones), GridParams, SphParams
 // (particle_count, for fluid_run()), WaveletParams.
 // Output: energy[i] = (û_i, ê_i) for i < particle_count.
+// With RANRYU_NEIGHBOUR_RUNS (the density pass's run count), the candidates come from the density
+// pass's neighbour masks (compute_density.comp) for the particles whose masks are complete: they hold
+// every fluid j != i within h of x_i, a superset of the terms (R·s <= h), in the walk's order; the
+// j = i term (ψ(0) = 3 to ψ_sum, 0 to the sum) is added first. The same terms, with ψ_sum summed in
+// another order: within the reference's float bound either way (wavelet_test.cpp).
 #include "../sim/sph/sph_common.glsl"
 
 layout(local_size_x = 128) in;
@@ -19,6 +24,10 @@ layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 
 layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430, binding = RANRYU_SSBO_WAVELET_PARAMS) readonly buffer Wavelet { WaveletParams wavelet; };
 layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) writeonly buffer Energy { vec4 energy[]; };
+#ifdef RANRYU_NEIGHBOUR_RUNS
+layout(std430, binding = RANRYU_SSBO_DENSITY) readonly buffer Density { vec4 density[]; };   // w: flags
+layout(std430, binding = RANRYU_SSBO_NEIGHBOURS) readonly buffer Neighbours { uint neighbours[]; };
+#endif
 
 // The 3-D Mexican hat at |x|² = q2.
 float mexican_hat(float q2) { return (3.0 - q2) * exp(-0.5 * q2); }
@@ -32,6 +41,29 @@ void main() {
     float r2 = wavelet.truncation * wavelet.truncation;
     vec3 sum = vec3(0.0);
     float psi_sum = 0.0;
+#ifdef RANRYU_NEIGHBOUR_RUNS
+    if ((floatBitsToUint(density[i].w) & 1u) != 0u) {
+        uint n = wavelet.particle_count;
+        psi_sum = 3.0;   // j = i: |ψ(0)| = 3, and u_i − u_i = 0
+        for (uint r = 0u; r < RANRYU_NEIGHBOUR_RUNS; ++r) {
+            uint start = neighbours[2u * r * n + i], mask = neighbours[(2u * r + 1u) * n + i];
+            while (mask != 0u) {
+                uint j = start + uint(findLSB(mask));
+                mask &= mask - 1u;
+                vec3 d = (xi - position[j].xyz) * inv_s;
+                float q2 = dot(d, d);
+                if (q2 < r2) {
+                    float psi = mexican_hat(q2);
+                    sum += (velocity[j].xyz - ui) * psi;
+                    psi_sum += abs(psi);
+                }
+            }
+        }
+        vec3 u_hat = sum / psi_sum;
+        energy[i] = vec4(u_hat, 0.5 * dot(u_hat, u_hat));
+        return;
+    }
+#endif
     ivec3 c = grid_cell(xi);
     FOR_EACH_RUN {
         uvec2 run = NEIGHBOUR_RUN(c, true);

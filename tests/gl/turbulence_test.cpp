@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -407,4 +408,49 @@ TEST_CASE("turbulence: the carried noise changes smoothly along a trajectory, ac
     CHECK(crossings == 6);   // both phases, every T, over 3T: the scheme was exercised
     CHECK(worst > 0.05);     // the bound is not vacuous
     CHECK(eulerian_path > 3.0 * carried_path);
+}
+
+TEST_CASE("turbulence: the wavelet pass from the density pass's neighbour masks matches its grid walk", "[turbulence]") {
+    // After compute_density() the wavelet pass reads the density pass's neighbour masks instead of
+    // walking the grid (analyse_velocity.comp): the same terms, in the same order but for the j = i
+    // term of ψ_sum, which it adds first. So û and ê agree with the walk's to the rounding of ψ_sum's
+    // sum of ~40 terms, a few 1e-6 relative: 2e-5 of ê (plus 1e-12 m²/s² where ê is ~0) allowed.
+    SphRig r(block_json(turbulence_json(20.0)), "turbulence_test");
+    upload_shear(r);
+    const auto& w = r.sph.turbulence()->wavelet();
+    r.timer.begin_frame();
+    r.sph.begin_frame(0);
+    r.sph.choose_time_step();
+    r.sph.rebuild_grid();
+    r.sph.analyse_turbulence();   // masks not current: the walk
+    CHECK(w.last_path_masks() == 0);
+    const auto walk = w.energy().read<glm::vec4>(r.sph.count());
+    r.sph.compute_density();
+    r.sph.analyse_turbulence();   // the masks
+    CHECK(w.last_path_masks() == 1);
+    const auto masked = w.energy().read<glm::vec4>(r.sph.count());
+    const auto density = r.read(r.sph.densities());
+    r.sph.compute_forces();
+    r.sph.integrate();
+    r.sph.end_frame();
+    r.timer.end_frame();
+    r.finish();
+    std::size_t complete = 0, energetic = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < walk.size(); ++i) {
+        std::uint32_t flags;
+        std::memcpy(&flags, &density[i].w, sizeof flags);
+        complete += flags & 1u;
+        energetic += walk[i].w > 0.0f;
+        const double err = std::abs(double(masked[i].w) - double(walk[i].w));
+        worst = std::max(worst, err / std::max(double(walk[i].w), 1e-30));
+        if (!(err <= 2e-5 * double(walk[i].w) + 1e-12)) {
+            INFO("particle " << i << ": walk " << walk[i].w << ", masks " << masked[i].w);
+            CHECK(err <= 2e-5 * double(walk[i].w) + 1e-12);
+        }
+    }
+    INFO("worst relative difference " << worst << "; " << complete << " of " << walk.size() << " masks complete");
+    CHECK(complete == walk.size());
+    CHECK(energetic > walk.size() / 2);
+    ranryu::test::require_no_gl_errors();
 }
