@@ -29,7 +29,7 @@ for f in db-1m-walk db-1m-masks db-100k-masks db-4m-masks; do
 import json, sys
 r = json.load(open(sys.argv[1]))
 passes = r["passes"] if isinstance(r, dict) and "passes" in r else r
-sub = ("choose-time-step", "hash", "sort.count", "sort.scan", "sort.scatter", "cell-ranges", "reorder", "density", "forces", "integrate")
+sub = ("choose-time-step", "hash", "sort.count", "sort.scan", "sort.scatter", "reorder", "density", "forces", "integrate")
 tot = 0.0
 for p in passes:
     if p["name"] in sub:
@@ -38,7 +38,7 @@ print(sys.argv[1].split("/")[-1], "substep ms", round(tot, 4))
 PY
 done
 # The sub-particle passes at 1M parents, 10/50/100 % energetic (tests/gl/subparticle_test.cpp).
-build/gpu/tests/ranryu_gl_tests "[subparticle],[turbulence],[grid]" > "$out/sub-tests.txt" 2>&1
+build/gpu/tests/ranryu_gl_tests "[subparticles],[turbulence],[grid]" > "$out/sub-tests.txt" 2>&1
 grep -E "FAILED|with expansion" -A4 "$out/sub-tests.txt" | head -30; tail -2 "$out/sub-tests.txt"
 build/gpu/tests/ranryu_gl_tests "[subparticle-bench]" > "$out/subparticle-bench.txt" 2>&1
 grep -E "^sub-particles,|^(subparticles|level-set|surface)" "$out/subparticle-bench.txt"

@@ -266,19 +266,13 @@ std::string scene_file(const std::string& name) {
 // Bounds. The projection (integrate_particles.comp) lets a centre lie kSlack = dx/4 inside a solid
 // (the particle boundary's own range under load: a resting column's bottom layer dips 0.15 dx past the
 // floor) and puts one found deeper back at that depth, to float rounding: 1e-6 m with room at these
-// coordinates. So the tank's walls and floor, at any height: dx/4 + 1e-6 m. Obstacles: the same where
-// their projection is compiled in (bindings.h defines RANRYU_SSBO_OBSTACLES and Sph binds
-// obstacle_shapes()); without it the particle boundary alone holds the fluid, and lets a splash
-// particle in (too few neighbours for any pressure, eq. (3), until the boundary's density makes up for
-// the missing fluid): measured up to 0.45 dx here on llvmpipe, at convex edges. The bound is then one
-// spacing: no particle gets through the boundary's outer layers.
+// coordinates. So the tank's walls and floor, at any height, and the obstacles: dx/4 + 1e-6 m. (The
+// particle boundary alone, without the projection, let a splash particle up to 0.45 dx into a box at
+// its convex edges here on llvmpipe: too few neighbours for any pressure, eq. (3), until the
+// boundary's density makes up for the missing fluid.)
 constexpr double kDx = 0.025;
 constexpr double kProjected = 0.25 * kDx + 1e-6;
-#ifdef RANRYU_SSBO_OBSTACLES
 constexpr double kObstacleBound = kProjected;
-#else
-constexpr double kObstacleBound = kDx;
-#endif
 
 void check_jet(const JetRun& r, double dx) {
     INFO("guard: " << (r.unstable.empty() ? "stable" : r.unstable));

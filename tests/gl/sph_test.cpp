@@ -496,22 +496,27 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
     // testing every candidate and walks the boundary runs only when flagged (compute_density.comp). The
     // same pairs in the same order through the same add_pair() give the same float sums: required
     // equal, bit for bit, to the walk without masks, on a block at rest density (every mask complete:
-    // the masks' set bits count the brute-force neighbours) and on one compressed to ~4 ρ0 (37
-    // particles a cell: a neighbour 32 or more places into its run, so some particles fall back to
-    // the walk, both paths in one dispatch).
+    // the masks' set bits count the brute-force neighbours) and on a compressed one (some particles
+    // fall back to the walk, both paths in one dispatch), with linear keys (9 merged rows) and Morton
+    // keys (27 cells).
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     Rig probe(scene_json(0.3));
-    for (float pitch : {0.98f, 0.62f}) {
-        INFO("pitch " << pitch << " dx");
+    // Compressed far enough that some run holds a neighbour 32 or more places in: a merged row of
+    // three cells at pitch 0.62 (~110 candidates), a single cell at 0.5 (~64).
+    for (const std::string keys : {"linear", "morton"})   // 9 merged rows, or 27 cells
+    for (float pitch : {0.98f, keys == "linear" ? 0.62f : 0.5f}) {
+        INFO(keys << " keys, pitch " << pitch << " dx");
         std::vector<glm::vec4> x, v;
         block_state(rng, probe, glm::vec3(0.0f), pitch, 0.1f, 0.1f, x, v);
-        Rig walk(scene_json(0.3, R"("neighbour_masks": false)"));
+        const std::string k = R"("neighbour_keys": ")" + keys + R"(")";
+        Rig walk(scene_json(0.3, k + R"(, "neighbour_masks": false)"));
         const Fields base = run_fields(walk, x, v);
-        Rig rig(scene_json(0.3));
+        Rig rig(scene_json(0.3, k));
         const Fields f = run_fields(rig, x, v);
         REQUIRE(f.x == base.x);   // the same sorted order
-        const std::size_t n = f.x.size(), runs = 9;
+        const std::size_t n = f.x.size(), runs = std::size_t(rig.sph.neighbour_runs());
+        CHECK(runs == (keys == "linear" ? 9u : 27u));
         const std::vector<std::uint32_t> masks = rig.sph.neighbour_masks().read<std::uint32_t>(2 * runs * n);
         const double h = double(rig.sph.params().h);
         std::size_t complete = 0, mismatched = 0, walls = 0;

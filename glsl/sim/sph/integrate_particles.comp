@@ -20,11 +20,9 @@ layout(std430, binding = RANRYU_SSBO_ACCEL) readonly buffer Accel { vec4 accel[]
 
 const float kSlack = 0.25;   // spacings a centre may lie inside a solid before it is projected
 
-#ifdef RANRYU_SSBO_OBSTACLES
 // engine/sim/boundary.h obstacle_shapes(): (count, 0, 0, 0), then per obstacle a box as (min, 0),
 // (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0).
 layout(std430, binding = RANRYU_SSBO_OBSTACLES) readonly buffer Obstacles { vec4 obstacle[]; };
-#endif
 
 // The tank's walls and floor. The guard's domain is the tank grown by one spacing at the walls and
 // floor (engine/sim/sph.cpp, sph_params), so the tank is the domain less that spacing. A wall is a slab
@@ -43,7 +41,6 @@ void keep_in_tank(inout vec3 x, inout vec3 v) {
     }
 }
 
-#ifdef RANRYU_SSBO_OBSTACLES
 // Obstacles are solid throughout: a centre more than the slack inside one goes back to that depth
 // (a sphere: radially; a box: through the face it entered by, which is the face of least depth among
 // those the particle was outside of before the step, so it cannot tunnel through a thin box). The
@@ -79,7 +76,6 @@ void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
         }
     }
 }
-#endif
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -90,9 +86,7 @@ void main() {
         vec3 x0 = position[i].xyz;
         vec3 v = velocity[i].xyz + dt * accel[i].xyz;
         vec3 x = x0 + dt * v;
-#ifdef RANRYU_SSBO_OBSTACLES
         keep_out_of_obstacles(x0, x, v);
-#endif
         keep_in_tank(x, v);
         position[i] = vec4(x, position[i].w);
         velocity[i] = vec4(v, velocity[i].w);
