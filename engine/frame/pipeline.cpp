@@ -28,7 +28,7 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
         sph_ = std::make_unique<sim::Sph>(shaders, timer_, scene_);
         if (scene_.turbulence.subparticles.enabled())
             sub_ = std::make_unique<turbulence::Subparticles>(shaders, timer_, scene_.turbulence, scene_.spacing, sph_->count(),
-                                                              sph_->turbulence()->tiles());
+                                                              sph_->turbulence()->tiles(), sph_->turbulence()->noise());
         if (render::needs_surface(renderer_.shading())) {
             // Level set defaults (surface/level_set.h) with the scene's grid; the mesh's capacity.
             surface::LevelSetSettings ls = surface::LevelSetSettings::for_spacing(scene_.spacing);

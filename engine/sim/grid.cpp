@@ -6,7 +6,6 @@
 #include "core/error.h"
 
 namespace ranryu::sim {
-namespace {
 
 std::uint32_t spread_bits(std::uint32_t v) {   // as in glsl/sim/grid.glsl
     v &= 0x3FFu;
@@ -16,8 +15,6 @@ std::uint32_t spread_bits(std::uint32_t v) {   // as in glsl/sim/grid.glsl
     v = (v | (v << 2)) & 0x09249249u;
     return v;
 }
-
-}  // namespace
 
 GridLayout GridLayout::covering(glm::vec3 min, glm::vec3 max, float cell, bool morton) {
     GridLayout g;

@@ -26,6 +26,9 @@ struct GridLayout {
     gpu::GridParams params(std::uint32_t count) const;
 };
 
+// Morton keys: the low 10 bits of v spread to every third bit of 30 (glsl/sim/grid.glsl's spread_bits).
+std::uint32_t spread_bits(std::uint32_t v);
+
 // The cell ranges of one particle set.
 struct CellRanges {
     gl::Buffer start, end;

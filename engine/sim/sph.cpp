@@ -202,7 +202,8 @@ Sph::Sph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     timer_.drain();
     timer_.reset_samples();
     if (scene.turbulence.enabled()) {
-        turbulence_ = std::make_unique<turbulence::TurbulenceForce>(shaders, timer_, scene.turbulence, params_.h, count_);
+        turbulence_ = std::make_unique<turbulence::TurbulenceForce>(shaders, timer_, scene.turbulence, params_.h, count_,
+                                                                    neighbours_.id() ? runs_ : 0);
         const std::vector<gpu::NoiseSeed> unseeded(n, turbulence::unseeded_noise());
         for (int k = 0; k < 2; ++k)
             seed_[k] = gl::Buffer::from<gpu::NoiseSeed>(unseeded, GL_DYNAMIC_COPY, "sph.noise_seed." + std::to_string(k));

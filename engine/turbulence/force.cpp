@@ -8,14 +8,14 @@
 namespace ranryu::turbulence {
 
 TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::GpuTimer& timer,
-                                 const scene::TurbulenceSettings& settings, float h, std::size_t capacity)
+                                 const scene::TurbulenceSettings& settings, float h, std::size_t capacity, int mask_runs)
     : timer_(timer),
       pass_(timer.pass("turbulence-force")),
       settings_(settings),
       // settings.scale <= 1/3 (scene.cpp); the clamp absorbs float rounding of s = h/3.
       scale_(std::min(settings.scale * h, WaveletAnalysis::max_scale(h))),
       tiles_(NoiseTiles::generate(settings.seed)),
-      wavelet_(shaders, timer, capacity),
+      wavelet_(shaders, timer, capacity, mask_runs),
       noise_(shaders, timer, tiles_),
       program_(shader::Program::compute(shaders, "turbulence/apply_turbulence_force.comp")),
       noise_params_(sizeof(gpu::NoiseParams), GL_STATIC_DRAW, nullptr, "turbulence NoiseParams") {

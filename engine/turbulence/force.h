@@ -37,9 +37,10 @@ namespace ranryu::turbulence {
 
 class TurbulenceForce {
 public:
-    // Tiles from settings.seed, the wavelet buffer for `capacity` particles. `h` is the SPH support (m).
+    // Tiles from settings.seed, the wavelet buffer for `capacity` particles. `h` is the SPH support (m);
+    // `mask_runs`, the SPH's neighbour-mask runs (0: none), as WaveletAnalysis takes it.
     TurbulenceForce(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
-                    float h, std::size_t capacity);
+                    float h, std::size_t capacity, int mask_runs = 0);
 
     void analyse(sim::Sph& sph);   // "wavelet": ê of sph's current cell order
     // "turbulence-force": a_i += A ê_i y_c,i on sph.accelerations(), re-seeding sph.noise_seeds();
@@ -48,6 +49,7 @@ public:
 
     const WaveletAnalysis& wavelet() const { return wavelet_; }
     const NoiseTiles& tiles() const { return tiles_; }   // the CPU copy (tests: curl_noise_octaves)
+    const CurlNoise& noise() const { return noise_; }    // the GPU tiles (the sub-particles bind them)
     const scene::TurbulenceSettings& settings() const { return settings_; }
     float scale() const { return scale_; }                // s (m)
 

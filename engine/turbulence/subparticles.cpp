@@ -133,7 +133,7 @@ std::string budget_note(const SubparticleStats& s) {
 }
 
 Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
-                           float spacing, std::size_t particles, const NoiseTiles& tiles)
+                           float spacing, std::size_t particles, const NoiseTiles& tiles, const CurlNoise& noise)
     : timer_(timer),
       classify_pass_(timer.pass("subparticles.classify")),
       budget_pass_(timer.pass("subparticles.budget")),
@@ -143,7 +143,7 @@ Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer&
       compact_(shader::Program::compute(shaders, "turbulence/subparticles/compact_split_particles.comp")),
       budget_(shader::Program::compute(shaders, "turbulence/subparticles/choose_level_cap.comp")),
       spawn_(shader::Program::compute(shaders, "turbulence/subparticles/spawn_subparticles.comp")),
-      noise_(shaders, timer, tiles),
+      noise_(noise),
       max_particles_(particles),
       readback_(sizeof(gpu::SubparticleState), 4, "subparticles.readback",
                 [this](std::uint64_t frame, const void* bytes) { on_record(frame, bytes); }) {

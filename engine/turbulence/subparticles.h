@@ -126,10 +126,11 @@ std::string budget_note(const SubparticleStats& s);
 class Subparticles {
 public:
     // The buffers' layout for `particles` parents: up to min(budget, particles·8^levels) sub-particles.
-    // `tiles` must be the force's (TurbulenceForce::tiles()): the seeds index the same field. Throws
+    // `tiles` and `noise` must be the force's (TurbulenceForce::tiles() and noise(), which must outlive
+    // this): the seeds index the same field, and the spawn pass binds noise's GPU tiles. Throws
     // InputError on levels outside 1..3 or a non-positive spacing.
     Subparticles(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
-                 float spacing, std::size_t particles, const NoiseTiles& tiles);
+                 float spacing, std::size_t particles, const NoiseTiles& tiles, const CurlNoise& noise);
     Subparticles(const Subparticles&) = delete;   // the stats' readback calls back into this object
     Subparticles& operator=(const Subparticles&) = delete;
 
@@ -176,7 +177,7 @@ private:
     profile::GpuTimer& timer_;
     profile::PassId classify_pass_, budget_pass_, spawn_pass_;
     shader::Program classify_, scan_, compact_, budget_, spawn_;
-    CurlNoise noise_;   // the tiles on the GPU (TurbulenceForce keeps its own copy private)
+    const CurlNoise& noise_;   // the force's tiles on the GPU
     gpu::SubparticleParams params_{};
     std::size_t max_particles_, capacity_;
     gl::Buffer params_ubo_, state_, levels_, blocks_, lists_, positions_, velocities_;

@@ -9,14 +9,16 @@
 
 namespace ranryu::turbulence {
 
-WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity)
+WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity,
+                                 int mask_runs)
     : timer_(timer),
       pass_(timer.pass("wavelet")),
       // 27 cells per particle, never RANRYU_MERGE_ROWS: correct for linear and Morton keys alike.
       program_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp")),
-      // The density pass's masks, for its 9 merged rows or 27 cells (sim::Sph::neighbour_runs()).
-      masked_9_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp", "#define RANRYU_NEIGHBOUR_RUNS 9u\n")),
-      masked_27_(shader::Program::compute(shaders, "turbulence/analyse_velocity.comp", "#define RANRYU_NEIGHBOUR_RUNS 27u\n")),
+      masked_(mask_runs > 0 ? shader::Program::compute(shaders, "turbulence/analyse_velocity.comp",
+                                                       "#define RANRYU_NEIGHBOUR_RUNS " + std::to_string(mask_runs) + "u\n")
+                            : shader::Program()),
+      mask_runs_(mask_runs),
       capacity_(capacity),
       energy_(std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
       params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams"),
@@ -46,11 +48,11 @@ void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
     sph.grid().sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
     params_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_PARAMS);
     energy_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
-    last_masks_ = sph.neighbour_masks_current() ? 1 : 0;
+    last_masks_ = masked_.id() && sph.neighbour_masks_current() && sph.neighbour_runs() == mask_runs_ ? 1 : 0;
     if (last_masks_) {
         sph.densities().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_DENSITY);
         sph.neighbour_masks().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NEIGHBOURS);
-        (sph.neighbour_runs() == 9 ? masked_9_ : masked_27_).dispatch(count);
+        masked_.dispatch(count);
     } else {
         program_.dispatch(count);
     }

@@ -55,7 +55,9 @@ public:
     static float max_scale(float cell) { return cell / kTruncation; }
 
     // Compiles the pass and allocates energy() for up to `capacity` particles.
-    WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity);
+    // `mask_runs` > 0 (sim::Sph::neighbour_runs() of an SPH with neighbour masks) also builds the
+    // variant that reads the density pass's masks for that many runs.
+    WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity, int mask_runs = 0);
 
     // ê of the fluid of `sph` at scale s (m), 0 < s <= max_scale(sph.grid().layout().cell), from the
     // positions, velocities, cell ranges and sorted keys of its last rebuild_grid(). Exact when the
@@ -67,15 +69,16 @@ public:
     void analyse(sim::Sph& sph, float scale);
 
     const gl::Buffer& energy() const { return energy_; }   // vec4[capacity]: (û_i, ê_i)
-    // Passes run by analyse(): walks (the grid walk) or masks (from the density pass's neighbour
-    // masks, when sph.neighbour_masks_current(); analyse_velocity.comp). Tests.
+    // Which path the last analyse() took: 0 the grid walk, 1 the density pass's neighbour masks (built
+    // with mask_runs and sph.neighbour_masks_current(); analyse_velocity.comp). Tests.
     int last_path_masks() const { return last_masks_; }
     std::size_t capacity() const { return capacity_; }
 
 private:
     profile::GpuTimer& timer_;
     profile::PassId pass_;
-    shader::Program program_, masked_9_, masked_27_;
+    shader::Program program_, masked_;
+    int mask_runs_;
     std::size_t capacity_;
     int last_masks_ = 0;
     gl::Buffer energy_, params_, sph_params_;

@@ -58,17 +58,9 @@ glm::ivec3 cell_of(const GridLayout& g, glm::vec3 x) {
     const glm::ivec3 c(glm::floor((x - g.origin) / g.cell));
     return glm::clamp(c, glm::ivec3(0), glm::ivec3(g.dims) - 1);
 }
-std::uint32_t spread_bits(std::uint32_t v) {
-    v &= 0x3FFu;
-    v = (v | (v << 16)) & 0x030000FFu;
-    v = (v | (v << 8)) & 0x0300F00Fu;
-    v = (v | (v << 4)) & 0x030C30C3u;
-    v = (v | (v << 2)) & 0x09249249u;
-    return v;
-}
 std::uint32_t key_of(const GridLayout& g, glm::ivec3 c) {
     const glm::uvec3 u(c);
-    if (g.morton) return spread_bits(u.x) | (spread_bits(u.y) << 1) | (spread_bits(u.z) << 2);
+    if (g.morton) return ranryu::sim::spread_bits(u.x) | (ranryu::sim::spread_bits(u.y) << 1) | (ranryu::sim::spread_bits(u.z) << 2);
     return u.x + g.dims.x * (u.y + g.dims.y * u.z);
 }
 bool inside(const GridLayout& g, glm::ivec3 c) {

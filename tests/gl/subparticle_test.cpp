@@ -59,6 +59,7 @@ struct Rig {
     ranryu::shader::FileSource shaders = ranryu::shader::FileSource::embedded();
     ranryu::profile::GpuTimer timer{4, 512};
     rt::NoiseTiles tiles = rt::NoiseTiles::generate(7);
+    rt::CurlNoise noise{shaders, timer, tiles};   // as TurbulenceForce holds them
 };
 Rig& rig() {
     static Rig r;
@@ -259,13 +260,13 @@ TEST_CASE("subparticles: per-level counts, levels and the lists of split parents
             }
         });
         // A budget that keeps the spawn small: most runs drop to C = 0 or 1.
-        rt::Subparticles sub(rig().shaders, rig().timer, settings(3, th, 50000), 0.01f, n, rig().tiles);
+        rt::Subparticles sub(rig().shaders, rig().timer, settings(3, th, 50000), 0.01f, n, rig().tiles, rig().noise);
         const Result r = run(sub, p.inputs());
         check_classification(r, p.e, sub.params());
     }
     // Every level split (a generous budget), fewer parents than one workgroup.
     Parents p = make_parents(rng, 200, 0.01f, [&](std::size_t) { return 0.01f * std::exp2(rng.uniform(-1.0f, 3.0f)); });
-    rt::Subparticles sub(rig().shaders, rig().timer, settings(2, 0.01f, 1 << 20), 0.01f, 200, rig().tiles);
+    rt::Subparticles sub(rig().shaders, rig().timer, settings(2, 0.01f, 1 << 20), 0.01f, 200, rig().tiles, rig().noise);
     const Result r = run(sub, p.inputs());
     check_classification(r, p.e, sub.params());
     CHECK(r.state.limits.x == 2u);
@@ -298,7 +299,8 @@ void upload_shear(ranryu::test::SphRig& r) {
 }
 
 rt::Subparticles make_subparticles(ranryu::test::SphRig& r) {
-    return rt::Subparticles(rig().shaders, r.timer, r.scene.turbulence, r.scene.spacing, r.sph.count(), r.sph.turbulence()->tiles());
+    return rt::Subparticles(rig().shaders, r.timer, r.scene.turbulence, r.scene.spacing, r.sph.count(), r.sph.turbulence()->tiles(),
+                            r.sph.turbulence()->noise());
 }
 
 }  // namespace
@@ -433,7 +435,7 @@ TEST_CASE("subparticles: siblings keep their parent's mean velocity to within th
     const float th = 0.01f;
     const glm::vec4 t = rt::level_energies(th, 1.0f / 3.0f, 2);
     Parents p = make_parents(rng, P, 0.02f, [&](std::size_t i) { return (i % 2 ? t.y : t.x) * rng.uniform(1.0f, 1.5f); }, 40.0f);
-    rt::Subparticles sub(rig().shaders, rig().timer, settings(2, th, 1 << 20), 0.02f, P, rig().tiles);
+    rt::Subparticles sub(rig().shaders, rig().timer, settings(2, th, 1 << 20), 0.02f, P, rig().tiles, rig().noise);
     const Result r = run(sub, p.inputs());
     REQUIRE(r.state.limits.x == 2u);
     REQUIRE(r.state.dispatch.w == (P / 2) * 8 + (P / 2) * 64);
@@ -485,7 +487,7 @@ TEST_CASE("subparticles: a small budget drops the finest levels first, and the s
     };
     for (const Case c : {Case{20000, 3, 14240}, Case{14239, 2, 5280}, Case{6000, 2, 5280}, Case{1360, 1, 1360}, Case{1359, 0, 0}}) {
         INFO("budget " << c.budget);
-        rt::Subparticles sub(rig().shaders, rig().timer, settings(3, th, c.budget), 0.01f, 1000, rig().tiles);
+        rt::Subparticles sub(rig().shaders, rig().timer, settings(3, th, c.budget), 0.01f, 1000, rig().tiles, rig().noise);
         for (std::uint64_t f = 0; f < 3; ++f) run(sub, p.inputs(), f);
         const Result r = run(sub, p.inputs(), 3);
         check_classification(r, p.e, sub.params());
@@ -582,7 +584,7 @@ TEST_CASE("subparticles: the level set with sub-particles equals a brute-force s
     }
     p.upload();
     const auto cfg = settings(2, th, 1 << 20);
-    rt::Subparticles sub(rig().shaders, rig().timer, cfg, dx, n, rig().tiles);
+    rt::Subparticles sub(rig().shaders, rig().timer, cfg, dx, n, rig().tiles, rig().noise);
 
     for (const float node : {0.5f, 0.125f}) {   // nodes dx/2 (R_E floored at 0.75 dx) and dx/8 (R_E = R/2^E)
         INFO("node spacing " << node << " dx");
@@ -886,7 +888,7 @@ TEST_CASE("subparticles: benchmark", "[.][subparticle-bench]") {
         }
         p.be.upload(p.e.data(), n * sizeof(glm::vec4));
         ranryu::profile::GpuTimer timer(4, 64);
-        rt::Subparticles sub(rig().shaders, timer, settings(2, th, 1 << 28), dx, n, rig().tiles);
+        rt::Subparticles sub(rig().shaders, timer, settings(2, th, 1 << 28), dx, n, rig().tiles, rig().noise);
         ranryu::surface::LevelSet ls(rig().shaders, timer, s);
         const ranryu::surface::SubparticleSurface with{sub.levels(), sub.positions(), sub.state(), rt::Subparticles::dispatch_offset,
                                                         sub.dispatch_group()};

@@ -95,6 +95,16 @@ TEST_CASE("turbulence: scene keys are validated and amplitude 0 constructs nothi
     CHECK(error(R"({"octaves": [3]})").find("turbulence.octaves") != std::string::npos);
     CHECK(error(R"({"octaves": [3, 4.5]})").find("turbulence.octaves[1]") != std::string::npos);
     CHECK(error(R"({"seed": -1})").find("turbulence.seed") != std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "coherence_time": 0})").find("turbulence.coherence_time") != std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "subparticles": {"levels": 4}})").find("turbulence.subparticles.levels") != std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "subparticles": {"threshold": 0}})").find("turbulence.subparticles.threshold") !=
+          std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "subparticles": {"budget": 4}})").find("turbulence.subparticles.budget") != std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "subparticles": {"bogus": 1}})").find("turbulence.subparticles.bogus") != std::string::npos);
+    // Sub-particles split by the force's wavelet energy: without the force there is none.
+    CHECK(error(R"({"amplitude": 0, "subparticles": {"levels": 2}})").find("turbulence.subparticles.levels") !=
+          std::string::npos);
+    CHECK(error(R"({"amplitude": 1, "subparticles": {"levels": 2}})").empty());
     CHECK(error(turbulence_json(0.1)).empty());
     const ranryu::scene::Scene s = ranryu::scene::parse(block_json(""), "t");
     CHECK(!s.turbulence.enabled());
@@ -233,23 +243,13 @@ namespace {
 
 // `frames` whole frames of `s`; returns the first instability's description, or "" (none).
 std::string run_frames(const ranryu::scene::Scene& s, int frames, float* max_speed = nullptr) {
-    ranryu::test::context();
-    ranryu::profile::GpuTimer timer{4, 4096};
-    ranryu::sim::Sph sph(ranryu::shader::FileSource::embedded(), timer, s);
+    SphRig r(s);
+    ranryu::sim::Sph& sph = r.sph;
     REQUIRE(sph.turbulence() != nullptr);
     float vmax = 0.0f;
-    sph.set_record_sink([&](const ranryu::gpu::StepState& r) { vmax = std::max(vmax, glm::uintBitsToFloat(r.frame_max_speed)); });
-    for (int f = 0; f < frames; ++f) {
-        timer.begin_frame();
-        sph.begin_frame(std::uint64_t(f));
-        for (int k = 0; k < sph.substeps_this_frame(); ++k) sph.substep();
-        sph.end_frame();
-        timer.end_frame();
-        sph.poll_records();
-        if (sph.instability()) break;
-    }
-    timer.drain();
-    sph.drain_records();
+    sph.set_record_sink([&](const ranryu::gpu::StepState& rec) { vmax = std::max(vmax, glm::uintBitsToFloat(rec.frame_max_speed)); });
+    for (int f = 0; f < frames && !sph.instability(); ++f) r.frame(std::uint64_t(f));
+    r.finish();
     if (max_speed) *max_speed = vmax;
     REQUIRE(sph.last_record().has_value());
     return sph.instability() ? sph.instability()->message() : "";

@@ -4,6 +4,7 @@
 // use to run whole frames and read fields back.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,8 +22,8 @@ struct SphRig {
     scene::Scene scene;
     profile::GpuTimer timer{4, 4096};
     sim::Sph sph;
-    SphRig(const std::string& json, const std::string& origin)
-        : scene(scene::parse(json, origin)), sph(shader::FileSource::embedded(), timer, scene) {}
+    SphRig(const std::string& json, const std::string& origin) : SphRig(scene::parse(json, origin)) {}
+    explicit SphRig(scene::Scene s) : scene(std::move(s)), sph(shader::FileSource::embedded(), timer, scene) {}
 
     // One whole frame: begin, the substeps the model asks for, end; then collect arrived records.
     void frame(std::uint64_t index) {

@@ -50,6 +50,9 @@ TEST_CASE("scene errors name the input and the key") {
                Catch::Contains("inside the tank"));
     CHECK_THAT(error_of("{}"), Catch::Contains("at least one block"));
     CHECK_THAT(error_of("{" + kBlock + ", \"render\": {\"width\": 10.5}}"), Catch::Contains("render.width"));
+    CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"neighbour_masks\": 1}}"),
+               Catch::Contains("sph.neighbour_masks") && Catch::Contains("true or false"));
+    CHECK(!parse("{" + kBlock + ", \"sph\": {\"neighbour_masks\": false}}", "t").sph.neighbour_masks);
 }
 
 TEST_CASE("an unknown bundled name lists the bundled scenes") {
