@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
@@ -36,9 +37,12 @@ void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
     if (count == 0) return;
 
     auto pass = timer_.scope(pass_);
+    // The constants change only with the scale, the count or the SPH: upload them then, not every substep.
     const gpu::WaveletParams p{scale, kTruncation, std::uint32_t(count), 0u};
-    params_.upload_value(p);
-    sph_params_.upload_value(sph.params());   // 112 bytes: fluid_run() reads particle_count
+    if (!uploaded_ || std::memcmp(&p, &params_value_, sizeof p) != 0) params_.upload_value(params_value_ = p);
+    if (!uploaded_ || std::memcmp(&sph.params(), &sph_value_, sizeof sph_value_) != 0)
+        sph_params_.upload_value(sph_value_ = sph.params());   // fluid_run() reads particle_count
+    uploaded_ = true;
     sph_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
     sph.grid().bind_params(count);
     sph.positions().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);

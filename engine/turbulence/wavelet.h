@@ -82,6 +82,9 @@ private:
     std::size_t capacity_;
     int last_masks_ = 0;
     gl::Buffer energy_, params_, sph_params_;
+    gpu::WaveletParams params_value_{};   // what params_ and sph_params_ hold
+    gpu::SphParams sph_value_{};
+    bool uploaded_ = false;
 };
 
 }  // namespace ranryu::turbulence
