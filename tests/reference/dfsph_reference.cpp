@@ -1,0 +1,161 @@
+#include "reference/dfsph_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ranryu::reference::dfsph {
+
+using glm::dvec3;
+
+Factors factors(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                const Params& params, const Settings& s) {
+    const CubicKernel kernel{params.h};
+    Factors f;
+    f.factor.resize(x.size());
+    f.neighbours.resize(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+        dvec3 fluid(0.0), wall(0.0);
+        double squares = 0.0;
+        int count = 0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            if (j == i || glm::length(x[i] - x[j]) >= params.h) continue;
+            const dvec3 g = params.mass * kernel.gradW(x[i] - x[j]);
+            fluid += g;
+            squares += glm::dot(g, g);
+            ++count;
+        }
+        for (size_t b = 0; b < boundary.size(); ++b) {
+            if (glm::length(x[i] - boundary[b]) >= params.h) continue;
+            wall += psi[b] * kernel.gradW(x[i] - boundary[b]);
+            ++count;
+        }
+        const dvec3 sum = fluid + s.boundary_factor * wall;
+        const double d = glm::dot(sum, sum) + squares;
+        f.factor[i] = d > 0.0 ? 1.0 / d : 0.0;
+        f.neighbours[i] = count;
+    }
+    return f;
+}
+
+std::vector<dvec3> pressure_accelerations(const std::vector<dvec3>& x, const std::vector<double>& kappa,
+                                          const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                                          const Params& params, const Settings& s) {
+    const CubicKernel kernel{params.h};
+    std::vector<dvec3> a(x.size(), dvec3(0.0));
+    for (size_t i = 0; i < x.size(); ++i) {
+        for (size_t j = 0; j < x.size(); ++j) a[i] -= params.mass * (kappa[i] + kappa[j]) * kernel.gradW(x[i] - x[j]);
+        for (size_t b = 0; b < boundary.size(); ++b)
+            a[i] -= s.boundary_factor * kappa[i] * psi[b] * kernel.gradW(x[i] - boundary[b]);
+    }
+    return a;
+}
+
+std::vector<double> density_rates(const std::vector<dvec3>& x, const std::vector<dvec3>& v,
+                                  const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                                  const Params& params, const Settings& s) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> rate(x.size(), 0.0);
+    for (size_t i = 0; i < x.size(); ++i) {
+        for (size_t j = 0; j < x.size(); ++j) rate[i] += params.mass * glm::dot(v[i] - v[j], kernel.gradW(x[i] - x[j]));
+        for (size_t b = 0; b < boundary.size(); ++b)
+            rate[i] += s.boundary_factor * psi[b] * glm::dot(v[i], kernel.gradW(x[i] - boundary[b]));
+    }
+    return rate;
+}
+
+std::vector<dvec3> nonpressure_accelerations(const std::vector<dvec3>& x, const std::vector<dvec3>& v,
+                                             const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                                             const Params& params, const Settings& s) {
+    const CubicKernel kernel{params.h};
+    const double eps = 0.01 * params.h * params.h, d = 3.0, volume = params.mass / params.rest_density;
+    std::vector<dvec3> a(x.size(), params.gravity);
+    for (size_t i = 0; i < x.size(); ++i) {
+        dvec3 fluid(0.0), wall(0.0);
+        for (size_t j = 0; j < x.size(); ++j) {
+            const dvec3 xij = x[i] - x[j];
+            fluid += volume * glm::dot(v[i] - v[j], xij) / (glm::dot(xij, xij) + eps) * kernel.gradW(xij);
+        }
+        for (size_t b = 0; b < boundary.size(); ++b) {
+            const dvec3 xib = x[i] - boundary[b];
+            wall += (psi[b] / params.rest_density) * glm::dot(v[i], xib) / (glm::dot(xib, xib) + eps) * kernel.gradW(xib);
+        }
+        a[i] += 2.0 * (d + 2.0) * (params.viscosity * fluid + s.boundary_viscosity * wall);
+    }
+    return a;
+}
+
+SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& v, const std::vector<double>& density,
+                  const Factors& f, std::vector<double>& kappa, const std::vector<dvec3>& boundary,
+                  const std::vector<double>& psi, const Params& params, const Settings& s, double dt) {
+    const CubicKernel kernel{params.h};
+    const double rho0 = params.rest_density;
+    const size_t n = x.size();
+    SolveResult r;
+    // (D4), (D5): the density change the pressure must make over the step, never an expansion.
+    const std::vector<double> rate = density_rates(x, v, boundary, psi, params, s);
+    r.source.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        if (which == Solve::density) r.source[i] = rho0 - std::max(density[i] + dt * rate[i], rho0);
+        else r.source[i] = f.neighbours[i] < s.deficient_neighbours ? 0.0 : -dt * std::max(rate[i], 0.0);
+    }
+    const int lo = which == Solve::density ? s.min_iterations : s.min_divergence_iterations;
+    const int hi = which == Solve::density ? s.max_iterations : s.max_divergence_iterations;
+    const double eta = which == Solve::density ? s.eta : s.eta_divergence;
+    // (D6): relaxed Jacobi on κ ≥ 0; the error is the residual of the κ the iteration started from.
+    while (r.iterations < hi) {
+        const std::vector<dvec3> a = pressure_accelerations(x, kappa, boundary, psi, params, s);
+        double error = 0.0;
+        for (size_t i = 0; i < n; ++i) {
+            double change = 0.0;   // δρ_i = dt²[Σ_j m(a_i − a_j)·∇W_ij + γΣ_b ψ_b a_i·∇W_ib]
+            for (size_t j = 0; j < n; ++j) change += params.mass * glm::dot(a[i] - a[j], kernel.gradW(x[i] - x[j]));
+            for (size_t b = 0; b < boundary.size(); ++b)
+                change += s.boundary_factor * psi[b] * glm::dot(a[i], kernel.gradW(x[i] - boundary[b]));
+            change *= dt * dt;
+            const double residual = change - r.source[i];
+            // The first iteration drops the warm start where the source asks for no pressure.
+            const double start = r.iterations == 0 && r.source[i] == 0.0 ? 0.0 : kappa[i];
+            kappa[i] = std::max(start + s.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            error += std::max(residual, 0.0) / rho0;
+        }
+        ++r.iterations;
+        r.error = n ? error / double(n) : 0.0;
+        if (r.iterations >= lo && r.error <= eta) break;
+    }
+    const std::vector<dvec3> a = pressure_accelerations(x, kappa, boundary, psi, params, s);
+    for (size_t i = 0; i < n; ++i) v[i] += dt * a[i];
+    return r;
+}
+
+StepResult step(State& state, const std::vector<dvec3>& boundary, const std::vector<double>& psi, const Params& params,
+                const Settings& s, double dt, bool divergence_solve) {
+    const size_t n = state.x.size();
+    state.kappa.resize(n, 0.0);
+    state.kappa_v.resize(n, 0.0);
+    StepResult r;
+    r.density = densities(state.x, boundary, psi, params);
+    const Factors f = factors(state.x, boundary, psi, params, s);
+    const std::vector<dvec3> nonpressure = nonpressure_accelerations(state.x, state.v, boundary, psi, params, s);
+    for (size_t i = 0; i < n; ++i) {
+        state.kappa_v[i] = divergence_solve ? s.warm_start * state.kappa_v[i] : 0.0;
+        state.kappa[i] *= s.warm_start;
+    }
+    if (divergence_solve)
+        r.divergence = solve(Solve::divergence, state.x, state.v, r.density, f, state.kappa_v, boundary, psi, params, s, dt);
+    for (size_t i = 0; i < n; ++i) state.v[i] += dt * nonpressure[i];
+    r.density_solve = solve(Solve::density, state.x, state.v, r.density, f, state.kappa, boundary, psi, params, s, dt);
+    r.pressure.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        state.x[i] += dt * state.v[i];
+        r.pressure[i] = (state.kappa[i] + state.kappa_v[i]) * r.density[i] * r.density[i];
+    }
+    return r;
+}
+
+double time_step(const Params& params, double v_max, double a_max, double dt_max) {
+    double dt = dt_max;
+    if (v_max > 0.0) dt = std::min(dt, 0.4 * params.spacing / v_max);
+    if (a_max > 0.0) dt = std::min(dt, 0.25 * std::sqrt(params.spacing / a_max));
+    return dt;
+}
+
+}  // namespace ranryu::reference::dfsph

@@ -1,0 +1,97 @@
+#pragma once
+// The CPU reference of the divergence-free SPH solver (DFSPH; docs/DFSPH.md equations (D1)-(D8)),
+// double precision, brute-force neighbour loops, written for reading. The GPU passes of
+// glsl/sim/dfsph/ are compared against it. A step, as the GPU runs it:
+//
+//     f      = factors(x, boundary, psi, p)                        // (D2): 1/D_i, neighbour counts
+//     a_nonp = nonpressure_accelerations(x, v, boundary, psi, p)   // (D7): gravity, viscosity (m/ρ0)
+//     solve(Solve::divergence, ...)                                // (D5), (D6): v made divergence-free
+//     v     += dt·a_nonp
+//     solve(Solve::density, ...)                                   // (D4), (D6): ρ* → ρ0
+//     x     += dt·v                                                // (D8)
+//
+// Units are SI; κ_i = p_i/ρ_i² (m⁵ kg⁻¹ s⁻²), so κ does not depend on the time step and a warm
+// start carries it from one step to the next unscaled.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "reference/sph_reference.h"
+
+namespace ranryu::reference::dfsph {
+
+struct Settings {
+    double boundary_factor = 2.0;      // γ of (D1)-(D3): 2 makes the boundary a mirror of each fluid particle, 1 is Akinci's
+    double eta = 1e-3;                 // density solve: mean error bound, in units of ρ0
+    double eta_divergence = 1e-3;      // divergence solve: mean of dt·Dρ/Dt bound, in units of ρ0
+    int min_iterations = 1, max_iterations = 100;
+    int min_divergence_iterations = 1, max_divergence_iterations = 100;
+    double relaxation = 0.5;           // ω of (D6)
+    double warm_start = 0.5;           // w of (D6): κ⁰ = w·κ of the previous step
+    int deficient_neighbours = 20;     // (D5): fewer neighbours (fluid and boundary, within h) than this: no divergence correction
+    double boundary_viscosity = 0.0;   // ν_b of (D7) (m²/s); 0: free-slip walls
+};
+
+// (D2): the Jacobi diagonal D_i = |A_i + γB_i|² + Σ_j m²|∇W_ij|², with
+// A_i = Σ_j m∇W_ij (fluid j ≠ i) and B_i = Σ_b ψ_b∇W_ib; factor_i = 1/D_i, or 0 when D_i vanishes.
+struct Factors {
+    std::vector<double> factor;
+    std::vector<int> neighbours;   // fluid (j ≠ i) and boundary particles within h
+};
+Factors factors(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary,
+                const std::vector<double>& psi, const Params& params, const Settings& s);
+
+// (D3): a_i = −Σ_j m(κ_i + κ_j)∇W_ij − γ·κ_i·Σ_b ψ_b∇W_ib.
+std::vector<glm::dvec3> pressure_accelerations(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa,
+                                               const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,
+                                               const Params& params, const Settings& s);
+
+// (D1): Dρ_i/Dt = Σ_j m(v_i − v_j)·∇W_ij + γ·Σ_b ψ_b v_i·∇W_ib, the boundary seen as a mirror (γ = 2:
+// the image of v_i's normal part approaches as fast as i does) or at rest (γ = 1).
+std::vector<double> density_rates(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                  const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,
+                                  const Params& params, const Settings& s);
+
+// (D7): g + 2(d+2)ν Σ_j (m/ρ0)(v_ij·x_ij)/(|x_ij|² + 0.01h²)∇W_ij
+//         + 2(d+2)ν_b Σ_b (ψ_b/ρ0)(v_i·x_ib)/(|x_ib|² + 0.01h²)∇W_ib.
+std::vector<glm::dvec3> nonpressure_accelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                                  const std::vector<glm::dvec3>& boundary,
+                                                  const std::vector<double>& psi, const Params& params,
+                                                  const Settings& s);
+
+enum class Solve { divergence, density };
+
+// One solve of (D4)/(D5) with the Jacobi iteration of (D6), starting from kappa (the warm start,
+// updated in place; the first iteration drops it where s_i = 0). Velocities get the final pressure
+// accelerations: v += dt·a(κ).
+struct SolveResult {
+    int iterations = 0;
+    double error = 0.0;             // the last iteration's mean error, in units of ρ0
+    std::vector<double> source;     // s_i of (D4)/(D5)
+};
+SolveResult solve(Solve which, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& v,
+                  const std::vector<double>& density, const Factors& f, std::vector<double>& kappa,
+                  const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi, const Params& params,
+                  const Settings& s, double dt);
+
+// The fluid between steps: positions, velocities and the two warm-start stiffnesses κ (density
+// solve) and κ_v (divergence solve) of the last step.
+struct State {
+    std::vector<glm::dvec3> x, v;
+    std::vector<double> kappa, kappa_v;
+};
+
+struct StepResult {
+    std::vector<double> density;          // ρ_i at the start of the step, (2)
+    std::vector<double> pressure;         // (κ_i + κ_v,i)·ρ_i², the step's pressure
+    SolveResult divergence, density_solve;
+};
+// One whole step of dt (the step of the header comment); the warm starts are w·κ of the last step.
+StepResult step(State& state, const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,
+                const Params& params, const Settings& s, double dt, bool divergence_solve = true);
+
+// (D8): the CFL step 0.4·Δx/v_max, the force condition 0.25·√(Δx/a_max), at most dt_max.
+double time_step(const Params& params, double v_max, double a_max, double dt_max);
+
+}  // namespace ranryu::reference::dfsph
