@@ -13,11 +13,13 @@ namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--spacing", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
-    {"record", {"--scene", "--spacing", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh", "--shader-dir", "--gl-debug"}},
-    {"profile", {"--scene", "--spacing", "--frames", "--size", "--warmup", "--json", "--csv", "--shading", "--shader-dir", "--gl-debug"}},
+    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
+    {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
+                "--shader-dir", "--gl-debug"}},
+    {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--shading",
+                 "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
-    {"validate", {"--spacing", "--json", "--shader-dir", "--gl-debug"}},
+    {"validate", {"--spacing", "--solver", "--json", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
 const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh"};
@@ -125,6 +127,9 @@ Options parse(const std::vector<std::string>& args) {
             if (end != value.c_str() + value.size() || !(dx >= 1e-4f && dx <= 1.0f))
                 throw InputError("--spacing " + value + ": expected a particle spacing in metres in [0.0001, 1]");
             o.spacing = dx;
+        } else if (opt == "--solver") {
+            if (value != "dfsph" && value != "wcsph") throw InputError("--solver " + value + ": expected dfsph or wcsph");
+            o.solver = value;
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
         else if (opt == "--screenshot") o.screenshot = value;
@@ -172,6 +177,8 @@ exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output f
 std::string command_help(const std::string& cmd) {
     const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default dam-break)
   --spacing DX        particle spacing in metres: the scene at another resolution
+  --solver NAME       dfsph | wcsph: the SPH pressure solver (default: the scene's, dfsph unless it
+                      says otherwise; docs/DFSPH.md, docs/SPH.md)
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
   --shading MODE      phong | gouraud | fresnel | particles: how the liquid is drawn (default:
                       fresnel for SPH scenes, particles for ballistic ones; the surface modes mesh
@@ -212,6 +219,7 @@ Run a case headless and print the simulation next to its reference, with the err
   hydrostatic   pressure against depth next to rho0 g (H - z), and the spurious velocity
 
   --spacing DX        particle spacing in metres (default: the bundled scene's)
+  --solver NAME       dfsph | wcsph (default: the scene's)
   --json FILE         also write the series and errors as JSON
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages

@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/error.h"
+#include "frame/loop.h"
 #include "frame/pipeline.h"
 #include "gl/context.h"
 #include "profile/report.h"
@@ -87,9 +89,15 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
     return ctx;
 }
 
-scene::Scene load_scene(const Options& o) {
-    scene::Scene s = scene::load(o.scene);
+scene::Scene load_scene(const Options& o) { return with_options(scene::load(o.scene), o); }
+
+scene::Scene with_options(scene::Scene s, const Options& o) {
     if (o.spacing) s = scene::with_spacing(s, *o.spacing, "--spacing");
+    if (!o.solver.empty()) {
+        if (s.model != scene::Model::sph)
+            throw InputError("--solver " + o.solver + ": scene " + s.name + " uses the ballistic model, which has no pressure solver");
+        s.sph.solver = scene::parse_solver(o.solver, "--solver");
+    }
     return s;
 }
 
@@ -97,6 +105,35 @@ int scenes(const Options&) {
     for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
     return 0;
 }
+
+namespace {
+
+// The summary of what the simulation did from the frame `from` on, fed by the fluid's records.
+class SimulationLog {
+public:
+    SimulationLog(frame::Pipeline& p, std::uint64_t from) : from_(from) {
+        if (sim::Simulation* sim = p.simulation()) {
+            summary_.emplace();
+            summary_->solver = scene::solver_name(p.scene().sph.solver);
+            sim->fluid().set_record_sink([this](const gpu::StepState& r) {
+                if (r.frame >= from_) summary_->add(r);
+                else summary_->start_time = r.time;
+            });
+        }
+    }
+    void start_clock() { start_ = std::chrono::steady_clock::now(); }
+    void stop_clock() {
+        if (summary_) summary_->wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    const std::optional<profile::SimulationSummary>& summary() const { return summary_; }
+
+private:
+    std::uint64_t from_;
+    std::optional<profile::SimulationSummary> summary_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
 
 int record(const Options& o) {
     const scene::Scene scene = load_scene(o);
@@ -113,6 +150,7 @@ int record(const Options& o) {
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
+    SimulationLog log(pipeline, 0);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     std::unique_ptr<record::Recorder> recorder;
     std::unique_ptr<record::MeshExporter> meshes;   // --export-mesh: frame_NNNNN.ply, gated the same way
@@ -131,21 +169,21 @@ int record(const Options& o) {
     if (o.export_mesh)
         meshes = std::make_unique<record::MeshExporter>(pipeline.timer(), out, pipeline.mesh()->max_vertices(),
                                                         scene.model == scene::Model::sph, validate);
-    for (int f = 0; f < frames && !pipeline.instability(); ++f) {
-        pipeline.begin_frame();
-        pipeline.simulate();
-        pipeline.draw();
-        recorder->capture(pipeline.target());
-        if (meshes) meshes->capture(pipeline.mesh()->vertices(), pipeline.mesh()->state());
-        pipeline.end_frame();
-        validate();
-    }
+    frame::FrameHooks hooks;
+    hooks.after_draw = [&](frame::Pipeline& p) {
+        recorder->capture(p.target());
+        if (meshes) meshes->capture(p.mesh()->vertices(), p.mesh()->state());
+    };
+    hooks.after = [&](frame::Pipeline&) { validate(); };
+    log.start_clock();
+    frame::run_frames(pipeline, std::uint64_t(frames), hooks);
     pipeline.drain();
+    log.stop_clock();
     validate();
     recorder->finish();
     if (meshes) meshes->finish();
 
-    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0));
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0), log.summary());
     nlohmann::json run = profile::to_json(report);
     run["scene_origin"] = scene.origin;
     run["frames_written"] = recorder->frames_written();
@@ -179,24 +217,20 @@ int profile_cmd(const Options& o) {
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
-    auto one_frame = [&] {
-        pipeline.begin_frame();
-        pipeline.simulate();
-        pipeline.draw();
-        pipeline.end_frame();
-        pipeline.poll();
-        if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
-    };
-    for (int f = 0; f < o.warmup; ++f) one_frame();
+    SimulationLog log(pipeline, std::uint64_t(o.warmup));
+    frame::run_frames(pipeline, std::uint64_t(o.warmup));
     pipeline.drain();
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     pipeline.timer().reset_samples();
     if (turbulence::Subparticles* sub = pipeline.subparticles()) sub->count_from(pipeline.frames());
-    for (int f = 0; f < frames; ++f) one_frame();
+    log.start_clock();
+    frame::run_frames(pipeline, std::uint64_t(frames));
     pipeline.drain();
+    log.stop_clock();
     pipeline.poll();
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
 
-    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup));
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());
     nlohmann::json extra = profile::to_json(report);
     if (const surface::MarchingCubes* mc = pipeline.mesh()) {
@@ -262,6 +296,7 @@ int run(const Options& o) {
     if (debug) gl::install_debug_callback();
     print_device(window.info());
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
+    SimulationLog log(pipeline, 0);
     const profile::PassId present = pipeline.timer().pass("present");
 
     // Orbit camera: spherical coordinates around the scene's target.
@@ -270,7 +305,9 @@ int run(const Options& o) {
     float radius = glm::length(arm);
     float yaw = std::atan2(arm.x, arm.z), pitch = std::asin(glm::clamp(arm.y / radius, -1.0f, 1.0f));
 
-    while (!window.should_close() && (frames == 0 || pipeline.frames() < std::uint64_t(frames))) {
+    frame::FrameHooks hooks;
+    hooks.keep_going = [&](const frame::Pipeline&) { return !window.should_close(); };
+    hooks.before = [&](frame::Pipeline& p) {
         window.poll();
         if (const gl::Window::Input in = window.take_input(); in.drag != glm::vec2(0.0f) || in.wheel != 0.0f) {
             yaw -= 0.005f * in.drag.x;
@@ -278,24 +315,21 @@ int run(const Options& o) {
             radius *= std::pow(0.9f, in.wheel);
             cam.eye = cam.target + radius * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
                                                       std::cos(pitch) * std::cos(yaw));
-            pipeline.set_camera(cam);
+            p.set_camera(cam);
         }
-        pipeline.begin_frame();
-        pipeline.simulate();
-        pipeline.draw();
-        const glm::ivec2 fb = window.framebuffer_size();
-        {
-            auto pass = pipeline.timer().scope(present);
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, pipeline.target().framebuffer());
-            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-            glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-        }
-        pipeline.end_frame();
-        pipeline.poll();
-        if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
-        const bool last = frames != 0 && pipeline.frames() == std::uint64_t(frames);
-        if (last && !o.screenshot.empty()) {
+    };
+    glm::ivec2 fb{0};
+    hooks.after_draw = [&](frame::Pipeline& p) {
+        fb = window.framebuffer_size();
+        auto pass = p.timer().scope(present);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, p.target().framebuffer());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    };
+    hooks.after = [&](frame::Pipeline& p) {
+        const bool last = frames != 0 && p.frames() == std::uint64_t(frames);
+        if (last && !o.screenshot.empty() && !p.instability()) {
             // Once, at exit: read the window's back buffer, which is what the swap shows.
             std::vector<std::uint8_t> pixels(std::size_t(fb.x) * std::size_t(fb.y) * 4), flipped(pixels.size());
             glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -309,9 +343,14 @@ int run(const Options& o) {
             std::printf("wrote %s (%dx%d)\n", o.screenshot.c_str(), fb.x, fb.y);
         }
         window.swap();
-    }
+    };
+    log.start_clock();
+    frame::run_frames(pipeline, frames ? std::optional<std::uint64_t>(frames) : std::nullopt, hooks);
     pipeline.drain();
-    const profile::Report report = profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0));
+    log.stop_clock();
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    const profile::Report report =
+        profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0), log.summary());
     std::printf("%s", profile::table(report).c_str());
     return 0;
 #endif

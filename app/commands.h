@@ -16,8 +16,9 @@ int validate(const Options& o);
 int export_field(const Options& o);
 
 // Shared by the commands: the shader files (embedded, or --shader-dir), a headless context that
-// prints the device line, and the scene at --spacing.
+// prints the device line, and the scene at --spacing with --solver.
 shader::FileSource shader_source(const Options& o);
 std::unique_ptr<gl::HeadlessContext> headless(const Options& o);
 scene::Scene load_scene(const Options& o);
+scene::Scene with_options(scene::Scene s, const Options& o);   // --spacing, --solver
 }  // namespace ranryu::app

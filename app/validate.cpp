@@ -16,15 +16,15 @@ namespace ranryu::app {
 int validate(const Options& o) {
     if (o.case_name != "dam-break" && o.case_name != "hydrostatic")
         throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic)");
-    scene::Scene scene = scene::load(o.case_name);
-    if (o.spacing) scene = scene::with_spacing(scene, *o.spacing, "--spacing");
+    const scene::Scene scene = with_options(scene::load(o.case_name), o);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     nlohmann::json j = {{"case", o.case_name},
                         {"device", ctx->info().renderer},
                         {"driver", ctx->info().version},
                         {"date", profile::utc_now_iso8601()},
-                        {"spacing", scene.spacing}};
+                        {"spacing", scene.spacing},
+                        {"solver", scene::solver_name(scene.sph.solver)}};
     if (o.case_name == "dam-break") {
         const validation::DamBreakResult r = validation::dam_break(scene, shaders);
         std::printf("dam-break (Martin & Moyce 1952, n^2 = 2): a = %.3f m, spacing %.4f m (a/dx = %.1f), %zu particles\n", r.a,
@@ -32,6 +32,8 @@ int validate(const Options& o) {
         std::printf("%8s %10s %10s %10s\n", "T", "Z exp", "Z sim", "diff");
         for (const auto& c : r.compared) std::printf("%8.2f %10.3f %10.3f %+10.3f\n", c.t, c.measured, c.simulated, c.simulated - c.measured);
         std::printf("surge front error: rms %.3f, max %.3f (in Z = z/a)\n", r.rms_error, r.max_error);
+        std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
+                    static_cast<unsigned long long>(r.steps), r.seconds);
         nlohmann::json cmp = nlohmann::json::array(), sim = nlohmann::json::array();
         for (const auto& c : r.compared) cmp.push_back({{"T", c.t}, {"Z_experiment", c.measured}, {"Z_simulation", c.simulated}});
         for (const auto& [t, z] : r.simulated) sim.push_back({{"T", t}, {"Z", z}});
@@ -41,7 +43,9 @@ int validate(const Options& o) {
                   {"compared", cmp},
                   {"simulation", sim},
                   {"rms_error", r.rms_error},
-                  {"max_error", r.max_error}});
+                  {"max_error", r.max_error},
+                  {"steps", r.steps},
+                  {"wall_seconds", r.seconds}});
     } else {
         const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0);
         std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s\n", r.height, r.spacing, r.particles);
@@ -49,6 +53,8 @@ int validate(const Options& o) {
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",
                     r.max_error, r.max_speed, r.rms_speed);
+        std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
+                    static_cast<unsigned long long>(r.steps), r.seconds);
         nlohmann::json layers = nlohmann::json::array();
         for (const auto& l : r.layers) layers.push_back({{"z", l.z}, {"pressure", l.pressure}, {"reference", l.reference}, {"particles", l.particles}});
         j.update({{"height", r.height},
@@ -56,7 +62,9 @@ int validate(const Options& o) {
                   {"layers", layers},
                   {"max_error_over_rho_g_H", r.max_error},
                   {"max_speed", r.max_speed},
-                  {"rms_speed", r.rms_speed}});
+                  {"rms_speed", r.rms_speed},
+                  {"steps", r.steps},
+                  {"wall_seconds", r.seconds}});
     }
     if (!o.json.empty()) profile::write_text_file(o.json, j.dump(2) + "\n", "--json " + o.json);
     return 0;

@@ -1,8 +1,8 @@
 #pragma once
-// One frame of ranryu as a list of GPU passes. The callers (app/commands) read as:
+// One frame of ranryu as a list of GPU passes (frame/loop.h runs them for every command):
 //
 //     pipeline.begin_frame();
-//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: see sim/sph.h, then, with
+//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: sim/simulation.h, then, with
 //                                 // sub-particles (turbulence/subparticles.h) "subparticles.classify",
 //                                 // "subparticles.budget", "subparticles.spawn"; then, when the
 //                                 // shading draws a surface, "surface.bounds", ("subparticles.splat"),
@@ -15,7 +15,7 @@
 //
 // Nothing here reads the GPU back or waits for it: per-pass timings and the SPH guard's records come
 // back through rings, frames late. poll() collects them; a record that breaks a guard criterion makes
-// instability() non-empty and the caller stops.
+// instability() non-empty and the frame loop stops.
 #include <memory>
 #include <optional>
 
@@ -26,25 +26,40 @@
 #include "shader/source.h"
 #include "sim/guard.h"
 #include "sim/particles.h"
-#include "sim/sph.h"
+#include "sim/simulation.h"
 #include "surface/level_set.h"
 #include "surface/marching_cubes.h"
 #include "turbulence/subparticles.h"
 
 namespace ranryu::frame {
 
+// What a pipeline draws: a width x height target in a shading mode (default:
+// render::default_shading(scene)), or nothing (draw = false: validation runs simulate only, and build
+// no renderer, surface or target).
+struct View {
+    int width = 960, height = 540;
+    std::optional<render::Shading> shading;
+    bool draw = true;
+};
+
 class Pipeline {
 public:
-    // Builds every program (start-up), allocates the particle state and a width x height target.
-    // `shading` (default: render::default_shading(scene)) other than particles also builds the level
-    // set and marching cubes (scene.surface); a scene that draws particles builds neither. Throws
-    // InputError for a surface shading of a ballistic scene (it has no neighbour grid to mesh from).
+    // Builds every program (start-up) and allocates the particle state and the view's target. A
+    // shading other than particles also builds the level set and marching cubes (scene.surface); a
+    // scene that draws particles builds neither. Throws InputError for a surface shading of a
+    // ballistic scene (it has no neighbour grid to mesh from).
+    Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, const View& view);
     Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height,
-             std::optional<render::Shading> shading = std::nullopt);
+             std::optional<render::Shading> shading = std::nullopt)
+        : Pipeline(scene, shaders, View{width, height, shading, true}) {}
+    // The passes hold references to the pipeline's timer: a pipeline stays where it was built.
+    Pipeline(const Pipeline&) = delete;
+    Pipeline& operator=(const Pipeline&) = delete;
 
     void begin_frame() { timer_.begin_frame(); }
     void simulate();   // advances scene.frame_dt of simulated time
-    void draw();
+    void draw();       // nothing when the view does not draw
+    bool draws() const { return renderer_ != nullptr; }
     void end_frame();
 
     // Collects the guard's records (and the sub-particles' stats) that have arrived. Returns the last frame known to be sound
@@ -63,8 +78,10 @@ public:
     std::size_t particle_count() const;
     const gl::Buffer& positions() const;
     const gl::Buffer& velocities() const;
-    sim::Sph* sph() { return sph_.get(); }
-    render::Shading shading() const { return renderer_.shading(); }
+    // The SPH simulation (null for the ballistic model).
+    sim::Simulation* simulation() { return sph_.get(); }
+    const sim::Simulation* simulation() const { return sph_.get(); }
+    render::Shading shading() const { return shading_; }
     // The surface's mesh (null when the shading draws particles): vertices() and state() as
     // MarchingCubes documents them, written by this frame's simulate().
     const surface::MarchingCubes* mesh() const { return mc_.get(); }
@@ -80,11 +97,12 @@ private:
     scene::Scene scene_;
     profile::GpuTimer timer_;
     std::unique_ptr<sim::Particles> ballistic_;
-    std::unique_ptr<sim::Sph> sph_;
+    std::unique_ptr<sim::Simulation> sph_;
     std::unique_ptr<turbulence::Subparticles> sub_;
     std::unique_ptr<surface::LevelSet> level_set_;
     std::unique_ptr<surface::MarchingCubes> mc_;
-    render::Renderer renderer_;
+    render::Shading shading_;
+    std::unique_ptr<render::Renderer> renderer_;   // null when the view does not draw
     gl::RenderTarget target_;
     render::Camera camera_;
     int substeps_ = 1;

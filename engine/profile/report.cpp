@@ -37,9 +37,50 @@ std::string csv_field(const std::string& s) {
 
 }  // namespace
 
-Report summarize(const GpuTimer& timer, RunInfo info) {
+void SimulationSummary::add(const gpu::StepState& r) {
+    ++frames;
+    simulated_seconds = double(r.time) - start_time;
+    steps += r.frame_substeps;
+    most_substeps = std::max(most_substeps, r.frame_substeps);
+    iterations += r.iterations.x;
+    divergence_iterations += r.iterations.y;
+    most_iterations = std::max(most_iterations, r.iterations.z);
+    most_divergence_iterations = std::max(most_divergence_iterations, r.iterations.w);
+    unconverged += r.unconverged.x;
+    unconverged_divergence += r.unconverged.y;
+    density_error += r.error.x;
+    divergence_error += r.error.y;
+    max_density_error = std::max(max_density_error, double(r.error.z));
+}
+
+namespace {
+// The summary's sums as per-step means.
+SimulationSummary per_step(SimulationSummary s) {
+    const double n = double(std::max<std::uint64_t>(s.steps, 1));
+    s.iterations /= n;
+    s.divergence_iterations /= n;
+    s.density_error /= n;
+    s.divergence_error /= n;
+    return s;
+}
+}  // namespace
+
+double Report::fps_gpu() const { return frame.ms_per_call > 0.0 ? 1000.0 / frame.ms_per_call : 0.0; }
+double Report::fps_wall() const {
+    return simulation && simulation->wall_seconds > 0.0 ? double(info.frames) / simulation->wall_seconds : 0.0;
+}
+double Report::real_time_factor_gpu() const {
+    if (simulation && simulation->frames) return simulation->simulated_seconds / double(simulation->frames) * fps_gpu();
+    return info.frame_dt * fps_gpu();
+}
+double Report::real_time_factor_wall() const {
+    return simulation && simulation->wall_seconds > 0.0 ? simulation->simulated_seconds / simulation->wall_seconds : 0.0;
+}
+
+Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSummary> simulation) {
     Report r;
     r.info = std::move(info);
+    if (simulation) r.simulation = per_step(*simulation);
     const auto& frames = timer.frame_ms();
     const double total = std::accumulate(frames.begin(), frames.end(), 0.0);
     const double nframes = double(std::max<std::size_t>(frames.size(), 1));
@@ -63,7 +104,7 @@ std::string table(const Report& r) {
     out << "scene " << r.info.scene << ": " << r.info.particles << " particles, " << r.info.width << "x"
         << r.info.height << ", " << r.info.frames << " frames timed after " << r.info.warmup << " warm-up, "
         << (r.info.substeps > 0 ? std::to_string(r.info.substeps) + " substeps/frame"
-                                : std::string("adaptive substeps (see integrate's calls/fr)"))
+                                : std::string("adaptive substeps (see the simulation line)"))
         << "\n";
     std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
                   "max ms", "ms/call", "share");
@@ -75,6 +116,34 @@ std::string table(const Report& r) {
     };
     for (const PassRow& p : r.passes) print(p);
     print(r.frame);
+    out << "\n";   // the table ends; what the run did follows
+    if (const auto& s = r.simulation) {
+        std::snprintf(line, sizeof line, "simulation (%s): %.1f substeps/frame (most %u), %.4f simulated s/frame\n",
+                      s->solver.c_str(), s->substeps_per_frame(), s->most_substeps,
+                      s->frames ? s->simulated_seconds / double(s->frames) : 0.0);
+        out << line;
+        if (s->solver == "dfsph") {
+            std::snprintf(line, sizeof line,
+                          "  density solve: %.2f iterations/step (most %u, %llu steps stopped at the cap), mean error "
+                          "%.3f %% (most %.3f %%)\n",
+                          s->iterations, s->most_iterations, static_cast<unsigned long long>(s->unconverged),
+                          100.0 * s->density_error, 100.0 * s->max_density_error);
+            out << line;
+            std::snprintf(line, sizeof line,
+                          "  divergence solve: %.2f iterations/step (most %u, %llu at the cap), mean error %.3f %%\n",
+                          s->divergence_iterations, s->most_divergence_iterations,
+                          static_cast<unsigned long long>(s->unconverged_divergence), 100.0 * s->divergence_error);
+            out << line;
+        }
+    }
+    std::snprintf(line, sizeof line, "%.1f fps and real-time factor %.3f by the GPU's frame spans", r.fps_gpu(),
+                  r.real_time_factor_gpu());
+    out << line;
+    if (r.fps_wall() > 0.0) {
+        std::snprintf(line, sizeof line, "; %.1f fps and %.3f by the wall clock", r.fps_wall(), r.real_time_factor_wall());
+        out << line;
+    }
+    out << "\n";
     return out.str();
 }
 
@@ -87,7 +156,7 @@ nlohmann::json to_json(const Report& r) {
     };
     nlohmann::json passes = nlohmann::json::array();
     for (const PassRow& p : r.passes) passes.push_back(pass(p));
-    return {{"device", r.info.renderer},
+    nlohmann::json j = {{"device", r.info.renderer},
             {"driver", r.info.driver},
             {"platform", r.info.platform},
             {"date", r.info.date},
@@ -100,7 +169,29 @@ nlohmann::json to_json(const Report& r) {
             {"substeps_per_frame", r.info.substeps},
             {"simulated_seconds_per_frame", r.info.frame_dt},
             {"passes", passes},
-            {"frame", pass(r.frame)}};
+            {"frame", pass(r.frame)},
+            {"fps_gpu", r.fps_gpu()},
+            {"fps_wall", r.fps_wall()},
+            {"real_time_factor_gpu", r.real_time_factor_gpu()},
+            {"real_time_factor_wall", r.real_time_factor_wall()}};
+    if (const auto& s = r.simulation)
+        j["simulation"] = {{"solver", s->solver},
+                           {"frames", s->frames},
+                           {"steps", s->steps},
+                           {"substeps_per_frame", s->substeps_per_frame()},
+                           {"most_substeps", s->most_substeps},
+                           {"simulated_seconds", s->simulated_seconds},
+                           {"wall_seconds", s->wall_seconds},
+                           {"iterations_per_step", s->iterations},
+                           {"most_iterations", s->most_iterations},
+                           {"unconverged_steps", s->unconverged},
+                           {"divergence_iterations_per_step", s->divergence_iterations},
+                           {"most_divergence_iterations", s->most_divergence_iterations},
+                           {"unconverged_divergence_steps", s->unconverged_divergence},
+                           {"density_error", s->density_error},
+                           {"max_density_error", s->max_density_error},
+                           {"divergence_error", s->divergence_error}};
+    return j;
 }
 
 std::string to_csv(const Report& r) {

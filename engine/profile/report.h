@@ -1,12 +1,15 @@
 #pragma once
 // Per-pass timing summaries: the table `ranryu profile` prints and the JSON/CSV it writes.
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "profile/gpu_timer.h"
+#include "shared/bindings.h"
 
 namespace ranryu::profile {
 
@@ -32,13 +35,38 @@ struct PassRow {
     double share = 0.0;                                   // of the summed GPU frame spans
 };
 
+// What an SPH simulation did over the timed frames, from the StepState records that came back.
+struct SimulationSummary {
+    std::string solver;                        // dfsph | wcsph
+    std::uint64_t frames = 0, steps = 0;
+    double start_time = 0.0;                   // simulated time when the timed frames began (s)
+    double simulated_seconds = 0.0;            // over those frames
+    double wall_seconds = 0.0;                 // the timed frames on the CPU's clock
+    std::uint32_t most_substeps = 0;           // in one frame
+    // The pressure solve's iterations (DFSPH; 0 for WCSPH): per step, and the most in one step.
+    double iterations = 0.0, divergence_iterations = 0.0;
+    std::uint32_t most_iterations = 0, most_divergence_iterations = 0;
+    std::uint64_t unconverged = 0, unconverged_divergence = 0;   // steps that stopped at the issued cap
+    double density_error = 0.0, max_density_error = 0.0;         // the solve's last mean error (units of rho0): per step, most
+    double divergence_error = 0.0;
+
+    void add(const gpu::StepState& record);    // one frame's record, in frame order
+    double substeps_per_frame() const { return frames ? double(steps) / double(frames) : 0.0; }
+};
+
 struct Report {
     RunInfo info;
     std::vector<PassRow> passes;   // in order of first use
     PassRow frame;                 // the whole GPU span of a frame
+    std::optional<SimulationSummary> simulation;
+    // Frames a second and simulated seconds a second, by the GPU's frame spans and by the wall clock.
+    double fps_gpu() const;
+    double fps_wall() const;
+    double real_time_factor_gpu() const;
+    double real_time_factor_wall() const;
 };
 
-Report summarize(const GpuTimer& timer, RunInfo info);
+Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSummary> simulation = std::nullopt);
 std::string table(const Report& r);
 nlohmann::json to_json(const Report& r);
 std::string to_csv(const Report& r);

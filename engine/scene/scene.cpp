@@ -148,6 +148,7 @@ float Scene::speed_estimate() const {
 }
 
 float Scene::sound_speed() const {
+    if (sph.solver != Solver::wcsph) return 0.0f;
     if (sph.speed_of_sound > 0.0f) return sph.speed_of_sound;
     float v0 = 0.0f;
     for (const Block& b : blocks) v0 = std::max(v0, glm::length(b.velocity));
@@ -193,6 +194,14 @@ std::vector<glm::vec4> Scene::initial_velocities() const {
     return v;
 }
 
+const char* solver_name(Solver s) { return s == Solver::wcsph ? "wcsph" : "dfsph"; }
+
+Solver parse_solver(const std::string& name, const std::string& what) {
+    if (name == "dfsph") return Solver::dfsph;
+    if (name == "wcsph") return Solver::wcsph;
+    throw InputError(what + " = \"" + name + "\" is not one of \"dfsph\", \"wcsph\"");
+}
+
 Scene parse(const std::string& text, const std::string& origin) {
     json j;
     try {
@@ -215,6 +224,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         s.tank_min = t.vec3("min", s.tank_min, -1e3, 1e3);
         s.tank_max = t.vec3("max", s.tank_max, -1e3, 1e3);
         s.restitution = float(t.number("restitution", s.restitution, 0.0, 1.0));
+        s.tank_closed = t.boolean("closed", s.tank_closed);
         for (int a = 0; a < 3; ++a)
             if (!(s.tank_max[a] > s.tank_min[a])) t.fail("\"tank.max\" must exceed \"tank.min\" on every axis");
         t.finish();
@@ -228,11 +238,22 @@ Scene parse(const std::string& text, const std::string& origin) {
     {
         Reader p = r.object("sph");
         SphSettings& h = s.sph;
+        h.solver = parse_solver(p.string("solver", solver_name(h.solver)), "scene " + origin + ": \"sph.solver\"");
         h.rest_density = float(p.number("rest_density", h.rest_density, 1.0, 1e5));
         h.viscosity = float(p.number("viscosity", h.viscosity, 0.0, 10.0));
         h.speed_of_sound = float(p.number("speed_of_sound", h.speed_of_sound, 0.0, 1e4));
         h.cfl = float(p.number("cfl", h.cfl, 0.01, 1.0));
         h.force_factor = float(p.number("force_factor", h.force_factor, 0.01, 1.0));
+        h.max_time_step = float(p.number("max_time_step", h.max_time_step, 1e-6, 0.1));
+        h.max_density_error = float(p.number("max_density_error", h.max_density_error, 1e-6, 0.1));
+        h.max_divergence_error = float(p.number("max_divergence_error", h.max_divergence_error, 1e-6, 0.1));
+        h.min_iterations = p.integer("min_iterations", h.min_iterations, 1, 1000);
+        h.max_iterations = p.integer("max_iterations", h.max_iterations, 1, 1000);
+        if (h.min_iterations > h.max_iterations) p.fail("\"sph.min_iterations\" must not exceed \"sph.max_iterations\"");
+        h.max_divergence_iterations = p.integer("max_divergence_iterations", h.max_divergence_iterations, 1, 1000);
+        h.divergence_solve = p.boolean("divergence_solve", h.divergence_solve);
+        h.warm_start = float(p.number("warm_start", h.warm_start, 0.0, 1.0));
+        h.boundary_viscosity = float(p.number("boundary_viscosity", h.boundary_viscosity, 0.0, 10.0));
         const std::string keys = p.string("neighbour_keys", "linear");
         if (keys != "linear" && keys != "morton") p.fail("\"sph.neighbour_keys\" = \"" + keys + "\" is not one of \"linear\", \"morton\"");
         h.morton = keys == "morton";

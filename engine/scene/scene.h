@@ -30,12 +30,28 @@ struct Obstacle {
 // example) or "sph" (docs/SPH.md).
 enum class Model { ballistic, sph };
 
+// The pressure solver (sim/solver.h): DFSPH (docs/DFSPH.md) or WCSPH (docs/SPH.md (3)).
+enum class Solver { dfsph, wcsph };
+const char* solver_name(Solver s);
+Solver parse_solver(const std::string& name, const std::string& what);   // throws InputError naming `what`
+
 struct SphSettings {
+    Solver solver = Solver::dfsph;
     float rest_density = 1000.0f;   // rho0 (kg/m^3)
     float viscosity = 1e-4f;        // kinematic nu (m^2/s), eq. (5)
-    float speed_of_sound = 0.0f;    // c (m/s); 0: 10 * sqrt(2 g H), H the fluid's height
-    float cfl = 0.4f;               // eq. (7)
-    float force_factor = 0.25f;     // eq. (7)
+    float speed_of_sound = 0.0f;    // c (m/s) of WCSPH; 0: 10 * sqrt(2 g H), H the fluid's height
+    float cfl = 0.4f;               // eq. (7), (D8)
+    float force_factor = 0.25f;     // eq. (7), (D8)
+    float max_time_step = 0.005f;   // (s): the largest step, also at rest (at most the frame)
+    // DFSPH (docs/DFSPH.md):
+    float max_density_error = 1e-3f;      // eta of (D6), a fraction of rho0
+    float max_divergence_error = 1e-3f;   // eta_v of (D6)
+    int min_iterations = 2;               // density solve
+    int max_iterations = 100;             // density solve
+    int max_divergence_iterations = 100;
+    bool divergence_solve = true;         // (D5); false: the density solve alone
+    float warm_start = 0.5f;              // w of (D6)
+    float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie
                                     // inside h, and forces reads that instead of testing every candidate
@@ -87,6 +103,7 @@ struct Scene {
 
     // Tank: the axis-aligned box the fluid lives in (m). Walls reflect with `restitution`.
     glm::vec3 tank_min{0.0f}, tank_max{1.0f};
+    bool tank_closed = false;   // SPH: a lid at tank_max.y, sampled with boundary particles like the walls
     float restitution = 0.5f;
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};
 
@@ -115,7 +132,7 @@ struct Scene {
     int substeps() const;
     float fluid_height() const;        // highest block top above the tank floor (m)
     float speed_estimate() const;      // sqrt(2 g H_tank) + the largest initial speed (m/s)
-    float sound_speed() const;         // sph.speed_of_sound, or 10 sqrt(2 g H) (docs/SPH.md)
+    float sound_speed() const;         // WCSPH: sph.speed_of_sound, or 10 sqrt(2 g H) (docs/SPH.md); 0 for DFSPH
     // Particle positions on the lattice of every block, in block order, less those inside obstacles.
     std::vector<glm::vec4> initial_positions() const;
     std::vector<glm::vec4> initial_velocities() const;

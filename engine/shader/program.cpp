@@ -1,5 +1,6 @@
 #include "shader/program.h"
 
+#include <algorithm>
 #include <regex>
 #include <sstream>
 #include <vector>
@@ -61,11 +62,85 @@ gl::Name<gl::DeleteProgram> link(const std::vector<GLuint>& shaders, const std::
 
 }  // namespace
 
+StorageSet::StorageSet(std::initializer_list<std::pair<std::string_view, const gl::Buffer*>> entries) {
+    for (const auto& [block, buffer] : entries) add(block, buffer);
+}
+
+StorageSet& StorageSet::add(std::string_view block, const gl::Buffer& buffer) {
+    if (!buffer.id()) return *this;
+    return range(block, buffer, 0, 0);
+}
+
+StorageSet& StorageSet::range(std::string_view block, const gl::Buffer& buffer, std::size_t offset, std::size_t bytes) {
+    for (std::size_t k = 0; k < count_; ++k)
+        if (entries_[k].block == block) {
+            entries_[k] = Entry{block, buffer.id(), offset, bytes};
+            return *this;
+        }
+    if (count_ == capacity) throw Error("StorageSet: more than " + std::to_string(capacity) + " blocks (adding " + std::string(block) + ")");
+    entries_[count_++] = Entry{block, buffer.id(), offset, bytes};
+    return *this;
+}
+
+StorageSet StorageSet::merged(const StorageSet& other) const {
+    StorageSet out(*this);
+    for (std::size_t k = 0; k < other.count_; ++k) {
+        const Entry& e = other.entries_[k];
+        bool replaced = false;
+        for (std::size_t m = 0; m < out.count_ && !replaced; ++m)
+            if (out.entries_[m].block == e.block) out.entries_[m] = e, replaced = true;
+        if (!replaced) {
+            if (out.count_ == capacity) throw Error("StorageSet: more than " + std::to_string(capacity) + " blocks");
+            out.entries_[out.count_++] = e;
+        }
+    }
+    return out;
+}
+
+const StorageSet::Entry* StorageSet::find(std::string_view block) const {
+    for (std::size_t k = 0; k < count_; ++k)
+        if (entries_[k].block == block) return &entries_[k];
+    return nullptr;
+}
+
+void Program::assign_storage_slots() {
+    GLint count = 0;
+    glGetProgramInterfaceiv(id(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &count);
+    blocks_.clear();
+    for (GLint i = 0; i < count; ++i) {
+        GLint length = 0;
+        const GLenum property = GL_NAME_LENGTH;
+        glGetProgramResourceiv(id(), GL_SHADER_STORAGE_BLOCK, GLuint(i), 1, &property, 1, nullptr, &length);
+        std::string name(std::size_t(std::max(length, 1)), '\0');
+        glGetProgramResourceName(id(), GL_SHADER_STORAGE_BLOCK, GLuint(i), length, nullptr, name.data());
+        while (!name.empty() && name.back() == '\0') name.pop_back();
+        glShaderStorageBlockBinding(id(), GLuint(i), GLuint(i));
+        blocks_.push_back(std::move(name));
+    }
+}
+
+int Program::storage_slot(std::string_view block) const {
+    for (std::size_t k = 0; k < blocks_.size(); ++k)
+        if (blocks_[k] == block) return int(k);
+    return -1;
+}
+
+const Program& Program::bind(const StorageSet& set) const {
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+        const StorageSet::Entry* e = set.find(blocks_[k]);
+        if (!e) throw Error("shader program " + label_ + ": no buffer for its storage block " + blocks_[k]);
+        if (e->bytes) glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(k), e->buffer, GLintptr(e->offset), GLsizeiptr(e->bytes));
+        else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(k), e->buffer);
+    }
+    return *this;
+}
+
 Program Program::compute(const FileSource& src, const std::string& path, std::string_view defines) {
     Program p;
     auto cs = compile(GL_COMPUTE_SHADER, src, path, defines);
     p.label_ = path;
     p.name_ = link({cs.id()}, path);
+    p.assign_storage_slots();
     GLint size[3] = {0, 0, 0};
     glGetProgramiv(p.id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
     p.local_size_ = {GLuint(size[0]), GLuint(size[1]), GLuint(size[2])};
@@ -79,6 +154,7 @@ Program Program::graphics(const FileSource& src, const std::string& vert, const 
     auto fs = compile(GL_FRAGMENT_SHADER, src, frag, defines);
     p.label_ = vert + "+" + frag;
     p.name_ = link({vs.id(), fs.id()}, p.label_);
+    p.assign_storage_slots();
     return p;
 }
 

@@ -51,12 +51,12 @@ int boundary_layers(float spacing, float support) { return int(std::ceil(support
 std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers) {
     const float dx = s.spacing;
     std::vector<glm::vec4> out;
-    // Tank: the shell around the inner box, less the part above the top (open tank).
+    // Tank: the shell around the inner box, less the part above the top unless the tank is closed.
     const Axis ax = axis(s.tank_min.x, s.tank_max.x, dx, layers), ay = axis(s.tank_min.y, s.tank_max.y, dx, layers),
                az = axis(s.tank_min.z, s.tank_max.z, dx, layers);
     for (std::size_t k = 0; k < az.at.size(); ++k)
         for (std::size_t j = 0; j < ay.at.size(); ++j) {
-            if (ay.side[j] > 0) continue;
+            if (ay.side[j] > 0 && !s.tank_closed) continue;
             for (std::size_t i = 0; i < ax.at.size(); ++i)
                 if (ax.side[i] != 0 || ay.side[j] != 0 || az.side[k] != 0)
                     out.emplace_back(ax.at[i], ay.at[j], az.at[k], ax.pitch[i] * ay.pitch[j] * az.pitch[k]);

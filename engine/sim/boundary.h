@@ -1,5 +1,6 @@
 #pragma once
-// Boundary particles (docs/SPH.md eq. (8)): the tank's floor and four walls (the top is open) and
+// Boundary particles (docs/SPH.md eq. (8)): the tank's floor and four walls (and its lid when the
+// scene closes it) and
 // every obstacle, sampled in `layers` layers on the solid side of each surface, never sparser than the
 // fluid's spacing. Each particle is (x_b, V_cell): its position and the volume of the lattice cell it
 // stands for, which caps its Akinci volume on the GPU (glsl/sim/boundary/compute_boundary_volume.comp
@@ -24,7 +25,7 @@ int boundary_layers(float spacing, float support);
 std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers);
 
 // The obstacles as the integrate pass's last-resort projection reads them (glsl/sim/sph/
-// integrate_particles.comp, RANRYU_SSBO_OBSTACLES): element 0 is (count, 0, 0, 0); then two vec4 an
+// integrate_particles.comp, storage block Obstacles): element 0 is (count, 0, 0, 0); then two vec4 an
 // obstacle: a box as (min, 0), (max, 0); a sphere as (center, 1), (radius, 0, 0, 0).
 std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s);
 

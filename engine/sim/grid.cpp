@@ -53,8 +53,9 @@ NeighbourGrid::NeighbourGrid(const shader::FileSource& shaders, profile::GpuTime
       hash_pass_(timer.pass("hash")),
       reorder_pass_(timer.pass("reorder")),
       hash_(shader::Program::compute(shaders, "sim/grid/hash_particles.comp")),
-      reorder_(shader::Program::compute(shaders, "sim/grid/reorder_particles.comp")),
-      reorder_carried_(shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_REORDER_NOISE_SEED 1\n")),
+      reorder_{shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 0\n"),
+               shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 1\n"),
+               shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 2\n")},
       sort_(shaders, timer, capacity),
       layout_(layout),
       method_(method),
@@ -76,14 +77,12 @@ void NeighbourGrid::bind_params(std::size_t count) {
 
 void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
                           gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
-                          const gl::Buffer* carried, gl::Buffer* sorted_carried) {
+                          std::span<const CarriedArray> carried) {
+    if (carried.size() > max_carried) throw Error("NeighbourGrid::build: more than 2 carried arrays");
     bind_params(count);
     {
         auto pass = timer_.scope(hash_pass_);
-        position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
-        sort_.keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
-        sort_.values().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
-        hash_.dispatch(count);
+        hash_.bind({{"Positions", &position}, {"Keys", &sort_.keys()}, {"Values", &sort_.values()}}).dispatch(count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     sort_.sort(method_, count, layout_.key_count - 1u);
@@ -102,21 +101,19 @@ void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity
             glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
-        sort_.sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
-        ranges.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
-        ranges.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
-        sort_.sorted_values().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
-        position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
-        velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
-        sorted_position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_POSITION);
-        sorted_velocity.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_VELOCITY);
-        if (carried && sorted_carried) {
-            carried->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_SEED);
-            sorted_carried->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_NOISE_SEED);
-            reorder_carried_.dispatch(count);
-        } else {
-            reorder_.dispatch(count);
+        shader::StorageSet buffers{{"SortedKeys", &sort_.sorted_keys()}, {"SortedValues", &sort_.sorted_values()},
+                                   {"CellStart", &ranges.start},         {"CellEnd", &ranges.end},
+                                   {"Positions", &position},              {"Velocities", &velocity},
+                                   {"SortedPositions", &sorted_position}, {"SortedVelocities", &sorted_velocity}};
+        static constexpr std::string_view from[] = {"Carried0", "Carried1"}, to[] = {"SortedCarried0", "SortedCarried1"};
+        GLuint words[2] = {0, 0};
+        for (std::size_t a = 0; a < carried.size(); ++a) {
+            buffers.add(from[a], *carried[a].from).add(to[a], *carried[a].to);
+            words[a] = carried[a].words;
         }
+        const shader::Program& reorder = reorder_[carried.size()];
+        if (!carried.empty()) glProgramUniform2ui(reorder.id(), RANRYU_LOC_AUX, words[0], words[1]);
+        reorder.bind(buffers).dispatch(count);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

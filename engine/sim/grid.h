@@ -3,7 +3,9 @@
 // reorder. After build(), the particles are in cell order and a cell's particles are the run
 // [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, and
 // "reorder", which finds the cell ranges and gathers the particles in one pass.
+#include <array>
 #include <cstdint>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -34,6 +36,14 @@ struct CellRanges {
     gl::Buffer start, end;
 };
 
+// A per-particle array that a reorder gathers along with the positions: `words` 32-bit words a
+// particle, from `from` (the old order) into `to` (the new one).
+struct CarriedArray {
+    const gl::Buffer* from = nullptr;
+    gl::Buffer* to = nullptr;
+    std::uint32_t words = 0;
+};
+
 class NeighbourGrid {
 public:
     NeighbourGrid(const shader::FileSource& shaders, profile::GpuTimer& timer, const GridLayout& layout,
@@ -47,13 +57,13 @@ public:
     // and fills `ranges` for the cells that have particles. With `clear`, every other cell reads as
     // the empty run 0, 0; without it (the per-substep case: clearing every cell costs more than the
     // sort), other cells keep stale entries, which readers reject by checking that the sorted key
-    // at an entry's start is the cell's own (glsl/sim/sph/sph_common.glsl, fluid_run). Leaves
-    // RANRYU_UBO_GRID bound to this grid. `carried`, when given, is a per-particle NoiseSeed array
-    // that the reorder gathers into `sorted_carried` with the positions (the turbulence's carried
-    // noise coordinates); without it the reorder moves positions and velocities only.
+    // at an entry's start is the cell's own (glsl/sim/fluid/fluid.glsl, fluid_run). Leaves
+    // RANRYU_UBO_GRID bound to this grid. The reorder also gathers up to max_carried `carried` arrays
+    // (the fluid's carried arrays, sim/fluid.h) in the same pass.
+    static constexpr std::size_t max_carried = 2;
     void build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
                gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
-               const gl::Buffer* carried = nullptr, gl::Buffer* sorted_carried = nullptr);
+               std::span<const CarriedArray> carried = {});
 
     const KeySort& sort() const { return sort_; }
     void bind_params(std::size_t count);
@@ -61,7 +71,8 @@ public:
 private:
     profile::GpuTimer& timer_;
     profile::PassId hash_pass_, reorder_pass_;
-    shader::Program hash_, reorder_, reorder_carried_;
+    shader::Program hash_;
+    std::array<shader::Program, max_carried + 1> reorder_;   // by the number of carried arrays
     KeySort sort_;
     GridLayout layout_;
     SortMethod method_;

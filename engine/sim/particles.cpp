@@ -28,10 +28,8 @@ void Particles::set_params(const gpu::SimParams& p) {
 
 void Particles::integrate() {
     auto pass = timer_.scope(integrate_pass_);
-    position_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
-    velocity_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
     params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SIM);
-    integrate_.dispatch(count_);
+    integrate_.bind({{"Positions", &position_}, {"Velocities", &velocity_}}).dispatch(count_);
     // The next substep and the impostor draw (vertex attributes) read what this wrote.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The particle state on the GPU and the passes that advance it. Positions and velocities are
-// std430 vec4 arrays (shared/bindings.h: RANRYU_SSBO_POSITION, RANRYU_SSBO_VELOCITY).
+// std430 vec4 arrays (storage blocks Positions, Velocities).
 #include <cstddef>
 #include <vector>
 

@@ -151,7 +151,6 @@ void KeySort::sort_radix(std::size_t count, std::uint32_t max_key) {
     glProgramUniform1ui(scan_.id(), RANRYU_LOC_COUNT, n);
     glProgramUniform1ui(scan_serial_.id(), RANRYU_LOC_COUNT, n);
     glProgramUniform1ui(scatter_.id(), RANRYU_LOC_COUNT, n);
-    histogram_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_HISTOGRAM);
     bool alt = false;
     for (unsigned shift = 0; shift < bits; shift += kRadixBits) {
         const unsigned digit_bits = std::min(kRadixBits, bits - shift);
@@ -159,30 +158,32 @@ void KeySort::sort_radix(std::size_t count, std::uint32_t max_key) {
             glProgramUniform1ui(p->id(), RANRYU_LOC_SHIFT, shift);
             glProgramUniform1ui(p->id(), RANRYU_LOC_AUX, digit_bits);
         }
-        (alt ? keys_alt_ : keys_).bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
-        (alt ? values_alt_ : values_).bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
-        (alt ? keys_ : keys_alt_).bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS_ALT);
-        (alt ? values_ : values_alt_).bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES_ALT);
+        const shader::StorageSet buffers{{"Keys", alt ? &keys_alt_ : &keys_},
+                                         {"KeysIn", alt ? &keys_alt_ : &keys_},
+                                         {"ValuesIn", alt ? &values_alt_ : &values_},
+                                         {"KeysOut", alt ? &keys_ : &keys_alt_},
+                                         {"ValuesOut", alt ? &values_ : &values_alt_},
+                                         {"Histogram", &histogram_}};
         {
             auto pass = timer_.scope(count_pass_);
-            count_.use();
+            count_.bind(buffers).use();
             glDispatchCompute(tiles, 1, 1);
         }
         storage_barrier();
         {
             auto pass = timer_.scope(scan_pass_);
             if (tiles <= kSerialScanTiles) {
-                scan_serial_.use();
+                scan_serial_.bind(buffers).use();
                 glDispatchCompute(1, 1, 1);
             } else {
-                scan_.use();
+                scan_.bind(buffers).use();
                 glDispatchCompute(1u << digit_bits, 1, 1);   // digits this pass can hold; see scan_counts.comp
             }
         }
         storage_barrier();
         {
             auto pass = timer_.scope(scatter_pass_);
-            scatter_.use();
+            scatter_.bind(buffers).use();
             glDispatchCompute(tiles, 1, 1);
         }
         storage_barrier();
@@ -202,11 +203,10 @@ void KeySort::sort_bitonic(std::size_t count) {
     glProgramUniform1ui(bitonic_sort_local_.id(), RANRYU_LOC_COUNT, n);
     glProgramUniform1ui(bitonic_merge_local_.id(), RANRYU_LOC_COUNT, n);
     glProgramUniform1ui(bitonic_merge_global_.id(), RANRYU_LOC_COUNT, n);
-    keys_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
-    values_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_VALUES);
+    const shader::StorageSet buffers{{"Keys", &keys_}, {"Values", &values_}};
     {
         auto pass = timer_.scope(bitonic_local_pass_);
-        bitonic_sort_local_.use();
+        bitonic_sort_local_.bind(buffers).use();
         glDispatchCompute(tiles, 1, 1);
     }
     storage_barrier();
@@ -215,7 +215,7 @@ void KeySort::sort_bitonic(std::size_t count) {
             glProgramUniform2ui(bitonic_merge_global_.id(), RANRYU_LOC_STAGE, GLuint(k), GLuint(j));
             {
                 auto pass = timer_.scope(bitonic_global_pass_);
-                bitonic_merge_global_.use();
+                bitonic_merge_global_.bind(buffers).use();
                 glDispatchCompute(global_groups, 1, 1);
             }
             storage_barrier();
@@ -223,7 +223,7 @@ void KeySort::sort_bitonic(std::size_t count) {
         glProgramUniform2ui(bitonic_merge_local_.id(), RANRYU_LOC_STAGE, GLuint(k), 0u);
         {
             auto pass = timer_.scope(bitonic_local_pass_);
-            bitonic_merge_local_.use();
+            bitonic_merge_local_.bind(buffers).use();
             glDispatchCompute(tiles, 1, 1);
         }
         storage_barrier();

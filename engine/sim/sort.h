@@ -49,7 +49,7 @@ public:
             SubgroupMode mode = SubgroupMode::automatic);
 
     // The input: the caller writes `count` keys and values here, e.g. with the buffers bound at
-    // RANRYU_SSBO_SORT_KEYS / RANRYU_SSBO_SORT_VALUES (uint[capacity] each), before sort().
+    // the storage blocks Keys, Values (uint[capacity] each), before sort().
     // sort() issues the memory barrier that makes earlier shader writes to them visible.
     gl::Buffer& keys() { return keys_; }
     gl::Buffer& values() { return values_; }

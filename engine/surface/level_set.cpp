@@ -182,8 +182,15 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
     }
     grid.bind_params(count);
     params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SURFACE);
-    sorted_position.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORTED_POSITION);
-    grid_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_GRID);
+    shader::StorageSet buffers{{"Positions", &sorted_position},
+                               {"SurfaceGridState", &grid_},
+                               {"CellStart", &ranges.start},
+                               {"CellEnd", &ranges.end},
+                               {"SortedKeys", &grid.sort().sorted_keys()},   // validates ranges
+                               {"Phi", &phi_},
+                               {"SplatGrid", &splat_grid_}};
+    if (sub)
+        buffers.add("Subparticles", sub->state).add("SubparticlePositions", sub->positions).add("SubparticleLevels", sub->levels);
     {
         auto pass = timer_.scope(bounds_pass_);
         // bounds_min = identity of min, bounds_max = identity of max (bytes 32..63 of SurfaceGrid).
@@ -195,31 +202,23 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
                              sizeof(glm::uvec4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        find_bounds_.dispatch(count);
+        find_bounds_.bind(buffers).dispatch(count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        place_grid_.use();
+        place_grid_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     }
     if (sub) {
         auto pass = timer_.scope(splat_pass_);
-        sub->state.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_STATE);
-        sub->positions.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_POSITION);
-        sub->levels.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_LEVELS);
-        splat_grid_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_SPLAT);
-        splat_.use();
+        splat_.bind(buffers).use();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->state.id());
         glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // levels and splat stay bound for the gather
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
         auto pass = timer_.scope(level_set_pass_);
-        ranges.start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
-        ranges.end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
-        grid.sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);   // validates ranges
-        phi_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_PHI);
-        compute_.use();
+        compute_.bind(buffers).use();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid_.id());
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::SurfaceGrid, dispatch)));
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

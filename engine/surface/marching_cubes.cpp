@@ -84,36 +84,32 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
 }
 
 void MarchingCubes::polygonise(const gl::Buffer& phi, const gl::Buffer& grid) {
-    grid.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_GRID);
-    phi.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SURFACE_PHI);
-    state_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_STATE);
-    cell_vertices_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_CELL_VERTICES);
-    blocks_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_BLOCKS);
-    active_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_ACTIVE);
-    vertices_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_VERTICES);
-    triangles_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_MC_TRIANGLES);
+    const shader::StorageSet buffers{{"SurfaceGridState", &grid},         {"Phi", &phi},
+                                     {"Mesh", &state_},         {"CellVertices", &cell_vertices_},
+                                     {"McBlocks", &blocks_},         {"ActiveCells", &active_},
+                                     {"MeshVertices", &vertices_},   {"McTriangles", &triangles_}};
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state_.id());
     {
         auto pass = timer_.scope(classify_pass_);
-        setup_.use();
+        setup_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        classify_.use();
+        classify_.bind(buffers).use();
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
         auto pass = timer_.scope(compact_pass_);
-        scan_.use();
+        scan_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        compact_.use();
+        compact_.bind(buffers).use();
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
         auto pass = timer_.scope(emit_pass_);
-        emit_.use();
+        emit_.bind(buffers).use();
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, emit_dispatch)));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     }

@@ -1,24 +1,37 @@
 #include "turbulence/force.h"
 
 #include <algorithm>
+#include <cstring>
+#include <vector>
 
 #include "shared/bindings.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
 
 namespace ranryu::turbulence {
 
+namespace {
+std::vector<std::uint32_t> unseeded_words() {
+    const gpu::NoiseSeed s = unseeded_noise();
+    std::vector<std::uint32_t> w(sizeof s / sizeof(std::uint32_t));
+    std::memcpy(w.data(), &s, sizeof s);
+    return w;
+}
+}  // namespace
+
 TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::GpuTimer& timer,
-                                 const scene::TurbulenceSettings& settings, float h, std::size_t capacity, int mask_runs)
+                                 const scene::TurbulenceSettings& settings, sim::Fluid& fluid)
     : timer_(timer),
       pass_(timer.pass("turbulence-force")),
       settings_(settings),
       // settings.scale <= 1/3 (scene.cpp); the clamp absorbs float rounding of s = h/3.
-      scale_(std::min(settings.scale * h, WaveletAnalysis::max_scale(h))),
+      scale_(std::min(settings.scale * fluid.params().h, WaveletAnalysis::max_scale(fluid.params().h))),
       tiles_(NoiseTiles::generate(settings.seed)),
-      wavelet_(shaders, timer, capacity, mask_runs),
+      wavelet_(shaders, timer, fluid.count(), fluid.neighbour_masks().id() ? fluid.neighbour_runs() : 0),
       noise_(shaders, timer, tiles_),
       program_(shader::Program::compute(shaders, "turbulence/apply_turbulence_force.comp")),
-      noise_params_(sizeof(gpu::NoiseParams), GL_STATIC_DRAW, nullptr, "turbulence NoiseParams") {
+      noise_params_(sizeof(gpu::NoiseParams), GL_STATIC_DRAW, nullptr, "turbulence NoiseParams"),
+      fluid_(fluid),
+      seeds_(fluid.carry("NoiseSeeds", std::uint32_t(sizeof(gpu::NoiseSeed) / sizeof(std::uint32_t)), unseeded_words())) {
     gpu::NoiseParams p{};
     p.lmin = settings.lmin;
     p.lmax = settings.lmax;
@@ -29,16 +42,16 @@ TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::Gpu
     glProgramUniform1f(program_.id(), RANRYU_LOC_COHERENCE_TIME, settings.coherence_time);
 }
 
-void TurbulenceForce::analyse(sim::Sph& sph) { wavelet_.analyse(sph, scale_); }
+const gl::Buffer& TurbulenceForce::noise_seeds() const { return fluid_.carried(seeds_); }
 
-void TurbulenceForce::apply(sim::Sph& sph) {
-    if (sph.count() == 0) return;
+void TurbulenceForce::analyse(sim::Fluid& fluid) { wavelet_.analyse(fluid, scale_); }
+
+void TurbulenceForce::apply(sim::Fluid& fluid) {
+    if (fluid.count() == 0) return;
     auto pass = timer_.scope(pass_);
     noise_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_NOISE);
-    noise_.tiles().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_TILES);
-    wavelet_.energy().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
-    sph.noise_seeds()->bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_SEED);
-    program_.dispatch(sph.count());
+    program_.bind(fluid.bind_state().with("NoiseTiles", noise_.tiles()).with("WaveletEnergy", wavelet_.energy()))
+        .dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -18,34 +18,40 @@
 // y_c is the noise carried with the fluid (glsl/turbulence/carried_noise.glsl), re-seeded every
 // settings.coherence_time.
 //
-// Each substep, when enabled: "wavelet" (WaveletAnalysis::analyse at s = scale·h) after the density
-// pass, on the current cell order, and "turbulence-force" after the forces pass and before integrate.
-// The force pass also folds its |a_i| into StepState.max_accel (the next substep's dt, eq. (7)), and
-// re-seeds the carried noise (Sph::noise_seeds(), moved with the particles by the reorder).
+// Each step, when enabled, as the step's hooks (sim/solver.h): "wavelet" (WaveletAnalysis::analyse
+// at s = scale·h) after the solver's density pass, on the current cell order, and "turbulence-force"
+// once the non-pressure accelerations are in the fluid's accelerations(), before they are applied.
+// The force pass also folds its |a_i| into StepState.max_accel (the next step's dt), and re-seeds the
+// carried noise (noise_seeds(): a carried array of the fluid, moved with the particles by the reorder).
 #include <cstddef>
 
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
 #include "scene/scene.h"
 #include "shader/program.h"
+#include "sim/solver.h"
 #include "turbulence/noise.h"
 #include "turbulence/wavelet.h"
 
-namespace ranryu::sim { class Sph; }
+namespace ranryu::sim { class Fluid; }
 
 namespace ranryu::turbulence {
 
-class TurbulenceForce {
+class TurbulenceForce final : public sim::StepHooks {
 public:
-    // Tiles from settings.seed, the wavelet buffer for `capacity` particles. `h` is the SPH support (m);
-    // `mask_runs`, the SPH's neighbour-mask runs (0: none), as WaveletAnalysis takes it.
+    // Tiles from settings.seed, the wavelet buffer for the fluid's particles and their noise seeds,
+    // carried by the fluid (every particle unseeded at first).
     TurbulenceForce(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
-                    float h, std::size_t capacity, int mask_runs = 0);
+                    sim::Fluid& fluid);
 
-    void analyse(sim::Sph& sph);   // "wavelet": ê of sph's current cell order
-    // "turbulence-force": a_i += A ê_i y_c,i on sph.accelerations(), re-seeding sph.noise_seeds();
-    // binds the SPH's fields first (the caller's bind), then the noise, wavelet and seed buffers.
-    void apply(sim::Sph& sph);
+    void analyse(sim::Fluid& fluid);   // "wavelet": ê of the fluid's current cell order
+    // "turbulence-force": a_i += A ê_i y_c,i on fluid.accelerations(), re-seeding noise_seeds().
+    void apply(sim::Fluid& fluid);
+    void after_density(sim::Fluid& fluid) override { analyse(fluid); }
+    void add_accelerations(sim::Fluid& fluid) override { apply(fluid); }
+
+    // The carried noise's seeds: gpu::NoiseSeed per particle, in the fluid's current cell order.
+    const gl::Buffer& noise_seeds() const;
 
     const WaveletAnalysis& wavelet() const { return wavelet_; }
     const NoiseTiles& tiles() const { return tiles_; }   // the CPU copy (tests: curl_noise_octaves)
@@ -63,6 +69,8 @@ private:
     CurlNoise noise_;
     shader::Program program_;
     gl::Buffer noise_params_;
+    const sim::Fluid& fluid_;
+    int seeds_;   // the fluid's carried array
 };
 
 }  // namespace ranryu::turbulence

@@ -192,9 +192,7 @@ void CurlNoise::sample(const FieldSpec& spec, gl::Buffer& out) {
     params_.upload_value(p);
     auto pass = timer_.scope(pass_);
     params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_NOISE);
-    tiles_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_TILES);
-    out.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_FIELD);
-    program_.use();
+    program_.bind({{"NoiseTiles", &tiles_}, {"NoiseField", &out}}).use();
     const auto ls = program_.local_size();
     glDispatchCompute((spec.dims.x + ls[0] - 1) / ls[0], (spec.dims.y + ls[1] - 1) / ls[1], (spec.dims.z + ls[2] - 1) / ls[2]);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

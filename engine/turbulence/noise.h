@@ -82,7 +82,7 @@ struct FieldSpec {
     std::size_t points() const { return std::size_t(dims.x) * dims.y * dims.z; }
 };
 
-// The noise on the GPU: the tiles in one buffer (RANRYU_SSBO_NOISE_TILES) and the sampling pass
+// The noise on the GPU: the tiles in one buffer (storage block NoiseTiles) and the sampling pass
 // "noise.sample" (glsl/turbulence/sample_field.comp).
 class CurlNoise {
 public:

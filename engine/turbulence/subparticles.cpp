@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
 #include "turbulence/force.h"
 
 namespace ranryu::turbulence {
@@ -198,38 +198,38 @@ void Subparticles::generate(const Inputs& in, std::uint64_t frame) {
         params_ubo_.upload_value(params_);
     }
     params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
-    in.positions.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
-    in.velocities.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
-    in.energy.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
-    in.seeds.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_SEED);
-    in.step.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_STEP);
-    noise_.tiles().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NOISE_TILES);
-    state_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_STATE);
-    levels_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_LEVELS);
-    blocks_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_BLOCKS);
-    lists_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_LISTS);
-    positions_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_POSITION);
-    velocities_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_VELOCITY);
+    const shader::StorageSet buffers{{"Positions", &in.positions},
+                                     {"Velocities", &in.velocities},
+                                     {"WaveletEnergy", &in.energy},
+                                     {"NoiseSeeds", &in.seeds},
+                                     {"Step", &in.step},
+                                     {"NoiseTiles", &noise_.tiles()},
+                                     {"Subparticles", &state_},
+                                     {"SubparticleLevels", &levels_},
+                                     {"SubparticleBlocks", &blocks_},
+                                     {"SubparticleLists", &lists_},
+                                     {"SubparticlePositions", &positions_},
+                                     {"SubparticleVelocities", &velocities_}};
     {
         auto pass = timer_.scope(classify_pass_);
-        classify_.dispatch(in.count);
+        classify_.bind(buffers).dispatch(in.count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        scan_.use();
+        scan_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        compact_.dispatch(in.count);
+        compact_.bind(buffers).dispatch(in.count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
         auto pass = timer_.scope(budget_pass_);
-        budget_.use();
+        budget_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
         readback_.copy(state_, 0, frame);   // the stats, back frames late
     }
     {
         auto pass = timer_.scope(spawn_pass_);
-        spawn_.use();
+        spawn_.bind(buffers).use();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state_.id());
         glDispatchComputeIndirect(GLintptr(dispatch_offset));
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -239,10 +239,9 @@ void Subparticles::generate(const Inputs& in, std::uint64_t frame) {
     }
 }
 
-void Subparticles::generate(sim::Sph& sph, std::uint64_t frame) {
-    const TurbulenceForce* t = sph.turbulence();
-    if (!t || !sph.noise_seeds()) throw Error("Subparticles::generate: the SPH has no turbulence (ê and seeds)");
-    generate(Inputs{sph.positions(), sph.velocities(), t->wavelet().energy(), *sph.noise_seeds(), sph.step_state(), sph.count()},
+void Subparticles::generate(const sim::Fluid& fluid, const TurbulenceForce& force, std::uint64_t frame) {
+    generate(Inputs{fluid.positions(), fluid.velocities(), force.wavelet().energy(), force.noise_seeds(), fluid.step_state(),
+                    fluid.count()},
              frame);
 }
 

@@ -70,7 +70,8 @@
 #include "shared/bindings.h"
 #include "turbulence/noise.h"
 
-namespace ranryu::sim { class Sph; }
+namespace ranryu::sim { class Fluid; }
+namespace ranryu::turbulence { class TurbulenceForce; }
 
 namespace ranryu::turbulence {
 
@@ -139,7 +140,7 @@ public:
         const gl::Buffer& positions;    // vec4[count]: xyz (m)
         const gl::Buffer& velocities;   // vec4[count]: xyz (m/s)
         const gl::Buffer& energy;       // vec4[count]: (û, ê), WaveletAnalysis::energy()
-        const gl::Buffer& seeds;        // gpu::NoiseSeed[count], Sph::noise_seeds()
+        const gl::Buffer& seeds;        // gpu::NoiseSeed[count], TurbulenceForce::noise_seeds()
         const gl::Buffer& step;         // gpu::StepState
         std::size_t count;
     };
@@ -147,8 +148,8 @@ public:
     // barriers that let the level set read, the renderer draw and the indirect commands use the
     // results. Allocates, compiles and reads back nothing.
     void generate(const Inputs& in, std::uint64_t frame);
-    // The same from the SPH's state after its last substep (turbulence on).
-    void generate(sim::Sph& sph, std::uint64_t frame);
+    // The same from the fluid's state after its last step, with the force's energy and seeds.
+    void generate(const sim::Fluid& fluid, const TurbulenceForce& force, std::uint64_t frame);
 
     const gl::Buffer& positions() const { return positions_; }    // vec4[capacity()]: (x_c, E)
     const gl::Buffer& velocities() const { return velocities_; }  // vec4[capacity()]: (v_c, e_E)

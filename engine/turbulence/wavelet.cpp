@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
 
 namespace ranryu::turbulence {
 
@@ -22,12 +22,11 @@ WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::Gpu
       mask_runs_(mask_runs),
       capacity_(capacity),
       energy_(std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
-      params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams"),
-      sph_params_(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, nullptr, "wavelet SphParams") {}
+      params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams") {}
 
-void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
-    const std::size_t count = sph.count();
-    const float cell = sph.grid().layout().cell;
+void WaveletAnalysis::analyse(sim::Fluid& fluid, float scale) {
+    const std::size_t count = fluid.count();
+    const float cell = fluid.grid().layout().cell;
     // s·R <= cell, with a float rounding's slack so that s = max_scale(cell) itself passes.
     if (!(scale > 0.0f) || !std::isfinite(scale) || scale * kTruncation > cell * (1.0f + 1e-6f))
         throw InputError("wavelet: scale " + std::to_string(scale) + " m must be positive and at most the grid cell / " +
@@ -37,29 +36,13 @@ void WaveletAnalysis::analyse(sim::Sph& sph, float scale) {
     if (count == 0) return;
 
     auto pass = timer_.scope(pass_);
-    // The constants change only with the scale, the count or the SPH: upload them then, not every substep.
+    // The constants change only with the scale or the count: upload them then, not every substep.
     const gpu::WaveletParams p{scale, kTruncation, std::uint32_t(count), 0u};
     if (!uploaded_ || std::memcmp(&p, &params_value_, sizeof p) != 0) params_.upload_value(params_value_ = p);
-    if (!uploaded_ || std::memcmp(&sph.params(), &sph_value_, sizeof sph_value_) != 0)
-        sph_params_.upload_value(sph_value_ = sph.params());   // fluid_run() reads particle_count
     uploaded_ = true;
-    sph_params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
-    sph.grid().bind_params(count);
-    sph.positions().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_POSITION);
-    sph.velocities().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_VELOCITY);
-    sph.cell_ranges().start.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_START);
-    sph.cell_ranges().end.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_CELL_END);
-    sph.grid().sort().sorted_keys().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_KEYS);
-    params_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_PARAMS);
-    energy_.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_WAVELET_ENERGY);
-    last_masks_ = masked_.id() && sph.neighbour_masks_current() && sph.neighbour_runs() == mask_runs_ ? 1 : 0;
-    if (last_masks_) {
-        sph.densities().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_DENSITY);
-        sph.neighbour_masks().bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_NEIGHBOURS);
-        masked_.dispatch(count);
-    } else {
-        program_.dispatch(count);
-    }
+    const shader::StorageSet buffers = fluid.bind_state().with("WaveletConstants", params_).with("WaveletEnergy", energy_);
+    last_masks_ = masked_.id() && fluid.neighbour_masks_current() && fluid.neighbour_runs() == mask_runs_ ? 1 : 0;
+    (last_masks_ ? masked_ : program_).bind(buffers).dispatch(count);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 

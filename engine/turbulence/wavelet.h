@@ -28,7 +28,7 @@
 //     hat's first alias, at ks = 2πs/dx = 4.19, is ψ̂(4.19)/ψ̂(√2) = 0.4 % of its peak; the sharp cut
 //     at r = 3s is sampled by shells of particles and moves the energy by a few % (wavelet_test.cpp).
 //   - The response peaks at k s = 1.455 for R = 3 (√2 for R = ∞): wavelength λ* = 4.32 s.
-// The output: energy() holds vec4(û_i, ê_i) per particle (binding RANRYU_SSBO_WAVELET_ENERGY), in the
+// The output: energy() holds vec4(û_i, ê_i) per particle (storage block WaveletEnergy), in the
 // cell order of the positions analysed.
 // Units: û is a velocity (m/s), the ψ-weighted mean of the neighbours' velocity differences, and ê a
 // kinetic energy per unit mass (m²/s²). The continuous transform's 1/√s is left out: with ψ_sum's
@@ -43,7 +43,7 @@
 #include "shader/program.h"
 #include "shared/bindings.h"
 
-namespace ranryu::sim { class Sph; }
+namespace ranryu::sim { class Fluid; }
 
 namespace ranryu::turbulence {
 
@@ -55,22 +55,22 @@ public:
     static float max_scale(float cell) { return cell / kTruncation; }
 
     // Compiles the pass and allocates energy() for up to `capacity` particles.
-    // `mask_runs` > 0 (sim::Sph::neighbour_runs() of an SPH with neighbour masks) also builds the
+    // `mask_runs` > 0 (sim::Fluid::neighbour_runs() of a fluid with neighbour masks) also builds the
     // variant that reads the density pass's masks for that many runs.
     WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity, int mask_runs = 0);
 
-    // ê of the fluid of `sph` at scale s (m), 0 < s <= max_scale(sph.grid().layout().cell), from the
+    // ê of `fluid` at scale s (m), 0 < s <= max_scale(fluid.grid().layout().cell), from the
     // positions, velocities, cell ranges and sorted keys of its last rebuild_grid(). Exact when the
-    // particles have not moved since (between rebuild_grid() and integrate(), as the tests call it);
-    // after a whole substep() they have moved by up to ~0.4 dx (CFL), and a neighbour near the cut,
-    // R·s = h, can fall outside the 27 cells searched (a term with |ψ| <= 0.07). Throws InputError on a
-    // bad scale or more particles than the capacity. Runs inside a GpuTimer frame; ends with a
-    // shader-storage barrier. Binds its own copy of sph.params() (SphParams) and the grid's GridParams.
-    void analyse(sim::Sph& sph, float scale);
+    // particles have not moved since (between rebuild_grid() and the integration, as a step's hooks and
+    // the tests call it); after a whole step they have moved by up to ~0.4 dx (CFL), and a neighbour near
+    // the cut, R·s = h, can fall outside the 27 cells searched (a term with |ψ| <= 0.07). Throws
+    // InputError on a bad scale or more particles than the capacity. Runs inside a GpuTimer frame; ends
+    // with a shader-storage barrier.
+    void analyse(sim::Fluid& fluid, float scale);
 
     const gl::Buffer& energy() const { return energy_; }   // vec4[capacity]: (û_i, ê_i)
     // Which path the last analyse() took: 0 the grid walk, 1 the density pass's neighbour masks (built
-    // with mask_runs and sph.neighbour_masks_current(); analyse_velocity.comp). Tests.
+    // with mask_runs and fluid.neighbour_masks_current(); analyse_velocity.comp). Tests.
     int last_path_masks() const { return last_masks_; }
     std::size_t capacity() const { return capacity_; }
 
@@ -81,9 +81,8 @@ private:
     int mask_runs_;
     std::size_t capacity_;
     int last_masks_ = 0;
-    gl::Buffer energy_, params_, sph_params_;
-    gpu::WaveletParams params_value_{};   // what params_ and sph_params_ hold
-    gpu::SphParams sph_value_{};
+    gl::Buffer energy_, params_;
+    gpu::WaveletParams params_value_{};   // what params_ holds
     bool uploaded_ = false;
 };
 

@@ -1,13 +1,15 @@
 #include "validation/cases.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "core/error.h"
-#include "profile/gpu_timer.h"
-#include "sim/sph.h"
+#include "frame/loop.h"
+#include "frame/pipeline.h"
+#include "sim/simulation.h"
 
 namespace ranryu::validation {
 namespace {
@@ -42,20 +44,18 @@ float bits_to_float(std::uint32_t b) {
     return f;
 }
 
-// Runs `frames` SPH frames headless; each record goes to `sink`. Throws UnstableError.
-void run_sph(sim::Sph& sph, profile::GpuTimer& timer, int frames) {
-    for (int f = 0; f < frames; ++f) {
-        timer.begin_frame();
-        sph.begin_frame(std::uint64_t(f));
-        for (int s = 0; s < sph.substeps_this_frame(); ++s) sph.substep();
-        sph.end_frame();
-        timer.end_frame();
-        sph.poll_records();
-        if (sph.instability()) throw sim::UnstableError(*sph.instability());
-    }
-    timer.drain();
-    sph.drain_records();
-    if (sph.instability()) throw sim::UnstableError(*sph.instability());
+// A pipeline that simulates and draws nothing: the frame loop of every command, without a view.
+frame::Pipeline simulation_only(const scene::Scene& scene, const shader::FileSource& shaders) {
+    frame::View view;
+    view.draw = false;
+    return frame::Pipeline(scene, shaders, view);
+}
+
+// Runs `frames` frames of the shared frame loop and waits for their records. Throws UnstableError.
+void run(frame::Pipeline& pipeline, int frames) {
+    frame::run_frames(pipeline, std::uint64_t(frames));
+    pipeline.drain();
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
 }
 
 }  // namespace
@@ -73,16 +73,19 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     const double t_end = (data.back().first + 0.1) / time_scale;
     const int frames = int(std::ceil(t_end / scene.frame_dt)) + 1;
 
-    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * 64);
-    sim::Sph sph(shaders, timer, scene);
-    r.particles = sph.count();
-    const float origin_x = sph.params().domain_min.x;
+    frame::Pipeline pipeline = simulation_only(scene, shaders);
+    sim::Fluid& fluid = pipeline.simulation()->fluid();
+    r.particles = fluid.count();
+    const float origin_x = fluid.params().domain_min.x;
     r.simulated.emplace_back(0.0, 1.0);   // the column's edge at t = 0
-    sph.set_record_sink([&](const gpu::StepState& s) {
+    fluid.set_record_sink([&](const gpu::StepState& s) {
         const double front = double(origin_x) + bits_to_float(s.front);
         r.simulated.emplace_back(double(s.time) * time_scale, (front - r.wall) / r.a);
+        r.steps += s.frame_substeps;
     });
-    run_sph(sph, timer, frames);
+    const auto start = std::chrono::steady_clock::now();
+    run(pipeline, frames);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     double sum2 = 0.0;
     for (const auto& [t, z] : data) {
@@ -102,10 +105,12 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     HydrostaticResult r;
     r.height = scene.blocks.front().max.y - scene.tank_min.y;
     r.spacing = scene.spacing;
-    profile::GpuTimer timer(4, 64 + sim::timed_passes_per_substep(scene) * 64);
-    sim::Sph sph(shaders, timer, scene);
-    r.particles = sph.count();
-    run_sph(sph, timer, int(std::ceil(settle_s / scene.frame_dt)));
+    frame::Pipeline pipeline = simulation_only(scene, shaders);
+    sim::Fluid& fluid = pipeline.simulation()->fluid();
+    r.particles = fluid.count();
+    fluid.set_record_sink([&](const gpu::StepState& s) { r.steps += s.frame_substeps; });
+    const auto start = std::chrono::steady_clock::now();
+    run(pipeline, int(std::ceil(settle_s / scene.frame_dt)));
 
     // The column starts uncompressed and rings acoustically (period 4 H / c); a snapshot lands at
     // some phase of that. So the pressure profile is averaged over the next half second, read back
@@ -118,15 +123,16 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     std::vector<glm::vec4> x, v, d;
     for (int f = 0; f < average_frames; ++f) {
-        run_sph(sph, timer, 1);
-        x = sph.positions().read<glm::vec4>(sph.count());
-        d = sph.densities().read<glm::vec4>(sph.count());
+        run(pipeline, 1);
+        x = fluid.positions().read<glm::vec4>(fluid.count());
+        d = fluid.densities().read<glm::vec4>(fluid.count());
         for (std::size_t i = 0; i < x.size(); ++i) {
             const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
             if (k >= 0 && k < layers) sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
         }
     }
-    v = sph.velocities().read<glm::vec4>(sph.count());
+    v = fluid.velocities().read<glm::vec4>(fluid.count());
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     double v2 = 0.0;
     for (const glm::vec4& u : v) {
         const double speed = glm::length(glm::vec3(u));

@@ -2,6 +2,7 @@
 // Validation cases: the simulation run headless against a published experiment or an analytic
 // solution, with the error. `ranryu validate` prints them; tests assert bounds on them.
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct DamBreakResult {
     struct Point { double t, measured, simulated; };
     std::vector<Point> compared;                        // at the experiment's times
     double rms_error = 0.0, max_error = 0.0;            // in Z
+    std::uint64_t steps = 0;                            // the solver's steps over the run
+    double seconds = 0.0;                               // the run on the wall clock
 };
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders);
 
@@ -30,6 +33,8 @@ struct HydrostaticResult {
     std::vector<Layer> layers;
     double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) in the interior: a kernel support from floor and surface
     double max_speed = 0.0, rms_speed = 0.0;
+    std::uint64_t steps = 0;                            // the solver's steps over the run
+    double seconds = 0.0;                               // the run on the wall clock
 };
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s);
 

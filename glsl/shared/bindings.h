@@ -1,7 +1,7 @@
 // Binding points and parameter structs shared by C++ and GLSL.
 //
-// This file is compiled by both languages, so it keeps to what both understand: #define for binding
-// points (GLSL 4.30 layout qualifiers take literals only), and structs of vec4/mat4 and groups of four
+// This file is compiled by both languages, so it keeps to what both understand: #define for uniform
+// binding points and locations (GLSL 4.30 layout qualifiers take literals only), and structs of vec4/mat4 and groups of four
 // 4-byte scalars, so that std140 (UBO) and std430 (SSBO) need no padding rules beyond the C++ ones.
 // C++ checks each struct's size with static_assert; tests/gl/interop_test.cpp checks every member's
 // std140 offset against the driver's and reads the values back through a compute shader.
@@ -30,45 +30,16 @@ using mat4 = glm::mat4;
 #define RANRYU_UBO_SPH 3     // SphParams: the SPH model (docs/SPH.md)
 #define RANRYU_UBO_PROBE 7   // tests only: LayoutProbe
 
-// ---- shader storage binding points (std430); all below 32 (llvmpipe's limit) ----
-#define RANRYU_SSBO_POSITION 0   // vec4[n]: xyz position (m), w unused
-#define RANRYU_SSBO_VELOCITY 1   // vec4[n]: xyz velocity (m/s), w unused
-// Sorting (engine/sim/sort.*): (key, value) pairs ping-pong between the two sets.
-#define RANRYU_SSBO_SORT_KEYS 2        // uint[n]
-#define RANRYU_SSBO_SORT_VALUES 3      // uint[n]
-#define RANRYU_SSBO_SORT_KEYS_ALT 4    // uint[n]
-#define RANRYU_SSBO_SORT_VALUES_ALT 5  // uint[n]
-#define RANRYU_SSBO_SORT_HISTOGRAM 6   // uint[]: per-workgroup digit counts, then their prefix sums
-#define RANRYU_SSBO_PROBE_OUT 7        // tests only
-// Neighbour grid and SPH (engine/sim/): per-cell ranges and per-particle fields.
-#define RANRYU_SSBO_CELL_START 8       // uint[cells]: first sorted index of the cell
-#define RANRYU_SSBO_CELL_END 9         // uint[cells]: one past the last sorted index
-#define RANRYU_SSBO_SORTED_POSITION 10 // vec4[n]
-#define RANRYU_SSBO_SORTED_VELOCITY 11 // vec4[n]
-#define RANRYU_SSBO_DENSITY 12         // vec4[n]: x density, y pressure, z pressure / density^2
-#define RANRYU_SSBO_ACCEL 13           // vec4[n]: xyz acceleration
-#define RANRYU_SSBO_NEIGHBOURS 14      // uint[2·runs·n]: the density pass's neighbour masks (compute_density.comp)
-#define RANRYU_SSBO_BOUNDARY 15        // vec4[m]: boundary particles, xyz position, w volume psi
-#define RANRYU_SSBO_STEP 16            // StepState: the adaptive time step, on the GPU
-#define RANRYU_SSBO_SCRATCH 17         // uint[]: pass-local scratch
-#define RANRYU_SSBO_BOUNDARY_CELL_START 18  // uint[cells]: boundary particles' cell ranges
-#define RANRYU_SSBO_BOUNDARY_CELL_END 19
-// vec4[]: the obstacles' shapes (sim/boundary.h obstacle_shapes()), read by integrate's last-resort
-// projection (docs/SPH.md (8)); shares 17 with the start-up passes' scratch, which integrate never binds.
-#define RANRYU_SSBO_OBSTACLES 17
-// uint[keys]: 1 where the 27 cells around the cell hold a boundary particle (flag_boundary_cells.comp,
-// once at start); the density pass walks the boundary runs only there. Shares 20 with the surface's
-// SurfaceGrid: no SPH pass binds a surface buffer.
-#define RANRYU_SSBO_BOUNDARY_NEAR 20
-// vec2[n]: (rho_i, p_i / rho_i^2), the two density terms the forces pass gathers per pair, half the
-// bytes of the density array. Shares 11 with the reorder's sorted velocities: no other pass binds it.
-#define RANRYU_SSBO_PAIR_TERMS 11
+// ---- shader storage blocks ----
+// Storage blocks have no binding numbers here: each program gives its active blocks their own slots at
+// link, and the engine binds its buffers by block name (engine/shader/program.h, StorageSet). The
+// per-particle arrays are documented where they are declared (glsl/sim/fluid/*.glsl and each pass).
 
 // ---- explicit uniform locations (small per-dispatch values; never looked up by name) ----
 #define RANRYU_LOC_COUNT 0     // uint: number of items this dispatch covers
 #define RANRYU_LOC_SHIFT 1     // uint: radix sort digit shift
 #define RANRYU_LOC_STAGE 2     // uivec2 / uint: bitonic sort (block size k, stride j)
-#define RANRYU_LOC_AUX 3       // uint: pass-specific
+#define RANRYU_LOC_AUX 3       // uint or uvec2: pass-specific
 
 // ---- vertex attribute locations ----
 #define RANRYU_ATTR_POSITION 0   // per-instance particle position (impostors)
@@ -117,17 +88,17 @@ RANRYU_STRUCT_END(GridParams, 48)
 RANRYU_STRUCT(SphParams) {
     vec4 gravity;         // xyz (m/s^2)
     vec4 domain_min;      // xyz: the guard's bounds; a fluid particle outside has escaped (m)
-    vec4 domain_max;
+    vec4 domain_max;      // w: 1 when the tank is closed (a lid at the tank's top), else 0
     float h;              // kernel support (m), eq. (1)
     float mass;           // particle mass m = rho0 * dx^3 (kg)
     float rest_density;   // rho0 (kg/m^3)
     float stiffness;      // Tait B = rho0 c^2 / 7 (Pa), eq. (3)
     float viscosity;      // kinematic nu (m^2/s), eq. (5)
-    float sound_speed;    // c (m/s)
+    float sound_speed;    // c (m/s) of the time step: WCSPH's sound speed, 0 for DFSPH
     float spacing;        // dx (m)
     float cfl;            // Courant number of eq. (7), 0.4
     float force_factor;   // factor of the force condition of eq. (7), 0.25
-    float dt_max;         // largest substep (s)
+    float dt_max;         // largest substep (s): sph.max_time_step, at most the frame
     float dt_floor;       // guard: a substep below this has collapsed (s)
     float density_limit;  // guard: rho / rho0 above this is exploding
     float speed_limit;    // guard: |v| above this is exploding (m/s)
@@ -137,16 +108,16 @@ RANRYU_STRUCT(SphParams) {
 }
 RANRYU_STRUCT_END(SphParams, 112)
 
-// The adaptive time step and the instability guard's findings, kept on the GPU (std430 SSBO at
-// RANRYU_SSBO_STEP). Maxima of non-negative floats are kept as their bits: for x, y >= 0,
-// floatBitsToUint orders like the floats, so atomicMax on uint finds the float maximum.
+// The adaptive time step, the instability guard's findings and the pressure solver's iteration
+// record, kept on the GPU (std430 storage block Step). Maxima of non-negative floats are kept as their
+// bits: for x, y >= 0, floatBitsToUint orders like the floats, so atomicMax on uint finds the float maximum.
 RANRYU_STRUCT(StepState) {
     float dt;                 // this substep's dt (s)
     float time;               // simulated time (s)
     float frame_left;         // simulated time this frame still has to cover (s)
     uint substeps_left;       // substeps issued for this frame that have not run yet
-    uint max_speed;           // bits of max |v| over the last substep (input of eq. (7))
-    uint max_accel;           // bits of max |a| over the last substep
+    uint max_speed;           // bits of max |v| over the last substep (input of the time step)
+    uint max_accel;           // bits of max |a| over the last substep (WCSPH: all forces; DFSPH: non-pressure)
     uint frame_max_speed;     // bits of max |v| over this frame
     uint frame_max_density;   // bits of max rho/rho0 over this frame
     float frame_min_dt;       // smallest stable dt (CFL and force conditions) this frame (s)
@@ -161,8 +132,49 @@ RANRYU_STRUCT(StepState) {
     uint frame;               // frame number these findings belong to
     uint steps;               // substeps since the start
     uint pad0;
+    // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH).
+    // Solve 0 is the density solve, 1 the divergence solve.
+    uvec4 iterations;         // xy: iterations this frame of solve 0, 1 (summed over its steps); zw: the most in one step
+    uvec4 unconverged;        // xy: steps this frame whose solve 0, 1 stopped at the issued cap above its bound
+    vec4 error;               // xy: the solves' last mean error, summed over this frame's steps (units of rho0);
+                              // zw: the largest of them
 }
-RANRYU_STRUCT_END(StepState, 80)
+RANRYU_STRUCT_END(StepState, 128)
+
+// ---- DFSPH (engine/sim/solvers/dfsph.h, glsl/sim/dfsph/; docs/DFSPH.md) ----
+#define RANRYU_UBO_DFSPH 8   // DfsphParams
+
+// The DFSPH passes' constants (std140), written at start and when the CPU changes its iteration caps.
+RANRYU_STRUCT(DfsphParams) {
+    float eta;                   // density solve: bound on the mean error, units of rho0 (D6)
+    float eta_divergence;        // divergence solve: likewise for dt·Drho/Dt (D6)
+    float relaxation;            // omega of (D6)
+    float warm_start;            // w of (D6)
+    uint min_iterations;         // density solve
+    uint min_divergence_iterations;
+    uint issued;                 // iterations the CPU issues a density solve this frame (its cap)
+    uint issued_divergence;      // likewise, divergence solve
+    float error_scale;           // SolveState.error_sum units per unit of summed error: 2^31 / particle_count
+    uint deficient_neighbours;   // (D5): fewer neighbours than this, no divergence correction
+    float boundary_viscosity;    // nu_b of (D7) (m^2/s)
+    uint groups;                 // workgroups of the iteration passes over every particle
+}
+RANRYU_STRUCT_END(DfsphParams, 48)
+
+// One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
+// bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual
+// pass sets dispatch.x to 0 once the solve has converged or reached its cap, so the iterations the
+// CPU issued beyond that dispatch no work.
+RANRYU_STRUCT(SolveState) {
+    uvec4 dispatch;      // xyz: workgroups of the next iteration's passes; w: unused
+    uint iterations;     // iterations run in this solve so far
+    uint error_sum;      // this iteration's Σ_i min(max(r_i, 0)/rho0, 1), in units of 1/error_scale
+    uint groups_done;    // workgroups of this iteration's residual pass that have added their part
+    uint solve;          // 0: the density solve, 1: the divergence solve (its StepState fields)
+}
+RANRYU_STRUCT_END(SolveState, 32)
+#define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
+// ---- end DFSPH
 
 // Tests only: one of each member kind, to pin the layout rules both sides rely on.
 RANRYU_STRUCT(LayoutProbe) {
@@ -186,15 +198,14 @@ RANRYU_STRUCT_END(LayoutProbe, 112)
 // ---- surface (engine/surface/, glsl/surface/): level set and marching cubes ----
 // The φ grid: nodes x = origin + spacing·(i, j, k); φ[i + nx·(j + ny·k)], φ > 0 inside the liquid.
 // Cells are the (nx-1)(ny-1)(nz-1) cubes between nodes, indexed the same way with (nx-1, ny-1).
+// Storage blocks (bound by name): SurfaceGridState (SurfaceGrid: where the φ grid lies this frame,
+// GPU-written), Phi (float[nodes]: φ at the grid nodes), Mesh (MeshState: marching cubes' indirect
+// arguments and totals), CellVertices (uint[cells]: vertices each cell emits, 0, 3, ..., 15), McBlocks
+// (uvec2[blocks]: active cells and vertices per classify workgroup, then their exclusive prefix sums),
+// ActiveCells (uvec2[]: compacted active cells, cell index and first vertex), MeshVertices
+// (MeshVertex[]: the mesh, non-indexed triangles), McTriangles (int[4096]: the triangle table of
+// surface/mc_tables.h, uploaded once).
 #define RANRYU_UBO_SURFACE 4             // SurfaceParams: the level set's constants
-#define RANRYU_SSBO_SURFACE_GRID 20      // SurfaceGrid: where the φ grid lies this frame (GPU-written)
-#define RANRYU_SSBO_SURFACE_PHI 21       // float[nodes]: φ at the grid nodes
-#define RANRYU_SSBO_MC_STATE 22          // MeshState: marching cubes' indirect arguments and totals
-#define RANRYU_SSBO_MC_CELL_VERTICES 23  // uint[cells]: vertices each cell emits (0, 3, ..., 15)
-#define RANRYU_SSBO_MC_BLOCKS 24         // uvec2[blocks]: (active cells, vertices) per classify workgroup, then their exclusive prefix sums
-#define RANRYU_SSBO_MC_ACTIVE 25         // uvec2[]: compacted active cells: (cell index, first vertex)
-#define RANRYU_SSBO_MC_VERTICES 26       // MeshVertex[]: the mesh, non-indexed triangles
-#define RANRYU_SSBO_MC_TRIANGLES 27      // int[4096]: the triangle table (surface/mc_tables.h), uploaded once
 #define RANRYU_LOC_SURFACE_CAPACITY 4    // uvec4 uniform: x vertices, y active cells, z cells (MC buffer capacities)
 #define RANRYU_LOC_SURFACE_GROUP 5       // uvec4 uniform: workgroup size of the pass whose indirect arguments this pass writes
 
@@ -244,10 +255,9 @@ RANRYU_STRUCT_END(MeshVertex, 32)
 // ---- end surface
 
 // ---- turbulence (engine/turbulence/, glsl/turbulence/): METHOD.md §3, §4 ----
-// Wavelet analysis (engine/turbulence/wavelet.h, glsl/turbulence/analyse_velocity.comp): 28, 29.
-// Bindings 30, 31 of this section are the noise synthesis's.
-#define RANRYU_SSBO_WAVELET_ENERGY 28   // vec4[particles]: xyz û_i, w ê_i = ½|û_i|², in the analysed (cell) order
-#define RANRYU_SSBO_WAVELET_PARAMS 29   // WaveletParams (std430, read-only)
+// Wavelet analysis (engine/turbulence/wavelet.h, glsl/turbulence/analyse_velocity.comp), storage
+// blocks WaveletEnergy (vec4[particles]: xyz û_i, w ê_i = ½|û_i|², in the analysed cell order) and
+// WaveletConstants (WaveletParams, read-only).
 
 // The wavelet pass's constants (METHOD.md §3), written by WaveletAnalysis::analyse().
 RANRYU_STRUCT(WaveletParams) {
@@ -257,10 +267,10 @@ RANRYU_STRUCT(WaveletParams) {
     uint pad0;
 }
 RANRYU_STRUCT_END(WaveletParams, 16)
-// Noise synthesis (engine/turbulence/noise.h, glsl/turbulence/curl_noise.glsl, sample_field.comp): 30, 31, UBO 5.
+// Noise synthesis (engine/turbulence/noise.h, glsl/turbulence/curl_noise.glsl, sample_field.comp):
+// storage blocks NoiseTiles (float[3·n³]: the three wavelet-noise potential tiles, x + n·(y + n·z)) and
+// NoiseField (float[points·3]: sampled y, C order of shape (nx, ny, nz, 3)).
 #define RANRYU_UBO_NOISE 5                // NoiseParams: the sampling grid and the octave sum
-#define RANRYU_SSBO_NOISE_TILES 30        // float[3·n³]: the three wavelet-noise potential tiles, x + n·(y + n·z)
-#define RANRYU_SSBO_NOISE_FIELD 31        // float[points·3]: sampled y, C order of shape (nx, ny, nz, 3)
 
 // y(x) = Σ_{i=lmin}^{lmax} w(2^i x + o_i) · 2^(−β(i − lmin)) sampled at origin + spacing·(i, j, k).
 RANRYU_STRUCT(NoiseParams) {
@@ -273,38 +283,29 @@ RANRYU_STRUCT(NoiseParams) {
 }
 RANRYU_STRUCT_END(NoiseParams, 48)
 // Turbulence force (engine/turbulence/force.h, glsl/turbulence/apply_turbulence_force.comp): reads
-// 0, 13, 16, 28, 30, UBO 3 and 5 (NoiseParams: lmin, lmax, beta, tile_size), these uniforms, and
-// reads and re-seeds the carried noise coordinates (31).
+// the fluid's positions, accelerations and step, WaveletEnergy, NoiseTiles, UBO 3 and 5 (NoiseParams:
+// lmin, lmax, beta, tile_size) and these uniforms, and reads and re-seeds the carried noise (NoiseSeeds).
 #define RANRYU_LOC_TURBULENCE_AMPLITUDE 1   // float: A (1/m), the force's amplitude
 #define RANRYU_LOC_COHERENCE_TIME 2         // float: T (s), the carried noise's re-seeding period
 
 // Carried noise (glsl/turbulence/carried_noise.glsl): per fluid particle, the positions at which its
-// two noise phases were last seeded. Binding 31 is the noise field's too (export-field's sampling
-// pass binds no seeds); the reorder pass gathers the seeds from 31 into SORTED_NOISE_SEED, which
-// shares 4 with the sort's alternate keys (the reorder pass binds no sort keys but its values).
-#define RANRYU_SSBO_NOISE_SEED 31          // NoiseSeed[particles], in the fluid's cell order
-#define RANRYU_SSBO_SORTED_NOISE_SEED 4    // NoiseSeed[particles]: the reorder pass's output
+// two noise phases were last seeded, in the storage block NoiseSeeds (NoiseSeed[particles], in the
+// fluid's cell order): a carried array of the fluid (engine/sim/fluid.h), which the reorder moves.
 RANRYU_STRUCT(NoiseSeed) {
     vec4 phase[2];   // xyz: where the phase was seeded (m); w: the epoch it was seeded in (float, -1: never)
     vec4 value[2];   // xyz: the phase's octave sum y(q_p), fixed for the epoch (carried_noise.glsl); w: 0
 }
 RANRYU_STRUCT_END(NoiseSeed, 64)
 
-// Sub-particles (engine/turbulence/subparticles.h, glsl/turbulence/subparticles/): they share the
-// marching cubes' bindings 22-27 (no pass binds both) and UBO 6; their section follows.
-// The sub-particle passes run after the SPH substeps and before the level set; marching cubes runs
-// after the level set and binds 22-27 afresh, so the aliasing is safe as long as no one program
-// declares both sets (none does: the level set's splat and gather bind 22, 23, 24, 26 of this set,
-// and no marching-cubes buffer). Binding 24 is the classify passes' block counts and, in the level
-// set's passes, which bind no blocks, the fixed-point splat grid.
+// Sub-particles (engine/turbulence/subparticles.h, glsl/turbulence/subparticles/), storage blocks:
+//   Subparticles           SubparticleState: counts, cap, indirect arguments (std430)
+//   SubparticleLevels      uint[particles]: L_i | E_i << RANRYU_SUBPARTICLE_SPLIT_SHIFT, in the fluid's cell order
+//   SubparticleBlocks      uvec4[classify workgroups]: xyz per-level counts, then their exclusive prefix sums
+//   SplatGrid              uint[φ nodes]: the sub-particles' V·ΣW in fixed point (level set only)
+//   SubparticleLists       uint[levels · particles]: level L's split parents at (L-1)·particles, in cell order
+//   SubparticlePositions   vec4[capacity]: xyz (m); w: effective level E (1..3), as a float
+//   SubparticleVelocities  vec4[capacity]: xyz (m/s); w: e_E (m²/s²), the energy of level E
 #define RANRYU_UBO_SUBPARTICLES 6                 // SubparticleParams
-#define RANRYU_SSBO_SUBPARTICLE_STATE 22          // SubparticleState: counts, cap, indirect arguments (std430)
-#define RANRYU_SSBO_SUBPARTICLE_LEVELS 23         // uint[particles]: L_i | E_i << RANRYU_SUBPARTICLE_SPLIT_SHIFT, in the fluid's cell order
-#define RANRYU_SSBO_SUBPARTICLE_BLOCKS 24         // uvec4[classify workgroups]: xyz per-level counts, then their exclusive prefix sums
-#define RANRYU_SSBO_SUBPARTICLE_SPLAT 24          // uint[φ nodes]: the sub-particles' V·ΣW in fixed point (level set only)
-#define RANRYU_SSBO_SUBPARTICLE_LISTS 25          // uint[levels · particles]: level L's split parents at (L-1)·particles, in cell order
-#define RANRYU_SSBO_SUBPARTICLE_POSITION 26       // vec4[capacity]: xyz (m); w: effective level E (1..3), as a float
-#define RANRYU_SSBO_SUBPARTICLE_VELOCITY 27       // vec4[capacity]: xyz (m/s); w: e_E (m²/s²), the energy of level E
 #define RANRYU_LOC_SUBPARTICLE_GROUP 6            // uvec4 uniform: x classify's local size, y spawn's local size
 #define RANRYU_SUBPARTICLE_MAX_LEVEL 3            // L_max <= 3: 512 sub-particles a particle (scene.cpp checks)
 #define RANRYU_SUBPARTICLE_SPLIT_SHIFT 8          // levels[i] >> this is E_i: 0 unless the spawn pass split particle i

@@ -9,8 +9,8 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = RANRYU_SSBO_POSITION) buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_VELOCITY) buffer Velocities { vec4 velocity[]; };
+layout(std430) buffer Positions { vec4 position[]; };
+layout(std430) buffer Velocities { vec4 velocity[]; };
 layout(std140, binding = RANRYU_UBO_SIM) uniform SimBlock { SimParams sim; };
 
 void main() {

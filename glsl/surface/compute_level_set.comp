@@ -12,7 +12,7 @@
 //   - The cell range is clamped to the grid like grid_cell() clamps particles, so particles outside
 //     the neighbour grid (kept in its border cells) are found too: clamping is monotone.
 //   - Cell ranges need not have been cleared (NeighbourGrid::build with clear = false): a run is taken
-//     only if the sorted key at its start is the cell's own, as fluid_run() in sim/sph/sph_common.glsl.
+//     only if the sorted key at its start is the cell's own, as fluid_run() in sim/fluid/fluid.glsl.
 // Dispatch: glDispatchComputeIndirect with surface_grid.dispatch; one invocation per node.
 // Built with RANRYU_SUBPARTICLES (level_set.h), split parents are skipped and the children's splat added.
 #include "../shared/bindings.h"
@@ -20,17 +20,17 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SURFACE) uniform SurfaceBlock { SurfaceParams surface; };
-layout(std430, binding = RANRYU_SSBO_SORTED_POSITION) readonly buffer Positions { vec4 sorted_position[]; };
-layout(std430, binding = RANRYU_SSBO_CELL_START) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = RANRYU_SSBO_CELL_END) readonly buffer End { uint cell_end[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer SortedKeys { uint sorted_keys[]; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) writeonly buffer Phi { float phi[]; };
+layout(std430) readonly buffer Positions { vec4 sorted_position[]; };
+layout(std430) readonly buffer CellStart { uint cell_start[]; };
+layout(std430) readonly buffer CellEnd { uint cell_end[]; };
+layout(std430) readonly buffer SortedKeys { uint sorted_keys[]; };
+layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
+layout(std430) writeonly buffer Phi { float phi[]; };
 #ifdef RANRYU_SUBPARTICLES
 // Sub-particles (splat_subparticles.comp): parents split by the spawn pass are left out of the gather
 // (their children stand for them), and the children's fixed-point splat is added, then reset to 0.
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LEVELS) readonly buffer Levels { uint sub_level[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_SPLAT) buffer Splat { uint splat[]; };
+layout(std430) readonly buffer SubparticleLevels { uint sub_level[]; };
+layout(std430) buffer SplatGrid { uint splat[]; };
 #endif
 
 #include "../sim/grid.glsl"

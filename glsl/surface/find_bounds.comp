@@ -10,8 +10,8 @@
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_SURFACE) uniform SurfaceBlock { SurfaceParams surface; };
-layout(std430, binding = RANRYU_SSBO_SORTED_POSITION) readonly buffer Positions { vec4 sorted_position[]; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) buffer Grid { SurfaceGrid surface_grid; };
+layout(std430) readonly buffer Positions { vec4 sorted_position[]; };
+layout(std430) buffer SurfaceGridState { SurfaceGrid surface_grid; };
 
 #include "ordered_float.glsl"
 

@@ -9,11 +9,11 @@
 #include "../shared/bindings.h"
 
 layout(local_size_x = 256) in;
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) readonly buffer Phi { float phi[]; };
-layout(std430, binding = RANRYU_SSBO_MC_STATE) readonly buffer State { MeshState mc; };
-layout(std430, binding = RANRYU_SSBO_MC_CELL_VERTICES) writeonly buffer CellVertices { uint cell_vertices[]; };
-layout(std430, binding = RANRYU_SSBO_MC_BLOCKS) writeonly buffer Blocks { uvec2 blocks[]; };
+layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
+layout(std430) readonly buffer Phi { float phi[]; };
+layout(std430) readonly buffer Mesh { MeshState mc; };
+layout(std430) writeonly buffer CellVertices { uint cell_vertices[]; };
+layout(std430) writeonly buffer McBlocks { uvec2 blocks[]; };
 
 #include "mc_common.glsl"
 #include "workgroup_scan.glsl"

@@ -8,7 +8,7 @@
 
 // The triangle table lives in a buffer filled once from the same header: NVIDIA's compiler rejects
 // a 4096-element array constructor ("C1068: too much data in type constructor").
-layout(std430, binding = RANRYU_SSBO_MC_TRIANGLES) readonly buffer McTriangles { int mc_triangles[]; };
+layout(std430) readonly buffer McTriangles { int mc_triangles[]; };
 const int mc_corner_offsets[24] = int[24](RANRYU_MC_CORNERS);
 const int mc_edge_corners[24] = int[24](RANRYU_MC_EDGES);
 

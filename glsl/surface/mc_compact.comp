@@ -18,10 +18,10 @@
 #include "../shared/bindings.h"
 
 layout(local_size_x = 256) in;
-layout(std430, binding = RANRYU_SSBO_MC_STATE) readonly buffer State { MeshState mc; };
-layout(std430, binding = RANRYU_SSBO_MC_CELL_VERTICES) readonly buffer CellVertices { uint cell_vertices[]; };
-layout(std430, binding = RANRYU_SSBO_MC_BLOCKS) readonly buffer Blocks { uvec2 blocks[]; };
-layout(std430, binding = RANRYU_SSBO_MC_ACTIVE) writeonly buffer Active { uvec2 active_cells[]; };
+layout(std430) readonly buffer Mesh { MeshState mc; };
+layout(std430) readonly buffer CellVertices { uint cell_vertices[]; };
+layout(std430) readonly buffer McBlocks { uvec2 blocks[]; };
+layout(std430) writeonly buffer ActiveCells { uvec2 active_cells[]; };
 layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // y: active cells
 
 #include "workgroup_scan.glsl"

@@ -13,11 +13,11 @@
 #include "../shared/bindings.h"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) readonly buffer Phi { float phi[]; };
-layout(std430, binding = RANRYU_SSBO_MC_STATE) readonly buffer State { MeshState mc; };
-layout(std430, binding = RANRYU_SSBO_MC_ACTIVE) readonly buffer Active { uvec2 active_cells[]; };
-layout(std430, binding = RANRYU_SSBO_MC_VERTICES) writeonly buffer Vertices { MeshVertex vertices[]; };
+layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
+layout(std430) readonly buffer Phi { float phi[]; };
+layout(std430) readonly buffer Mesh { MeshState mc; };
+layout(std430) readonly buffer ActiveCells { uvec2 active_cells[]; };
+layout(std430) writeonly buffer MeshVertices { MeshVertex vertices[]; };
 layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // x: vertices
 
 #include "mc_common.glsl"

@@ -11,8 +11,8 @@
 #include "../shared/bindings.h"
 
 layout(local_size_x = 256) in;
-layout(std430, binding = RANRYU_SSBO_MC_STATE) buffer State { MeshState mc; };
-layout(std430, binding = RANRYU_SSBO_MC_BLOCKS) buffer Blocks { uvec2 blocks[]; };
+layout(std430) buffer Mesh { MeshState mc; };
+layout(std430) buffer McBlocks { uvec2 blocks[]; };
 layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // x vertices, y active cells
 layout(location = RANRYU_LOC_SURFACE_GROUP) uniform uvec4 group;         // x: mc_emit's local size
 

@@ -7,9 +7,9 @@
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_PHI) readonly buffer Phi { float phi[]; };
-layout(std430, binding = RANRYU_SSBO_MC_STATE) writeonly buffer State { MeshState mc; };
+layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
+layout(std430) readonly buffer Phi { float phi[]; };
+layout(std430) writeonly buffer Mesh { MeshState mc; };
 layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;
 layout(location = RANRYU_LOC_SURFACE_GROUP) uniform uvec4 group;
 

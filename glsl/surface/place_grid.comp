@@ -18,7 +18,7 @@
 
 layout(local_size_x = 1) in;
 layout(std140, binding = RANRYU_UBO_SURFACE) uniform SurfaceBlock { SurfaceParams surface; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) buffer Grid { SurfaceGrid surface_grid; };
+layout(std430) buffer SurfaceGridState { SurfaceGrid surface_grid; };
 layout(location = RANRYU_LOC_SURFACE_GROUP) uniform uvec4 group;   // xyz: compute_level_set's local size
 
 #include "ordered_float.glsl"

@@ -18,10 +18,10 @@
 
 layout(local_size_x = 128) in;
 layout(std140, binding = RANRYU_UBO_SURFACE) uniform SurfaceBlock { SurfaceParams surface; };
-layout(std430, binding = RANRYU_SSBO_SURFACE_GRID) readonly buffer Grid { SurfaceGrid surface_grid; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) readonly buffer State { SubparticleState state; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_POSITION) readonly buffer SubPositions { vec4 sub_position[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_SPLAT) buffer Splat { uint splat[]; };
+layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
+layout(std430) readonly buffer Subparticles { SubparticleState state; };
+layout(std430) readonly buffer SubparticlePositions { vec4 sub_position[]; };
+layout(std430) buffer SplatGrid { uint splat[]; };
 
 #include "../sim/kernel.glsl"
 #include "dispatch_2d.glsl"

@@ -1,9 +1,9 @@
 #version 430
 // Tests only (tests/gl/interop_test.cpp). Declares the shared parameter structs as the engine's
-// shaders do (std140 uniform blocks; StepState a std430 storage block) at their shared binding
-// points and copies every member, as raw 32-bit words, into RANRYU_SSBO_PROBE_OUT in the order
-// below, followed by the values of the shared macros as GLSL sees them. The test builds the same
-// sequence from the C++ structs and macros and compares bits.
+// shaders do (std140 uniform blocks at their shared binding points; StepState, SubparticleState and
+// SolveState std430 storage blocks, bound by name) and copies every member, as raw 32-bit words, into
+// the storage block ProbeOut in the order below, followed by the values of the shared macros as GLSL
+// sees them. The test builds the same sequence from the C++ structs and macros and compares bits.
 //
 // Output words, in order (a matrix is 16 words, column-major; a vec4/uvec4 is 4):
 //   LayoutProbe:  m, v, u, f0, f1, u0, u1                                            28 words
@@ -13,10 +13,12 @@
 //                 viewport, speed_scale, tank_min, tank_max                          80 words
 //   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
 //   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
-//   StepState:    its 20 scalars in order                                            20 words
+//   StepState:    its 20 scalars, then iterations, unconverged, error                32 words
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               46 words
+//   DfsphParams:  its 12 scalars in order                                            12 words
+//   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               23 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -26,26 +28,22 @@ layout(std140, binding = RANRYU_UBO_SIM) uniform SimBlock { SimParams sim; };
 layout(std140, binding = RANRYU_UBO_FRAME) uniform FrameBlock { FrameParams frame; };
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
-layout(std430, binding = RANRYU_SSBO_STEP) readonly buffer Step { StepState step; };
+layout(std430) readonly buffer Step { StepState step; };
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams subp; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) readonly buffer SubparticleStateBlock { SubparticleState subs; };
-layout(std430, binding = RANRYU_SSBO_PROBE_OUT) buffer ProbeOut { uint words[]; };
+layout(std430) readonly buffer SubparticleStateBlock { SubparticleState subs; };
+layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsph; };
+layout(std430) readonly buffer Solve { SolveState solve; };
+layout(std430) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[46] = uint[46](
+const uint kMacros[23] = uint[23](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
-    RANRYU_SSBO_POSITION, RANRYU_SSBO_VELOCITY,
-    RANRYU_SSBO_SORT_KEYS, RANRYU_SSBO_SORT_VALUES, RANRYU_SSBO_SORT_KEYS_ALT, RANRYU_SSBO_SORT_VALUES_ALT,
-    RANRYU_SSBO_SORT_HISTOGRAM, RANRYU_SSBO_PROBE_OUT,
-    RANRYU_SSBO_CELL_START, RANRYU_SSBO_CELL_END, RANRYU_SSBO_SORTED_POSITION, RANRYU_SSBO_SORTED_VELOCITY,
-    RANRYU_SSBO_DENSITY, RANRYU_SSBO_ACCEL, RANRYU_SSBO_NEIGHBOURS, RANRYU_SSBO_BOUNDARY, RANRYU_SSBO_STEP,
-    RANRYU_SSBO_SCRATCH, RANRYU_SSBO_BOUNDARY_CELL_START, RANRYU_SSBO_BOUNDARY_CELL_END,
+    RANRYU_UBO_SURFACE, RANRYU_UBO_NOISE,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
     RANRYU_ATTR_POSITION, RANRYU_ATTR_VELOCITY,
     RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
-    RANRYU_UBO_SUBPARTICLES, RANRYU_SSBO_SUBPARTICLE_STATE, RANRYU_SSBO_SUBPARTICLE_LEVELS,
-    RANRYU_SSBO_SUBPARTICLE_BLOCKS, RANRYU_SSBO_SUBPARTICLE_SPLAT, RANRYU_SSBO_SUBPARTICLE_LISTS,
-    RANRYU_SSBO_SUBPARTICLE_POSITION, RANRYU_SSBO_SUBPARTICLE_VELOCITY, RANRYU_LOC_SUBPARTICLE_GROUP,
-    RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE));
+    RANRYU_UBO_SUBPARTICLES, RANRYU_LOC_SUBPARTICLE_GROUP,
+    RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE),
+    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE);
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }
@@ -78,12 +76,19 @@ void main() {
     put(step.frame_substeps); put(step.nan_count); put(step.nan_index); put(step.escaped_count);
     put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
     put(step.frame); put(step.steps); put(step.pad0);
+    put(step.iterations); put(step.unconverged); put(step.error);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);
     put(subp.inv_sigma); put(subp.noise_lmax); put(subp.tile_size); put(subp.levels); put(subp.budget);
     put(subp.particle_count); put(subp.pad0); put(subp.pad1); put(subp.pad2);
 
     put(subs.dispatch); put(subs.draw); put(subs.counts); put(subs.offsets); put(subs.limits);
+
+    put(dfsph.eta); put(dfsph.eta_divergence); put(dfsph.relaxation); put(dfsph.warm_start);
+    put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
+    put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
+
+    put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
 
     for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
 }

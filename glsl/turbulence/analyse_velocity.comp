@@ -9,7 +9,7 @@
 // both sums over the fluid particles j with |x_i − x_j| < R·s (R = truncation; R·s <= the grid's
 // cell, so the 27 cells around x_i hold them all). u_j − u_i: a uniform velocity gives û_i = 0 exactly.
 // Input: positions and velocities in cell order, the cell ranges and sorted keys of that order
-// (sph_common.glsl's fluid_run() tells stale ranges from current ones), GridParams, SphParams
+// (fluid.glsl's fluid_run() tells stale ranges from current ones), GridParams, SphParams
 // (particle_count, for fluid_run()), WaveletParams.
 // Output: energy[i] = (û_i, ê_i) for i < particle_count.
 // With RANRYU_NEIGHBOUR_RUNS (the density pass's run count), the candidates come from the density
@@ -17,16 +17,16 @@
 // every fluid j != i within h of x_i, a superset of the terms (R·s <= h), in the walk's order; the
 // j = i term (ψ(0) = 3 to ψ_sum, 0 to the sum) is added first. The same terms, with ψ_sum summed in
 // another order: within the reference's float bound either way (wavelet_test.cpp).
-#include "../sim/sph/sph_common.glsl"
+#include "../sim/fluid/fluid.glsl"
 
 layout(local_size_x = 128) in;
-layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
-layout(std430, binding = RANRYU_SSBO_WAVELET_PARAMS) readonly buffer Wavelet { WaveletParams wavelet; };
-layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) writeonly buffer Energy { vec4 energy[]; };
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) readonly buffer WaveletConstants { WaveletParams wavelet; };
+layout(std430) writeonly buffer WaveletEnergy { vec4 energy[]; };
 #ifdef RANRYU_NEIGHBOUR_RUNS
-layout(std430, binding = RANRYU_SSBO_DENSITY) readonly buffer Density { vec4 density[]; };   // w: flags
-layout(std430, binding = RANRYU_SSBO_NEIGHBOURS) readonly buffer Neighbours { uint neighbours[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };   // w: flags
+layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
 #endif
 
 // The 3-D Mexican hat at |x|² = q2.

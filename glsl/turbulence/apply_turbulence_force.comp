@@ -10,14 +10,14 @@
 // sub-particles read them after the frame.
 // Runs after the forces pass, before integrate. Folds the new |a_i| into step.max_accel with one
 // atomic per workgroup (the next substep's dt, eq. (7), reads it).
-#include "../sim/sph/sph_common.glsl"
+#include "../sim/fluid/fluid.glsl"
 
 layout(local_size_x = 128) in;
 layout(std140, binding = RANRYU_UBO_NOISE) uniform NoiseBlock { NoiseParams noise; };
-layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_ACCEL) buffer Accel { vec4 accel[]; };
-layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) readonly buffer Energy { vec4 energy[]; };
-layout(std430, binding = RANRYU_SSBO_NOISE_SEED) buffer Seeds { NoiseSeed seed[]; };
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) buffer Accelerations { vec4 accel[]; };
+layout(std430) readonly buffer WaveletEnergy { vec4 energy[]; };
+layout(std430) buffer NoiseSeeds { NoiseSeed seed[]; };
 layout(location = RANRYU_LOC_TURBULENCE_AMPLITUDE) uniform float amplitude;
 layout(location = RANRYU_LOC_COHERENCE_TIME) uniform float coherence_time;
 

@@ -6,7 +6,7 @@
 #ifndef RANRYU_CURL_NOISE_GLSL
 #define RANRYU_CURL_NOISE_GLSL
 
-layout(std430, binding = RANRYU_SSBO_NOISE_TILES) readonly buffer NoiseTiles { float noise_tiles[]; };
+layout(std430) readonly buffer NoiseTiles { float noise_tiles[]; };
 
 // i mod n in [0, n) for any i (GLSL's % is undefined for negative operands).
 int noise_wrap(int i, int n) {

@@ -6,7 +6,7 @@
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std140, binding = RANRYU_UBO_NOISE) uniform NoiseBlock { NoiseParams noise; };
-layout(std430, binding = RANRYU_SSBO_NOISE_FIELD) writeonly buffer Field { float field[]; };
+layout(std430) writeonly buffer NoiseField { float field[]; };
 
 #include "curl_noise.glsl"
 

@@ -38,7 +38,7 @@ double number(const std::string& text) {
 }
 
 // Parses the table `ranryu profile` prints: a header line starting with "pass", then one row per
-// pass: NAME (may contain spaces) and five numbers, the last a percentage.
+// pass: NAME (may contain spaces) and five numbers, the last a percentage, up to a blank line.
 Table parse_table(const std::string& out) {
     Table t;
     const auto lines = Result::split_lines(out);
@@ -58,7 +58,7 @@ Table parse_table(const std::string& out) {
     const std::string& h = lines[i];
     for (std::sregex_token_iterator it(h.begin(), h.end(), gap, -1), end; it != end; ++it)
         if (it->length() > 0) t.header.push_back(*it);
-    for (++i; i < lines.size(); ++i) {
+    for (++i; i < lines.size() && !lines[i].empty(); ++i) {
         std::istringstream in(lines[i]);
         std::vector<std::string> words;
         for (std::string w; in >> w;) words.push_back(w);

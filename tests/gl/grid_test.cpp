@@ -1,4 +1,4 @@
-// The neighbour grid of the SPH model (engine/sim/grid.*, glsl/sim/grid/) after Sph::rebuild_grid(),
+// The neighbour grid of the SPH model (engine/sim/grid.*, glsl/sim/grid/) after Fluid::rebuild_grid(),
 // against brute force on the CPU, for both key layouts (linear, Morton) and both sorts (radix,
 // bitonic):
 //   - every particle's neighbours found through the 27 cells around its cell (read-back cell ranges,
@@ -7,7 +7,7 @@
 //   - the sorted keys are the keys of the sorted positions, ascending; cell_start/cell_end are exactly
 //     the runs of equal keys for the cells that have particles, and every other cell's entry is one
 //     the readers reject: the fluid's ranges are not cleared between substeps (grid.h), so an empty
-//     cell may keep a stale entry, which sph_common.glsl's fluid_run() takes only if the sorted key at
+//     cell may keep a stale entry, which sim/fluid/fluid.glsl's fluid_run() takes only if the sorted key at
 //     its start is the cell's own. Each case rebuilds twice, from two different states, so that stale
 //     entries exist when the second is checked;
 //   - the sorted arrays are a permutation of the input (multisets of positions equal), each velocity
@@ -33,13 +33,13 @@
 #include "reference/sph_reference.h"
 #include "scene/scene.h"
 #include "shader/source.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
 
 namespace {
 
 using ranryu::profile::GpuTimer;
 using ranryu::sim::GridLayout;
-using ranryu::sim::Sph;
+using ranryu::sim::Fluid;
 
 // An SPH scene and its model; the model samples its boundary and computes psi at construction.
 struct Rig : ranryu::test::SphRig {
@@ -90,11 +90,11 @@ bool well_posed(const std::vector<glm::vec4>& x, const GridLayout& g, double h, 
 
 // The scene's lattice jittered by up to ±0.3 dx per axis and shuffled; a pair made coincident; and
 // eight particles moved into a cluster above the top of the grid, whose cells are clamped to the top
-// layer (sph.cpp: "particles higher still share the top layer of cells: slower, never wrong").
+// layer (fluid.cpp: "particles higher still share the top layer of cells: slower, never wrong").
 // velocity.w = input index, so the sorted order can be traced back.
 void random_state(ranryu::test::Random& rng, Rig& rig, std::vector<glm::vec4>& x, std::vector<glm::vec4>& v) {
     const float dx = rig.scene.spacing, h = 2.0f * dx;
-    const GridLayout& g = rig.sph.grid().layout();
+    const GridLayout& g = rig.fluid.grid().layout();
     const std::vector<glm::vec4> lattice = rig.scene.initial_positions();
     const std::size_t n = lattice.size();
     REQUIRE(n > 20);
@@ -121,7 +121,7 @@ struct Snapshot {
 };
 
 Snapshot rebuild(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v) {
-    Sph& sph = rig.sph;
+    Fluid& sph = rig.fluid;
     sph.upload_state(x, v);
     rig.timer.begin_frame();
     sph.rebuild_grid();
@@ -136,7 +136,7 @@ void check_grid(const std::string& keys, const std::string& sort) {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed() << ", keys " << keys << ", sort " << sort);
     Rig rig(scene_json(keys, sort));
-    Sph& sph = rig.sph;
+    Fluid& sph = rig.fluid;
     const GridLayout& g = sph.grid().layout();
     REQUIRE(g.morton == (keys == "morton"));
     const double h = 2.0 * double(rig.scene.spacing);
@@ -190,7 +190,7 @@ void check_grid(const std::string& keys, const std::string& sort) {
         if (i == 0 || key[i - 1] != key[i]) start[key[i]] = std::uint32_t(i);
         if (i + 1 == n || key[i + 1] != key[i]) end[key[i]] = std::uint32_t(i + 1);
     }
-    // The readers' test of an entry (fluid_run in sph_common.glsl): current iff the sorted key at its start is k.
+    // The readers' test of an entry (fluid_run in sim/fluid/fluid.glsl): current iff the sorted key at its start is k.
     auto current = [&](std::size_t k) { return s.start[k] < n && s.keys[s.start[k]] == k; };
     std::size_t wrong_ranges = 0, first_wrong = g.key_count, cells = 0, stale = 0;
     for (std::size_t k = 0; k < g.key_count; ++k) {

@@ -1,4 +1,4 @@
-// The instability guard (engine/sim/guard.*, the records of glsl/sim/sph/): sim::check() on hand-made
+// The instability guard (engine/sim/guard.*, the records of glsl/sim/fluid/): sim::check() on hand-made
 // StepState records, one per criterion; and on the GPU, runs that must be stopped: a fluid far too
 // soft for its weight, a compressed state, a NaN written into one velocity, a particle outside the
 // tank. Records arrive frames late (an AsyncReadback): each run polls every frame and drains at the
@@ -22,7 +22,7 @@
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
 
 namespace {
 
@@ -30,7 +30,6 @@ namespace gpu = ranryu::gpu;
 using ranryu::profile::GpuTimer;
 using ranryu::sim::GuardLimits;
 using ranryu::sim::Instability;
-using ranryu::sim::Sph;
 
 std::uint32_t bits(float f) {
     std::uint32_t b;
@@ -44,9 +43,11 @@ struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& json) : SphRig(json, "guard_test") {}
 };
 
-// 512 particles (8x8x8 at 0.03 m) in a 0.3 m tank; `sph` adds keys to the "sph" object.
-std::string scene_json(const std::string& sph = "") {
-    return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]}, "sph": {)" + sph + R"(},
+// 512 particles (8x8x8 at 0.03 m) in a 0.3 m tank, with `solver`; `sph` adds keys to the "sph" object.
+// The cases whose numbers follow from WCSPH's equation of state run WCSPH.
+std::string scene_json(const std::string& sph = "", const std::string& solver = "wcsph") {
+    return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]}, "sph": {"solver": ")" + solver + "\"" +
+           (sph.empty() ? "" : ", " + sph) + R"(},
                "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
 }
 
@@ -185,10 +186,10 @@ TEST_CASE("guard: a fluid far too soft for its weight is stopped", "[guard]") {
     Rig rig(scene_json(R"("speed_of_sound": 0.05)"));
     const int bound = 60;
     int frames = 0;
-    while (frames < bound && !rig.sph.instability()) rig.frame(std::uint64_t(frames++));
+    while (frames < bound && !rig.fluid.instability()) rig.frame(std::uint64_t(frames++));
     rig.finish();
-    REQUIRE(rig.sph.instability().has_value());
-    const Instability& i = *rig.sph.instability();
+    REQUIRE(rig.fluid.instability().has_value());
+    const Instability& i = *rig.fluid.instability();
     INFO(i.message() << " (after " << frames << " frames issued)");
     CHECK((contains(i.criterion, "density") || contains(i.criterion, "speed") || contains(i.criterion, "time step")));
     CHECK(i.frame < std::uint64_t(frames));
@@ -196,7 +197,7 @@ TEST_CASE("guard: a fluid far too soft for its weight is stopped", "[guard]") {
     CHECK(i.time > 0.0);
     // Simulated time covers the frames up to this one (each frame_dt, plus what a frame carried over).
     CHECK(i.time <= (double(i.frame) + 2.0) * rig.scene.frame_dt);
-    CHECK(i.particle < rig.sph.count());
+    CHECK(i.particle < rig.fluid.count());
     if (contains(i.criterion, "density") || contains(i.criterion, "speed")) CHECK(i.value > i.limit);
     ranryu::test::require_no_gl_errors();
 }
@@ -214,22 +215,22 @@ TEST_CASE("guard: a state compressed past the density bound is reported in its f
     for (auto& p : x) p = glm::vec4(glm::vec3(0.05f) + (glm::vec3(p) - glm::vec3(0.5f * dx)) * 0.82f +
                                         glm::vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)) * dx,
                                     0.0f);
-    rig.sph.upload_state(x, v);
-    rig.sph.set_fixed_dt(rig.scene.frame_dt);   // one substep
+    rig.fluid.upload_state(x, v);
+    rig.fluid.set_fixed_dt(rig.scene.frame_dt);   // one substep
     rig.frame(0);
-    const auto density = rig.read(rig.sph.densities());
+    const auto density = rig.read(rig.fluid.densities());
     rig.finish();
-    REQUIRE(rig.sph.instability().has_value());
-    const Instability& i = *rig.sph.instability();
+    REQUIRE(rig.fluid.instability().has_value());
+    const Instability& i = *rig.fluid.instability();
     INFO(i.message());
     CHECK(contains(i.criterion, "density"));
     CHECK(i.frame == 0u);
     CHECK(i.step == 1u);
     float most = 0.0f;
-    for (const glm::vec4& d : density) most = std::max(most, d.x / rig.sph.params().rest_density);
+    for (const glm::vec4& d : density) most = std::max(most, d.x / rig.fluid.params().rest_density);
     CHECK(most > 1.6f);
     CHECK(float(i.value) == Approx(most).epsilon(1e-6));
-    CHECK(i.particle < rig.sph.count());
+    CHECK(i.particle < rig.fluid.count());
     ranryu::test::require_no_gl_errors();
 }
 
@@ -249,11 +250,11 @@ TEST_CASE("guard: a NaN written into one velocity is reported as non-finite", "[
     for (std::size_t k = 0; k < x.size(); ++k) xd[k] = glm::dvec3(glm::vec3(x[k]));
     const std::size_t spread = ranryu::reference::neighbours(xd, 2.0 * double(rig.scene.spacing))[poisoned].size();
 
-    rig.sph.upload_state(x, v);
-    rig.sph.set_fixed_dt(rig.scene.frame_dt);
+    rig.fluid.upload_state(x, v);
+    rig.fluid.set_fixed_dt(rig.scene.frame_dt);
     rig.frame(3);
-    const gpu::StepState record = rig.sph.step_state().read<gpu::StepState>(1)[0];
-    const auto xs = rig.read(rig.sph.positions()), vs = rig.read(rig.sph.velocities());
+    const gpu::StepState record = rig.fluid.step_state().read<gpu::StepState>(1)[0];
+    const auto xs = rig.read(rig.fluid.positions()), vs = rig.read(rig.fluid.velocities());
     rig.finish();
     std::vector<std::uint32_t> bad;
     for (std::uint32_t k = 0; k < xs.size(); ++k)
@@ -264,26 +265,27 @@ TEST_CASE("guard: a NaN written into one velocity is reported as non-finite", "[
     CHECK(bad.size() == spread);
     REQUIRE_FALSE(bad.empty());
     CHECK(record.nan_index == bad.front());
-    REQUIRE(rig.sph.instability().has_value());
-    const Instability& i = *rig.sph.instability();
+    REQUIRE(rig.fluid.instability().has_value());
+    const Instability& i = *rig.fluid.instability();
     INFO(i.message());
     CHECK(contains(i.criterion, "non-finite"));
     CHECK(i.particle == record.nan_index);
-    CHECK(i.particle < rig.sph.count());
+    CHECK(i.particle < rig.fluid.count());
     CHECK(i.frame == 3u);
     CHECK(i.step == 1u);
     ranryu::test::require_no_gl_errors();
 }
 
 TEST_CASE("guard: a particle outside the tank is reported as having left the domain", "[guard]") {
-    // The guard's domain is the tank grown by dx at the walls and floor (sph.cpp, sph_params). One
+    // The guard's domain is the tank grown by dx at the walls and floor (fluid.cpp, sph_params). One
     // particle goes 4 dx beyond a wall (past the 3 boundary layers, still inside the neighbour grid),
     // or 4 dx below the floor; one substep: the record counts one escapee and names its sorted index.
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     const bool below = GENERATE(false, true);
-    INFO((below ? "below the floor" : "beyond the +x wall"));
-    Rig rig(scene_json());
+    const std::string solver = GENERATE(as<std::string>(), "wcsph", "dfsph");
+    INFO((below ? "below the floor" : "beyond the +x wall") << ", " << solver);
+    Rig rig(scene_json("", solver));
     const float dx = rig.scene.spacing;
     std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
     const std::size_t moved = rng.below(unsigned(x.size()));
@@ -291,13 +293,13 @@ TEST_CASE("guard: a particle outside the tank is reported as having left the dom
                      : glm::vec4(rig.scene.tank_max.x + 4.0f * dx, 0.15f, 0.15f, 0.0f);
     // Either place is more than h from every other particle of the block ([0, 0.24]^3): it feels no
     // fluid, only boundary particles, and no pressure (p = 0 at its low density).
-    rig.sph.upload_state(x, v);
-    rig.sph.set_fixed_dt(rig.scene.frame_dt);
+    rig.fluid.upload_state(x, v);
+    rig.fluid.set_fixed_dt(rig.scene.frame_dt);
     rig.frame(0);
-    const gpu::StepState record = rig.sph.step_state().read<gpu::StepState>(1)[0];
-    const auto xs = rig.read(rig.sph.positions());
+    const gpu::StepState record = rig.fluid.step_state().read<gpu::StepState>(1)[0];
+    const auto xs = rig.read(rig.fluid.positions());
     rig.finish();
-    const glm::vec3 lo(rig.sph.params().domain_min), hi(rig.sph.params().domain_max);
+    const glm::vec3 lo(rig.fluid.params().domain_min), hi(rig.fluid.params().domain_max);
     std::vector<std::uint32_t> outside;
     for (std::uint32_t k = 0; k < xs.size(); ++k)
         if (glm::any(glm::lessThan(glm::vec3(xs[k]), lo)) || glm::any(glm::greaterThan(glm::vec3(xs[k]), hi))) outside.push_back(k);
@@ -305,8 +307,8 @@ TEST_CASE("guard: a particle outside the tank is reported as having left the dom
     CHECK(record.escaped_count == 1u);
     CHECK(record.escaped_index == outside.front());
     CHECK(record.nan_count == 0u);
-    REQUIRE(rig.sph.instability().has_value());
-    const Instability& i = *rig.sph.instability();
+    REQUIRE(rig.fluid.instability().has_value());
+    const Instability& i = *rig.fluid.instability();
     INFO(i.message());
     CHECK(contains(i.criterion, "1 particles left the domain"));
     CHECK(i.particle == outside.front());

@@ -1,9 +1,11 @@
 // glsl/shared/bindings.h is compiled by C++ and by GLSL. These cases hold the two readings equal:
 // (a) every member the driver reports in the blocks (std140 uniform blocks; StepState a std430
-//     storage block, as the SPH passes declare it, and SubparticleState likewise) sits at the C++
-//     offsetof and has the C++ type, and each block is sizeof bytes;
+//     storage block, as the SPH passes declare it, and SubparticleState and SolveState likewise) sits
+//     at the C++ offsetof and has the C++ type, and each block is sizeof bytes; uniform blocks sit at
+//     their shared binding points, storage blocks at the slot the program gave them (bound by name);
 // (b) random values written through the C++ structs come back bit for bit through the shader;
-// (c) the shared macros (binding points, locations, sort and sub-particle constants) agree in both languages.
+// (c) the shared macros (uniform binding points, locations, sort, sub-particle and DFSPH constants)
+//     agree in both languages.
 // The probe shader is glsl/test/probe_layout.comp; its header comment gives the output order.
 #include "support/gl_fixture.h"
 
@@ -115,6 +117,9 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.frame", {offsetof(gpu::StepState, frame), GL_UNSIGNED_INT}},
         {"step.steps", {offsetof(gpu::StepState, steps), GL_UNSIGNED_INT}},
         {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+        {"step.iterations", {offsetof(gpu::StepState, iterations), GL_UNSIGNED_INT_VEC4}},
+        {"step.unconverged", {offsetof(gpu::StepState, unconverged), GL_UNSIGNED_INT_VEC4}},
+        {"step.error", {offsetof(gpu::StepState, error), GL_FLOAT_VEC4}},
 
         {"subp.level_energy", {offsetof(gpu::SubparticleParams, level_energy), GL_FLOAT_VEC4}},
         {"subp.energy_scale", {offsetof(gpu::SubparticleParams, energy_scale), GL_FLOAT_VEC4}},
@@ -136,13 +141,34 @@ const std::map<std::string, Member>& cpp_members() {
         {"subs.counts", {offsetof(gpu::SubparticleState, counts), GL_UNSIGNED_INT_VEC4}},
         {"subs.offsets", {offsetof(gpu::SubparticleState, offsets), GL_UNSIGNED_INT_VEC4}},
         {"subs.limits", {offsetof(gpu::SubparticleState, limits), GL_UNSIGNED_INT_VEC4}},
+
+        {"dfsph.eta", {offsetof(gpu::DfsphParams, eta), GL_FLOAT}},
+        {"dfsph.eta_divergence", {offsetof(gpu::DfsphParams, eta_divergence), GL_FLOAT}},
+        {"dfsph.relaxation", {offsetof(gpu::DfsphParams, relaxation), GL_FLOAT}},
+        {"dfsph.warm_start", {offsetof(gpu::DfsphParams, warm_start), GL_FLOAT}},
+        {"dfsph.min_iterations", {offsetof(gpu::DfsphParams, min_iterations), GL_UNSIGNED_INT}},
+        {"dfsph.min_divergence_iterations", {offsetof(gpu::DfsphParams, min_divergence_iterations), GL_UNSIGNED_INT}},
+        {"dfsph.issued", {offsetof(gpu::DfsphParams, issued), GL_UNSIGNED_INT}},
+        {"dfsph.issued_divergence", {offsetof(gpu::DfsphParams, issued_divergence), GL_UNSIGNED_INT}},
+        {"dfsph.error_scale", {offsetof(gpu::DfsphParams, error_scale), GL_FLOAT}},
+        {"dfsph.deficient_neighbours", {offsetof(gpu::DfsphParams, deficient_neighbours), GL_UNSIGNED_INT}},
+        {"dfsph.boundary_viscosity", {offsetof(gpu::DfsphParams, boundary_viscosity), GL_FLOAT}},
+        {"dfsph.groups", {offsetof(gpu::DfsphParams, groups), GL_UNSIGNED_INT}},
+
+        {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
+        {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
+        {"solve.error_sum", {offsetof(gpu::SolveState, error_sum), GL_UNSIGNED_INT}},
+        {"solve.groups_done", {offsetof(gpu::SolveState, groups_done), GL_UNSIGNED_INT}},
+        {"solve.solve", {offsetof(gpu::SolveState, solve), GL_UNSIGNED_INT}},
     };
     return table;
 }
 #pragma GCC diagnostic pop
 
-// The probe's blocks: GLSL block name, instance prefix, C++ size, binding point, and the program
-// interfaces of the block and of its members (uniform block or shader storage block).
+// The probe's blocks: GLSL block name, instance prefix, C++ size, binding point (uniform blocks; a
+// storage block's is the slot the program gave it, kByName), and the program interfaces of the block
+// and of its members (uniform block or shader storage block).
+constexpr GLuint kByName = ~0u;
 struct Block {
     const char* name;
     const char* prefix;
@@ -157,39 +183,22 @@ const Block kBlocks[] = {
     {"FrameBlock", "frame.", sizeof(gpu::FrameParams), RANRYU_UBO_FRAME, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"GridBlock", "grid.", sizeof(gpu::GridParams), RANRYU_UBO_GRID, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"SphBlock", "sph.", sizeof(gpu::SphParams), RANRYU_UBO_SPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
-    {"Step", "step.", sizeof(gpu::StepState), RANRYU_SSBO_STEP, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"Step", "step.", sizeof(gpu::StepState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
     {"SubparticleBlock", "subp.", sizeof(gpu::SubparticleParams), RANRYU_UBO_SUBPARTICLES, GL_UNIFORM_BLOCK, GL_UNIFORM},
-    {"SubparticleStateBlock", "subs.", sizeof(gpu::SubparticleState), RANRYU_SSBO_SUBPARTICLE_STATE, GL_SHADER_STORAGE_BLOCK,
-     GL_BUFFER_VARIABLE},
+    {"SubparticleStateBlock", "subs.", sizeof(gpu::SubparticleState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"DfsphBlock", "dfsph.", sizeof(gpu::DfsphParams), RANRYU_UBO_DFSPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
+    {"Solve", "solve.", sizeof(gpu::SolveState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
 };
 
-// The binding macros in the order of kMacros in probe_layout.comp.
+// The shared macros in the order of kMacros in probe_layout.comp.
 const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_UBO_FRAME", RANRYU_UBO_FRAME},
     {"RANRYU_UBO_SIM", RANRYU_UBO_SIM},
     {"RANRYU_UBO_GRID", RANRYU_UBO_GRID},
     {"RANRYU_UBO_SPH", RANRYU_UBO_SPH},
     {"RANRYU_UBO_PROBE", RANRYU_UBO_PROBE},
-    {"RANRYU_SSBO_POSITION", RANRYU_SSBO_POSITION},
-    {"RANRYU_SSBO_VELOCITY", RANRYU_SSBO_VELOCITY},
-    {"RANRYU_SSBO_SORT_KEYS", RANRYU_SSBO_SORT_KEYS},
-    {"RANRYU_SSBO_SORT_VALUES", RANRYU_SSBO_SORT_VALUES},
-    {"RANRYU_SSBO_SORT_KEYS_ALT", RANRYU_SSBO_SORT_KEYS_ALT},
-    {"RANRYU_SSBO_SORT_VALUES_ALT", RANRYU_SSBO_SORT_VALUES_ALT},
-    {"RANRYU_SSBO_SORT_HISTOGRAM", RANRYU_SSBO_SORT_HISTOGRAM},
-    {"RANRYU_SSBO_PROBE_OUT", RANRYU_SSBO_PROBE_OUT},
-    {"RANRYU_SSBO_CELL_START", RANRYU_SSBO_CELL_START},
-    {"RANRYU_SSBO_CELL_END", RANRYU_SSBO_CELL_END},
-    {"RANRYU_SSBO_SORTED_POSITION", RANRYU_SSBO_SORTED_POSITION},
-    {"RANRYU_SSBO_SORTED_VELOCITY", RANRYU_SSBO_SORTED_VELOCITY},
-    {"RANRYU_SSBO_DENSITY", RANRYU_SSBO_DENSITY},
-    {"RANRYU_SSBO_ACCEL", RANRYU_SSBO_ACCEL},
-    {"RANRYU_SSBO_NEIGHBOURS", RANRYU_SSBO_NEIGHBOURS},
-    {"RANRYU_SSBO_BOUNDARY", RANRYU_SSBO_BOUNDARY},
-    {"RANRYU_SSBO_STEP", RANRYU_SSBO_STEP},
-    {"RANRYU_SSBO_SCRATCH", RANRYU_SSBO_SCRATCH},
-    {"RANRYU_SSBO_BOUNDARY_CELL_START", RANRYU_SSBO_BOUNDARY_CELL_START},
-    {"RANRYU_SSBO_BOUNDARY_CELL_END", RANRYU_SSBO_BOUNDARY_CELL_END},
+    {"RANRYU_UBO_SURFACE", RANRYU_UBO_SURFACE},
+    {"RANRYU_UBO_NOISE", RANRYU_UBO_NOISE},
     {"RANRYU_LOC_COUNT", RANRYU_LOC_COUNT},
     {"RANRYU_LOC_SHIFT", RANRYU_LOC_SHIFT},
     {"RANRYU_LOC_STAGE", RANRYU_LOC_STAGE},
@@ -200,17 +209,12 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SORT_RADIX_ITEMS_PER_THREAD", RANRYU_SORT_RADIX_ITEMS_PER_THREAD},
     {"RANRYU_SORT_BITONIC_ITEMS_PER_THREAD", RANRYU_SORT_BITONIC_ITEMS_PER_THREAD},
     {"RANRYU_UBO_SUBPARTICLES", RANRYU_UBO_SUBPARTICLES},
-    {"RANRYU_SSBO_SUBPARTICLE_STATE", RANRYU_SSBO_SUBPARTICLE_STATE},
-    {"RANRYU_SSBO_SUBPARTICLE_LEVELS", RANRYU_SSBO_SUBPARTICLE_LEVELS},
-    {"RANRYU_SSBO_SUBPARTICLE_BLOCKS", RANRYU_SSBO_SUBPARTICLE_BLOCKS},
-    {"RANRYU_SSBO_SUBPARTICLE_SPLAT", RANRYU_SSBO_SUBPARTICLE_SPLAT},
-    {"RANRYU_SSBO_SUBPARTICLE_LISTS", RANRYU_SSBO_SUBPARTICLE_LISTS},
-    {"RANRYU_SSBO_SUBPARTICLE_POSITION", RANRYU_SSBO_SUBPARTICLE_POSITION},
-    {"RANRYU_SSBO_SUBPARTICLE_VELOCITY", RANRYU_SSBO_SUBPARTICLE_VELOCITY},
     {"RANRYU_LOC_SUBPARTICLE_GROUP", RANRYU_LOC_SUBPARTICLE_GROUP},
     {"RANRYU_SUBPARTICLE_MAX_LEVEL", RANRYU_SUBPARTICLE_MAX_LEVEL},
     {"RANRYU_SUBPARTICLE_SPLIT_SHIFT", RANRYU_SUBPARTICLE_SPLIT_SHIFT},
     {"RANRYU_SUBPARTICLE_SPLAT_SCALE", std::uint32_t(RANRYU_SUBPARTICLE_SPLAT_SCALE)},
+    {"RANRYU_UBO_DFSPH", RANRYU_UBO_DFSPH},
+    {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
 };
 
 const Program& probe() {
@@ -284,7 +288,8 @@ TEST_CASE("every member of the shared structs sits where C++ puts it") {
         const GLuint block = glGetProgramResourceIndex(prog, b.block_interface, b.name);
         REQUIRE(block != GL_INVALID_INDEX);
         CHECK(std::size_t(resource(prog, b.block_interface, block, GL_BUFFER_DATA_SIZE)) == b.size);
-        CHECK(GLuint(resource(prog, b.block_interface, block, GL_BUFFER_BINDING)) == b.binding);
+        const GLuint binding = b.binding == kByName ? GLuint(probe().storage_slot(b.name)) : b.binding;
+        CHECK(GLuint(resource(prog, b.block_interface, block, GL_BUFFER_BINDING)) == binding);
 
         // All members GL reports, not just the ones C++ knows: a GLSL-only member fails the lookup.
         // (std140 blocks have every member active; the probe reads every member of the others.)
@@ -384,6 +389,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     for (std::uint32_t* u : {&st.frame_substeps, &st.nan_count, &st.nan_index, &st.escaped_count, &st.escaped_index,
                              &st.speed_index, &st.density_index, &st.front, &st.frame, &st.steps, &st.pad0})
         *u = d.u();
+    st.iterations = d.u4();
+    st.unconverged = d.u4();
+    st.error = d.v4();
 
     gpu::SubparticleParams pp{};
     pp.level_energy = d.v4();
@@ -394,6 +402,18 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
 
     gpu::SubparticleState ps{};
     for (glm::uvec4* u : {&ps.dispatch, &ps.draw, &ps.counts, &ps.offsets, &ps.limits}) *u = d.u4();
+
+    gpu::DfsphParams dp{};
+    for (float* f : {&dp.eta, &dp.eta_divergence, &dp.relaxation, &dp.warm_start}) *f = d.f();
+    for (std::uint32_t* u : {&dp.min_iterations, &dp.min_divergence_iterations, &dp.issued, &dp.issued_divergence}) *u = d.u();
+    dp.error_scale = d.f();
+    dp.deficient_neighbours = d.u();
+    dp.boundary_viscosity = d.f();
+    dp.groups = d.u();
+
+    gpu::SolveState ss{};
+    ss.dispatch = d.u4();
+    for (std::uint32_t* u : {&ss.iterations, &ss.error_sum, &ss.groups_done, &ss.solve}) *u = d.u();
 
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
@@ -420,6 +440,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.frame_min_dt); expect.put(st.frame_substeps); expect.put(st.nan_count); expect.put(st.nan_index);
     expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
     expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.pad0);
+    expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);
     expect.put(pp.coherence_time); expect.put(pp.inv_sigma); expect.put(pp.noise_lmax); expect.put(pp.tile_size);
@@ -428,6 +449,14 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     const std::size_t subp_end = expect.w.size();
     expect.put(ps.dispatch); expect.put(ps.draw); expect.put(ps.counts); expect.put(ps.offsets); expect.put(ps.limits);
     const std::size_t subs_end = expect.w.size();
+    expect.put(dp.eta); expect.put(dp.eta_divergence); expect.put(dp.relaxation); expect.put(dp.warm_start);
+    expect.put(dp.min_iterations); expect.put(dp.min_divergence_iterations); expect.put(dp.issued);
+    expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
+    expect.put(dp.boundary_viscosity); expect.put(dp.groups);
+    const std::size_t dfsph_end = expect.w.size();
+    expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
+    expect.put(ss.solve);
+    const std::size_t solve_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.
     REQUIRE(probe_end == 28);
@@ -438,6 +467,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     REQUIRE(step_end - sph_end == sizeof(gpu::StepState) / 4);
     REQUIRE(subp_end - step_end == sizeof(gpu::SubparticleParams) / 4);
     REQUIRE(subs_end - subp_end == sizeof(gpu::SubparticleState) / 4);
+    REQUIRE(dfsph_end - subs_end == sizeof(gpu::DfsphParams) / 4);
+    REQUIRE(solve_end - dfsph_end == sizeof(gpu::SolveState) / 4);
 
     // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
     // keep it, so the shader wrote exactly expect.w.size() words.
@@ -453,16 +484,16 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     Buffer ssbo_step(sizeof st, GL_DYNAMIC_DRAW, &st, "probe.StepState");
     Buffer ubo_subp(sizeof pp, GL_DYNAMIC_DRAW, &pp, "probe.SubparticleParams");
     Buffer ssbo_subs(sizeof ps, GL_DYNAMIC_DRAW, &ps, "probe.SubparticleState");
+    Buffer ubo_dfsph(sizeof dp, GL_DYNAMIC_DRAW, &dp, "probe.DfsphParams");
+    Buffer ssbo_solve(sizeof ss, GL_DYNAMIC_DRAW, &ss, "probe.SolveState");
     ubo_subp.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
-    ssbo_subs.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SUBPARTICLE_STATE);
+    ubo_dfsph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
     ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
     ubo_sim.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SIM);
     ubo_frame.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
     ubo_grid.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
     ubo_sph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
-    ssbo_step.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_STEP);
-    out.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_PROBE_OUT);
-    probe().use();
+    probe().bind({{"Step", &ssbo_step}, {"SubparticleStateBlock", &ssbo_subs}, {"Solve", &ssbo_solve}, {"ProbeOut", &out}}).use();
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<std::uint32_t> got = out.read<std::uint32_t>(total);
@@ -476,7 +507,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         if (i < step_end) return "StepState word " + std::to_string(i - sph_end);
         if (i < subp_end) return "SubparticleParams word " + std::to_string(i - step_end);
         if (i < subs_end) return "SubparticleState word " + std::to_string(i - subp_end);
-        if (i < expect.w.size()) return kMacros[i - subs_end].first;
+        if (i < dfsph_end) return "DfsphParams word " + std::to_string(i - subs_end);
+        if (i < solve_end) return "SolveState word " + std::to_string(i - dfsph_end);
+        if (i < expect.w.size()) return kMacros[i - solve_end].first;
         return "past the end, word " + std::to_string(i);
     };
     for (std::size_t i = 0; i < total; ++i) {

@@ -303,9 +303,8 @@ TEST_CASE("sort: scan_counts carries across chunks for 16M keys", "[sort]") {
         INFO(name);
         const auto scan = ranryu::shader::Program::compute(shaders, "sim/sort/scan_counts.comp", defines);
         auto histogram = ranryu::gl::Buffer::from<std::uint32_t>(counts, GL_DYNAMIC_COPY, "test.histogram");
-        histogram.bind_base(GL_SHADER_STORAGE_BUFFER, RANRYU_SSBO_SORT_HISTOGRAM);
         glProgramUniform1ui(scan.id(), RANRYU_LOC_COUNT, GLuint(keys));
-        scan.use();
+        scan.bind({{"Histogram", &histogram}}).use();
         glDispatchCompute(digits, 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         const Keys got = histogram.read<std::uint32_t>(counts.size());

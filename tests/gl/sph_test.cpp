@@ -1,7 +1,7 @@
-// The SPH passes of glsl/sim/sph/ and glsl/sim/boundary/ (driven through sim::Sph's stages) against
-// the double-precision CPU reference of docs/SPH.md (tests/reference/sph_reference.h), on fresh random
-// states: jittered, compressed or stretched lattices with random velocities, uploaded with
-// Sph::upload_state() and read back after each stage.
+// The WCSPH passes of glsl/sim/wcsph/, glsl/sim/fluid/ and glsl/sim/boundary/ (driven through the
+// Fluid's and the Wcsph solver's stages) against the double-precision CPU reference of docs/SPH.md
+// (tests/reference/sph_reference.h), on fresh random states: jittered, compressed or stretched lattices
+// with random velocities, uploaded with Fluid::upload_state() and read back after each stage.
 //
 // Tolerances. The GPU works in float (unit roundoff u = 2^-24 ≈ 6.0e-8), the reference in double
 // on the same float inputs (the read-back sorted positions, the GPU's boundary particles), so every
@@ -28,7 +28,6 @@
 #include "reference/sph_reference.h"
 #include "scene/scene.h"
 #include "shader/source.h"
-#include "sim/sph.h"
 
 namespace {
 
@@ -36,16 +35,18 @@ namespace ref = ranryu::reference;
 namespace gpu = ranryu::gpu;
 using glm::dvec3;
 using ranryu::profile::GpuTimer;
-using ranryu::sim::Sph;
+using ranryu::sim::Fluid;
+using ranryu::sim::Wcsph;
 
 constexpr double kU = std::numeric_limits<float>::epsilon() / 2.0;   // float unit roundoff, 2^-24
 
 struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& json) : SphRig(json, "sph_test") {}
+    Wcsph& solver() { return wcsph(); }
 
     // The reference's constants from the GPU's own (float) parameters.
     ref::Params params() const {
-        const gpu::SphParams& p = sph.params();
+        const gpu::SphParams& p = fluid.params();
         return ref::Params::from_spacing(double(p.spacing), double(p.rest_density), double(p.sound_speed),
                                          double(p.viscosity), dvec3(glm::vec3(p.gravity)));
     }
@@ -56,7 +57,7 @@ struct Rig : ranryu::test::SphRig {
 std::string scene_json(double tank, const std::string& sph = "", const std::string& extra = "") {
     const std::string t = std::to_string(tank);
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [)" + t + ", " + t + ", " + t + R"(]}, )" + extra + R"(
-               "sph": {"viscosity": 1e-3)" + (sph.empty() ? "" : ", " + sph) + R"(},
+               "sph": {"solver": "wcsph", "viscosity": 1e-3)" + (sph.empty() ? "" : ", " + sph) + R"(},
                "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
 }
 
@@ -81,7 +82,7 @@ void block_state(ranryu::test::Random& rng, const Rig& rig, glm::vec3 corner, fl
                  std::vector<glm::vec4>& x, std::vector<glm::vec4>& v) {
     const float dx = rig.scene.spacing;
     const double h = 2.0 * double(dx);
-    REQUIRE(rig.sph.count() == 512);
+    REQUIRE(rig.fluid.count() == 512);
     for (int attempt = 0;; ++attempt) {
         REQUIRE(attempt < 100);
         x.clear();
@@ -111,7 +112,7 @@ struct Fields {
 // A first pass on the state moved by 2 h in x leaves stale cell ranges behind (the fluid's ranges are
 // not cleared between substeps, grid.h), so the passes under test must tell stale from current.
 Fields run_fields(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v) {
-    Sph& sph = rig.sph;
+    Fluid& sph = rig.fluid;
     std::vector<glm::vec4> moved = x;
     for (auto& p : moved) p.x += 2.0f * sph.params().h;
     const std::vector<glm::vec4>* states[] = {&moved, &x};
@@ -119,8 +120,8 @@ Fields run_fields(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
         sph.upload_state(*state, v);
         rig.timer.begin_frame();
         sph.rebuild_grid();
-        sph.compute_density();
-        sph.compute_forces();
+        rig.solver().compute_density(sph);
+        rig.solver().compute_forces(sph);
         rig.timer.end_frame();
     }
     Fields f{rig.read(sph.positions()), rig.read(sph.velocities()), rig.read(sph.densities()), rig.read(sph.accelerations()), {}, {}};
@@ -397,7 +398,7 @@ struct DtWant {
     const char* stable_binding;   // the term that sets the stable dt (eq. (7) and dt_max)
 };
 DtWant want_dt(const Rig& rig, const gpu::StepState& before) {
-    const gpu::SphParams& p = rig.sph.params();
+    const gpu::SphParams& p = rig.fluid.params();
     const double v_max = from_bits(before.max_speed), a_max = from_bits(before.max_accel);
     const double cfl = double(p.cfl) * p.spacing / (double(p.sound_speed) + v_max);
     const double force = a_max > 0.0 ? double(p.force_factor) * std::sqrt(double(p.spacing) / a_max) : INFINITY;
@@ -428,7 +429,7 @@ DtWant want_dt(const Rig& rig, const gpu::StepState& before) {
 //     |v| + dt|a| and |x| + dt|v'| (one product and one sum each: ≤ 2u, less with fused multiply-add).
 // Returns the term that set each substep's stable dt.
 std::vector<std::string> check_substeps(Rig& rig, int substeps) {
-    Sph& sph = rig.sph;
+    Fluid& sph = rig.fluid;
     const double rho0 = rig.params().rest_density;
     std::vector<std::string> bindings;
     for (int k = 0; k < substeps; ++k) {
@@ -450,8 +451,8 @@ std::vector<std::string> check_substeps(Rig& rig, int substeps) {
         CHECK(s1.max_accel == 0u);
 
         sph.rebuild_grid();
-        sph.compute_density();
-        sph.compute_forces();
+        rig.solver().compute_density(sph);
+        rig.solver().compute_forces(sph);
         const auto x = rig.read(sph.positions()), v = rig.read(sph.velocities()), a = rig.read(sph.accelerations());
         const auto d = rig.read(sph.densities());
         sph.integrate();
@@ -515,10 +516,10 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
         Rig rig(scene_json(0.3, k));
         const Fields f = run_fields(rig, x, v);
         REQUIRE(f.x == base.x);   // the same sorted order
-        const std::size_t n = f.x.size(), runs = std::size_t(rig.sph.neighbour_runs());
+        const std::size_t n = f.x.size(), runs = std::size_t(rig.fluid.neighbour_runs());
         CHECK(runs == (keys == "linear" ? 9u : 27u));
-        const std::vector<std::uint32_t> masks = rig.sph.neighbour_masks().read<std::uint32_t>(2 * runs * n);
-        const double h = double(rig.sph.params().h);
+        const std::vector<std::uint32_t> masks = rig.fluid.neighbour_masks().read<std::uint32_t>(2 * runs * n);
+        const double h = double(rig.fluid.params().h);
         std::size_t complete = 0, mismatched = 0, walls = 0;
         for (std::size_t i = 0; i < n; ++i) {
             std::uint32_t flags;
@@ -552,12 +553,12 @@ TEST_CASE("sph: symplectic Euler step and the GPU's time step match the referenc
     std::vector<glm::vec4> x, v;
     SECTION("mildly compressed block, random velocities: the frame share sets dt, CFL the stable dt") {
         block_state(rng, rig, glm::vec3(0.0f), 0.98f, 0.1f, 0.3f, x, v);
-        rig.sph.upload_state(x, v);
+        rig.fluid.upload_state(x, v);
         rig.timer.begin_frame();
-        rig.sph.begin_frame(0);
+        rig.fluid.begin_frame(0);
         const std::vector<std::string> bindings = check_substeps(rig, 3);
         CHECK(std::all_of(bindings.begin(), bindings.end(), [](const std::string& b) { return b == "cfl"; }));
-        rig.sph.end_frame();
+        rig.fluid.end_frame();
         rig.timer.end_frame();
     }
     SECTION("strongly compressed block: the force condition sets the stable dt") {
@@ -566,27 +567,27 @@ TEST_CASE("sph: symplectic Euler step and the GPU's time step match the referenc
         // of 1e-5 s (fixed) keep |v| ≈ 1e-5·|a| below 1 m/s. The first substep's maxima are the
         // constructor's (|v| = 0, |a| = g); from the second on, the force term binds.
         block_state(rng, rig, glm::vec3(0.0f), 0.85f, 0.05f, 0.1f, x, v);
-        rig.sph.upload_state(x, v);
-        rig.sph.set_fixed_dt(1e-5f);
+        rig.fluid.upload_state(x, v);
+        rig.fluid.set_fixed_dt(1e-5f);
         rig.timer.begin_frame();
-        rig.sph.begin_frame(0);
+        rig.fluid.begin_frame(0);
         const std::vector<std::string> bindings = check_substeps(rig, 3);
         CHECK(bindings[0] == "cfl");
         CHECK(bindings[1] == "force");
         CHECK(bindings[2] == "force");
-        rig.sph.end_frame();
+        rig.fluid.end_frame();
         rig.timer.end_frame();
     }
     SECTION("fixed dt: substeps of exactly the dt asked for") {
         block_state(rng, rig, glm::vec3(0.0f), 1.0f, 0.1f, 0.1f, x, v);
-        rig.sph.upload_state(x, v);
-        rig.sph.set_fixed_dt(1e-4f);
+        rig.fluid.upload_state(x, v);
+        rig.fluid.set_fixed_dt(1e-4f);
         rig.timer.begin_frame();
-        rig.sph.begin_frame(0);
-        CHECK(rig.sph.substeps_this_frame() == int(std::lround(rig.scene.frame_dt / 1e-4f)));
+        rig.fluid.begin_frame(0);
+        CHECK(rig.fluid.substeps_this_frame() == int(std::lround(rig.scene.frame_dt / 1e-4f)));
         check_substeps(rig, 2);
         CHECK(std::abs(rig.step().dt - 1e-4f) <= 1e-6f * 1e-4f * 4.0f);
-        rig.sph.end_frame();
+        rig.fluid.end_frame();
         rig.timer.end_frame();
     }
     ranryu::test::require_no_gl_errors();
@@ -630,7 +631,7 @@ TEST_CASE("sph: a hydrostatic tank stays at rest", "[sph]") {
     INFO("seed " << rng.seed());
     Rig rig(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.32, 0.4, 0.32]},
                 "particles": {"spacing": 0.04, "blocks": [{"min": [0, 0, 0], "max": [0.32, 0.24, 0.32]}]}})");
-    Sph& sph = rig.sph;
+    Fluid& sph = rig.fluid;
     REQUIRE(sph.count() == 384);
     const ref::Params c = rig.params();
     const double H = 0.24, bound = 0.5 * std::sqrt(2.0 * 9.81 * H), m = c.mass, g = -c.gravity.y;
@@ -659,7 +660,7 @@ TEST_CASE("sph: a hydrostatic tank stays at rest", "[sph]") {
     for (int f = 0; f < frames; ++f) {
         rig.timer.begin_frame();
         sph.begin_frame(std::uint64_t(f));
-        for (int s = 0; s < sph.substeps_this_frame(); ++s) sph.substep();
+        for (int s = 0; s < sph.substeps_this_frame(); ++s) rig.sim.step();
         sph.end_frame();
         rig.timer.end_frame();
         sph.poll_records();

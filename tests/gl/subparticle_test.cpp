@@ -39,7 +39,8 @@
 #include "shader/source.h"
 #include "shared/bindings.h"
 #include "sim/grid.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
+#include "turbulence/force.h"
 #include "support/sph_rig.h"
 #include "surface/level_set.h"
 #include "turbulence/force.h"
@@ -279,7 +280,7 @@ namespace {
 
 std::string block_json(const std::string& velocity, const std::string& gravity, const std::string& subparticles) {
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.6, 0.3, 0.3]}, "gravity": )" + gravity + R"(,
-        "sph": {"viscosity": 1e-3},
+        "sph": {"solver": "wcsph", "viscosity": 1e-3},
         "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.6, 0.3, 0.3], "velocity": )" + velocity + R"(}]},
         "turbulence": {"amplitude": 1e-4, "scale": 0.3333333, "octaves": [3, 5], "beta": 0.3333333, "seed": 7,
                        "coherence_time": 0.5, "subparticles": )" + subparticles + "}}";
@@ -295,12 +296,12 @@ void upload_shear(ranryu::test::SphRig& r) {
         x[i] += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
         v[i] = glm::vec4(0.5f * std::sin(6.2831853f * x[i].y / lambda), 0.0f, 0.0f, 0.0f);
     }
-    r.sph.upload_state(x, v);
+    r.fluid.upload_state(x, v);
 }
 
 rt::Subparticles make_subparticles(ranryu::test::SphRig& r) {
-    return rt::Subparticles(rig().shaders, r.timer, r.scene.turbulence, r.scene.spacing, r.sph.count(), r.sph.turbulence()->tiles(),
-                            r.sph.turbulence()->noise());
+    return rt::Subparticles(rig().shaders, r.timer, r.scene.turbulence, r.scene.spacing, r.fluid.count(), r.sim.turbulence()->tiles(),
+                            r.sim.turbulence()->noise());
 }
 
 }  // namespace
@@ -318,24 +319,24 @@ TEST_CASE("subparticles: a laminar flow (uniform, or at rest under gravity) make
         rt::Subparticles sub = make_subparticles(r);
         for (std::uint64_t f = 0; f < 2; ++f) {
             r.timer.begin_frame();
-            r.sph.begin_frame(f);
+            r.sim.begin_frame(f);
             if (uniform) {
-                r.sph.choose_time_step();
-                r.sph.rebuild_grid();
-                r.sph.compute_density();
-                r.sph.analyse_turbulence();
-                r.sph.compute_forces();
-                r.sph.apply_turbulence();   // seeds the carried noise
+                r.fluid.choose_time_step();
+                r.fluid.rebuild_grid();
+                r.wcsph().compute_density(r.fluid);
+                r.sim.turbulence()->analyse(r.fluid);
+                r.wcsph().compute_forces(r.fluid);
+                r.sim.turbulence()->apply(r.fluid);   // seeds the carried noise
             } else {
-                for (int s = 0; s < r.sph.substeps_this_frame(); ++s) r.sph.substep();
+                for (int s = 0; s < r.sim.substeps_this_frame(); ++s) r.sim.step();
             }
-            sub.generate(r.sph, f);
-            r.sph.end_frame();
+            sub.generate(r.fluid, *r.sim.turbulence(), f);
+            r.sim.end_frame();
             r.timer.end_frame();
         }
         r.finish();
         sub.drain();
-        const auto e = r.read(r.sph.turbulence()->wavelet().energy());
+        const auto e = r.read(r.sim.turbulence()->wavelet().energy());
         float most = 0.0f;
         for (const auto& q : e) most = std::max(most, q.w);
         INFO("largest ê " << most);
@@ -343,7 +344,7 @@ TEST_CASE("subparticles: a laminar flow (uniform, or at rest under gravity) make
         CHECK(s.counts == glm::uvec4(0u));
         CHECK(s.dispatch.w == 0u);
         CHECK(s.draw == glm::uvec4(4u, 0u, 0u, 0u));
-        for (const std::uint32_t l : sub.levels().read<std::uint32_t>(r.sph.count())) REQUIRE(l == 0u);
+        for (const std::uint32_t l : sub.levels().read<std::uint32_t>(r.fluid.count())) REQUIRE(l == 0u);
         CHECK(sub.stats().frames == 2);
         CHECK(sub.stats().most == 0);
         CHECK(rt::budget_note(sub.stats()).empty());
@@ -358,7 +359,7 @@ TEST_CASE("subparticles: every child of an SPH shear flow equals the CPU referen
                                "subparticle_test");
     upload_shear(probe);
     probe.frame(0);
-    auto energies = probe.read(probe.sph.turbulence()->wavelet().energy());
+    auto energies = probe.read(probe.sim.turbulence()->wavelet().energy());
     std::sort(energies.begin(), energies.end(), [](const glm::vec4& a, const glm::vec4& b) { return a.w < b.w; });
     const float median = energies[energies.size() / 2].w;
     REQUIRE(median > 0.0f);
@@ -369,15 +370,15 @@ TEST_CASE("subparticles: every child of an SPH shear flow equals the CPU referen
     upload_shear(r);
     rt::Subparticles sub = make_subparticles(r);
     r.timer.begin_frame();
-    r.sph.begin_frame(0);
-    for (int s = 0; s < r.sph.substeps_this_frame(); ++s) r.sph.substep();
-    sub.generate(r.sph, 0);
-    r.sph.end_frame();
+    r.sim.begin_frame(0);
+    for (int s = 0; s < r.sim.substeps_this_frame(); ++s) r.sim.step();
+    sub.generate(r.fluid, *r.sim.turbulence(), 0);
+    r.sim.end_frame();
     r.timer.end_frame();
     r.finish();
-    const std::size_t n = r.sph.count();
-    const auto x = r.read(r.sph.positions()), v = r.read(r.sph.velocities()), e = r.read(r.sph.turbulence()->wavelet().energy());
-    const auto seeds = r.sph.noise_seeds()->read<gpu::NoiseSeed>(n);
+    const std::size_t n = r.fluid.count();
+    const auto x = r.read(r.fluid.positions()), v = r.read(r.fluid.velocities()), e = r.read(r.sim.turbulence()->wavelet().energy());
+    const auto seeds = r.sim.turbulence()->noise_seeds().read<gpu::NoiseSeed>(n);
     const float t = r.step().time;
     const gpu::SubparticleState s = sub.state().read<gpu::SubparticleState>(1)[0];
     const auto lists = sub.lists().read<std::uint32_t>(2 * n);
@@ -397,7 +398,7 @@ TEST_CASE("subparticles: every child of an SPH shear flow equals the CPU referen
         const std::uint32_t local = g - (L == 2 ? s.offsets.y : 0u), k = local >> (3 * L), c = local & ((1u << (3 * L)) - 1u);
         const std::uint32_t p = lists[std::size_t(L - 1) * n + k];
         const rt::Subparticle want =
-            rt::spawn_subparticle(r.sph.turbulence()->tiles(), sub.params(), glm::vec3(x[p]), glm::vec3(v[p]), e[p].w, seeds[p], c, L, t);
+            rt::spawn_subparticle(r.sim.turbulence()->tiles(), sub.params(), glm::vec3(x[p]), glm::vec3(v[p]), e[p].w, seeds[p], c, L, t);
         const double kick = std::sqrt(2.0 * want.velocity.w);
         const double dx = glm::length(glm::dvec3(cx[g]) - glm::dvec3(want.position));
         const double dv = glm::length(glm::dvec3(cv[g]) - glm::dvec3(want.velocity));

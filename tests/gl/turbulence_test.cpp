@@ -22,7 +22,8 @@
 #include "turbulence/noise.h"
 #include "profile/gpu_timer.h"
 #include "shader/source.h"
-#include "sim/sph.h"
+#include "sim/fluid.h"
+#include "turbulence/force.h"
 
 namespace {
 
@@ -33,7 +34,7 @@ constexpr double kPi = 3.14159265358979323846;
 std::string block_json(const std::string& turbulence, const std::string& velocity = "[0, 0, 0]",
                        const std::string& gravity = "[0, 0, 0]") {
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.6, 0.3, 0.3]}, "gravity": )" + gravity + R"(,
-        "sph": {"viscosity": 1e-3},
+        "sph": {"solver": "wcsph", "viscosity": 1e-3},
         "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.6, 0.3, 0.3], "velocity": )" +
            velocity + "}]}" + (turbulence.empty() ? "" : R"(, "turbulence": )" + turbulence) + "}";
 }
@@ -45,7 +46,7 @@ std::string turbulence_json(double amplitude, double coherence_time = 0.5) {
     return b;
 }
 
-std::vector<ranryu::gpu::NoiseSeed> read_seeds(SphRig& r) { return r.sph.noise_seeds()->read<ranryu::gpu::NoiseSeed>(r.sph.count()); }
+std::vector<ranryu::gpu::NoiseSeed> read_seeds(SphRig& r) { return r.sim.turbulence()->noise_seeds().read<ranryu::gpu::NoiseSeed>(r.fluid.count()); }
 
 // The sheared flow u = u0 sin(2π y/λ) e_x, λ = 8 dx, on the block's lattice jittered by ±0.1 dx
 // (fixed seed, so the tolerances below hold for this state).
@@ -58,21 +59,21 @@ void upload_shear(SphRig& r) {
         x[i] += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
         v[i] = glm::vec4(u0 * std::sin(float(2.0 * kPi) * x[i].y / lambda), 0.0f, 0.0f, 0.0f);
     }
-    r.sph.upload_state(x, v);
+    r.fluid.upload_state(x, v);
 }
 
 // The substep's passes up to and including the forces (ê analysed when turbulence is on).
 void until_forces(SphRig& r) {
-    r.sph.choose_time_step();
-    r.sph.rebuild_grid();
-    r.sph.compute_density();
-    r.sph.analyse_turbulence();
-    r.sph.compute_forces();
+    r.fluid.choose_time_step();
+    r.fluid.rebuild_grid();
+    r.wcsph().compute_density(r.fluid);
+    if (auto* t = r.sim.turbulence()) t->analyse(r.fluid);   // the step's hook, when the turbulence is on
+    r.wcsph().compute_forces(r.fluid);
 }
 
 double kinetic_energy(const SphRig& r) {
     double e = 0.0;
-    for (const glm::vec4& v : r.read(r.sph.velocities())) e += 0.5 * double(r.sph.params().mass) * glm::dot(glm::dvec3(v), glm::dvec3(v));
+    for (const glm::vec4& v : r.read(r.fluid.velocities())) e += 0.5 * double(r.fluid.params().mass) * glm::dot(glm::dvec3(v), glm::dvec3(v));
     return e;
 }
 
@@ -110,10 +111,10 @@ TEST_CASE("turbulence: scene keys are validated and amplitude 0 constructs nothi
     CHECK(!s.turbulence.enabled());
     CHECK(s.turbulence.scale == Approx(1.0 / 3.0));
     SphRig off(block_json(R"({"amplitude": 0})"), "turbulence_test");
-    CHECK(off.sph.turbulence() == nullptr);
+    CHECK(off.sim.turbulence() == nullptr);
     SphRig on(block_json(turbulence_json(0.1)), "turbulence_test");
-    REQUIRE(on.sph.turbulence() != nullptr);
-    CHECK(on.sph.turbulence()->scale() == Approx(on.sph.params().h / 3.0f));
+    REQUIRE(on.sim.turbulence() != nullptr);
+    CHECK(on.sim.turbulence()->scale() == Approx(on.fluid.params().h / 3.0f));
 }
 
 TEST_CASE("turbulence: a uniform flow (ê = 0) gets exactly the SPH acceleration", "[turbulence]") {
@@ -122,21 +123,21 @@ TEST_CASE("turbulence: a uniform flow (ê = 0) gets exactly the SPH acceleration
     SphRig turb(block_json(turbulence_json(0.5), u, g), "turbulence_test");
     for (SphRig* r : {&plain, &turb}) {
         r->timer.begin_frame();
-        r->sph.begin_frame(0);
+        r->sim.begin_frame(0);
         until_forces(*r);
     }
-    const auto before = turb.read(turb.sph.accelerations());
-    turb.sph.apply_turbulence();
-    plain.sph.apply_turbulence();   // nothing to do
+    const auto before = turb.read(turb.fluid.accelerations());
+    REQUIRE(plain.sim.turbulence() == nullptr);   // nothing built, nothing to apply
+    turb.sim.turbulence()->apply(turb.fluid);
     for (SphRig* r : {&plain, &turb}) {
-        r->sph.integrate();
-        r->sph.end_frame();
+        r->fluid.integrate();
+        r->sim.end_frame();
         r->timer.end_frame();
         r->finish();
     }
     // integrate() does not touch the accelerations: they are the substep's.
-    const auto a_plain = plain.read(plain.sph.accelerations()), a_turb = turb.read(turb.sph.accelerations());
-    const auto e = turb.sph.turbulence()->wavelet().energy().read<glm::vec4>(turb.sph.count());
+    const auto a_plain = plain.read(plain.fluid.accelerations()), a_turb = turb.read(turb.fluid.accelerations());
+    const auto e = turb.sim.turbulence()->wavelet().energy().read<glm::vec4>(turb.fluid.count());
     std::size_t differ = 0, nonzero_e = 0;
     for (std::size_t i = 0; i < a_plain.size(); ++i) {
         differ += (a_plain[i] != a_turb[i]) || (before[i] != a_turb[i]);
@@ -152,21 +153,21 @@ TEST_CASE("turbulence: the GPU's added acceleration is A ê y_c (CPU blend of th
     SphRig r(block_json(turbulence_json(A)), "turbulence_test");
     upload_shear(r);
     r.timer.begin_frame();
-    r.sph.begin_frame(0);
+    r.sim.begin_frame(0);
     until_forces(r);
-    const auto a0 = r.read(r.sph.accelerations());
-    r.sph.apply_turbulence();
-    const auto a1 = r.read(r.sph.accelerations());
-    const auto x = r.read(r.sph.positions());
-    const auto e = r.sph.turbulence()->wavelet().energy().read<glm::vec4>(r.sph.count());
+    const auto a0 = r.read(r.fluid.accelerations());
+    r.sim.turbulence()->apply(r.fluid);
+    const auto a1 = r.read(r.fluid.accelerations());
+    const auto x = r.read(r.fluid.positions());
+    const auto e = r.sim.turbulence()->wavelet().energy().read<glm::vec4>(r.fluid.count());
     const auto seeds = read_seeds(r);
     const ranryu::gpu::StepState step = r.step();
-    r.sph.integrate();
-    r.sph.end_frame();
+    r.fluid.integrate();
+    r.sim.end_frame();
     r.timer.end_frame();
     r.finish();
     REQUIRE(step.dt > 0.0f);
-    const auto& t = *r.sph.turbulence();
+    const auto& t = *r.sim.turbulence();
     const auto& cfg = t.settings();
     std::size_t energetic = 0, checked = 0;
     double worst = 0.0;
@@ -217,13 +218,13 @@ TEST_CASE("turbulence: kinetic energy injected in one substep is proportional to
         upload_shear(r);
         const double before = kinetic_energy(r);
         r.timer.begin_frame();
-        r.sph.begin_frame(0);
-        r.sph.substep();
-        r.sph.end_frame();
+        r.sim.begin_frame(0);
+        r.sim.step();
+        r.sim.end_frame();
         r.timer.end_frame();
         r.finish();
         de.push_back(kinetic_energy(r) - before);
-        v.push_back(r.read(r.sph.velocities()));
+        v.push_back(r.read(r.fluid.velocities()));
     }
     const double d1 = de[1] - de[0], d2 = de[2] - de[0];
     double q1 = 0.0;   // Σ ½ m |v(A) − v(0)|²: the quadratic part at A (same cell order in every run)
@@ -244,15 +245,15 @@ namespace {
 // `frames` whole frames of `s`; returns the first instability's description, or "" (none).
 std::string run_frames(const ranryu::scene::Scene& s, int frames, float* max_speed = nullptr) {
     SphRig r(s);
-    ranryu::sim::Sph& sph = r.sph;
-    REQUIRE(sph.turbulence() != nullptr);
+    ranryu::sim::Fluid& fluid = r.fluid;
+    REQUIRE(r.sim.turbulence() != nullptr);
     float vmax = 0.0f;
-    sph.set_record_sink([&](const ranryu::gpu::StepState& rec) { vmax = std::max(vmax, glm::uintBitsToFloat(rec.frame_max_speed)); });
-    for (int f = 0; f < frames && !sph.instability(); ++f) r.frame(std::uint64_t(f));
+    fluid.set_record_sink([&](const ranryu::gpu::StepState& rec) { vmax = std::max(vmax, glm::uintBitsToFloat(rec.frame_max_speed)); });
+    for (int f = 0; f < frames && !fluid.instability(); ++f) r.frame(std::uint64_t(f));
     r.finish();
     if (max_speed) *max_speed = vmax;
-    REQUIRE(sph.last_record().has_value());
-    return sph.instability() ? sph.instability()->message() : "";
+    REQUIRE(fluid.last_record().has_value());
+    return fluid.instability() ? fluid.instability()->message() : "";
 }
 
 }  // namespace
@@ -290,9 +291,9 @@ namespace {
 // The block in a shear flow with particle k's id in position.w (integrate keeps w), uploaded.
 std::vector<glm::vec4> upload_tagged_shear(SphRig& r) {
     upload_shear(r);
-    std::vector<glm::vec4> x = r.read(r.sph.positions()), v = r.read(r.sph.velocities());
+    std::vector<glm::vec4> x = r.read(r.fluid.positions()), v = r.read(r.fluid.velocities());
     for (std::size_t k = 0; k < x.size(); ++k) x[k].w = float(k);
-    r.sph.upload_state(x, v);
+    r.fluid.upload_state(x, v);
     return x;
 }
 
@@ -305,17 +306,17 @@ TEST_CASE("turbulence: each particle's noise seeds and values move with it throu
     // particle was at the start of the substep in which epoch floor(t/T + p/2) began, and carry that
     // epoch: the seeds followed their particles through 12 sorts, and were re-seeded exactly when due.
     SphRig r(block_json(turbulence_json(20.0, 0.003)), "turbulence_test");
-    const std::size_t n = r.sph.count();
+    const std::size_t n = r.fluid.count();
     upload_tagged_shear(r);
     const float T = r.scene.turbulence.coherence_time;
     std::vector<std::array<glm::vec4, 2>> expect(n);   // by id: the expected seed of each phase
     int reseeds = 0;
     r.timer.begin_frame();
-    r.sph.begin_frame(0);
+    r.sim.begin_frame(0);
     for (int k = 0; k < 12; ++k) {
-        r.sph.choose_time_step();
+        r.fluid.choose_time_step();
         const float t = r.step().time;   // the time the substep advances to: what the force pass reads
-        const auto x = r.read(r.sph.positions());
+        const auto x = r.read(r.fluid.positions());
         for (const glm::vec4& p : x)
             for (int ph = 0; ph < 2; ++ph) {
                 std::array<glm::vec4, 2>& e = expect[std::size_t(p.w)];
@@ -325,14 +326,14 @@ TEST_CASE("turbulence: each particle's noise seeds and values move with it throu
                     e[std::size_t(ph)] = glm::vec4(glm::vec3(p), epoch);
                 }
             }
-        r.sph.rebuild_grid();
-        r.sph.compute_density();
-        r.sph.analyse_turbulence();
-        r.sph.compute_forces();
-        r.sph.apply_turbulence();
-        r.sph.integrate();
+        r.fluid.rebuild_grid();
+        r.wcsph().compute_density(r.fluid);
+        r.sim.turbulence()->analyse(r.fluid);
+        r.wcsph().compute_forces(r.fluid);
+        r.sim.turbulence()->apply(r.fluid);
+        r.fluid.integrate();
         const auto seeds = read_seeds(r);
-        const auto after = r.read(r.sph.positions());
+        const auto after = r.read(r.fluid.positions());
         for (std::size_t i = 0; i < n; ++i)
             for (int ph = 0; ph < 2; ++ph) {
                 const glm::vec4 want = expect[std::size_t(after[i].w)][std::size_t(ph)];
@@ -348,8 +349,8 @@ TEST_CASE("turbulence: each particle's noise seeds and values move with it throu
                 // max(|y|, 1) allowed: a stale or misplaced value differs by O(|y|).
                 const auto& cfg = r.scene.turbulence;
                 const glm::vec3 y = ranryu::turbulence::curl_noise_octaves(
-                    r.sph.turbulence()->tiles(),
-                    glm::vec3(want) + ranryu::turbulence::epoch_offset(2.0f * want.w + float(ph), r.sph.turbulence()->tiles().n, cfg.lmin),
+                    r.sim.turbulence()->tiles(),
+                    glm::vec3(want) + ranryu::turbulence::epoch_offset(2.0f * want.w + float(ph), r.sim.turbulence()->tiles().n, cfg.lmin),
                     cfg.lmin, cfg.lmax, cfg.beta);
                 const float err = glm::length(glm::vec3(seeds[i].value[ph]) - y);
                 if (!(err <= 1e-2f * std::max(glm::length(y), 1.0f))) {
@@ -358,7 +359,7 @@ TEST_CASE("turbulence: each particle's noise seeds and values move with it throu
                 }
             }
     }
-    r.sph.end_frame();
+    r.sim.end_frame();
     r.timer.end_frame();
     r.finish();
     INFO("time reached " << r.step().time << " s");
@@ -425,22 +426,22 @@ TEST_CASE("turbulence: the wavelet pass from the density pass's neighbour masks 
     // sum of ~40 terms, a few 1e-6 relative: 2e-5 of ê (plus 1e-12 m²/s² where ê is ~0) allowed.
     SphRig r(block_json(turbulence_json(20.0)), "turbulence_test");
     upload_shear(r);
-    const auto& w = r.sph.turbulence()->wavelet();
+    const auto& w = r.sim.turbulence()->wavelet();
     r.timer.begin_frame();
-    r.sph.begin_frame(0);
-    r.sph.choose_time_step();
-    r.sph.rebuild_grid();
-    r.sph.analyse_turbulence();   // masks not current: the walk
+    r.sim.begin_frame(0);
+    r.fluid.choose_time_step();
+    r.fluid.rebuild_grid();
+    r.sim.turbulence()->analyse(r.fluid);   // masks not current: the walk
     CHECK(w.last_path_masks() == 0);
-    const auto walk = w.energy().read<glm::vec4>(r.sph.count());
-    r.sph.compute_density();
-    r.sph.analyse_turbulence();   // the masks
+    const auto walk = w.energy().read<glm::vec4>(r.fluid.count());
+    r.wcsph().compute_density(r.fluid);
+    r.sim.turbulence()->analyse(r.fluid);   // the masks
     CHECK(w.last_path_masks() == 1);
-    const auto masked = w.energy().read<glm::vec4>(r.sph.count());
-    const auto density = r.read(r.sph.densities());
-    r.sph.compute_forces();
-    r.sph.integrate();
-    r.sph.end_frame();
+    const auto masked = w.energy().read<glm::vec4>(r.fluid.count());
+    const auto density = r.read(r.fluid.densities());
+    r.wcsph().compute_forces(r.fluid);
+    r.fluid.integrate();
+    r.sim.end_frame();
     r.timer.end_frame();
     r.finish();
     std::size_t complete = 0, energetic = 0;

@@ -43,7 +43,7 @@ constexpr int kNx = 31, kNy = 8, kNz = 8;   // 1984 particles
 // `keys`: the neighbour grid's cell keys, "linear" or "morton" (the pass loops over 27 cells for both).
 std::string scene_json(const std::string& keys = "linear") {
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [1.0, 0.4, 0.4]},
-        "sph": {"viscosity": 1e-3, "neighbour_keys": ")" + keys + R"("},
+        "sph": {"solver": "wcsph", "viscosity": 1e-3, "neighbour_keys": ")" + keys + R"("},
         "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.935, 0.245, 0.245]}]}})";
 }
 
@@ -53,8 +53,8 @@ struct Rig : ranryu::test::SphRig {
     glm::vec3 corner{0.1f, 0.08f, 0.08f};   // lattice index (0, 0, 0)
     explicit Rig(const std::string& keys = "linear")
         : SphRig(scene_json(keys), "wavelet_test"), wavelet(ranryu::shader::FileSource::embedded(), timer, 4096) {
-        REQUIRE(sph.count() == std::size_t(kNx * kNy * kNz));
-        h = sph.params().h;
+        REQUIRE(fluid.count() == std::size_t(kNx * kNy * kNz));
+        h = fluid.params().h;
         pitch = h / 3.0f;
     }
     float scale() const { return h / 3.0f; }
@@ -86,13 +86,13 @@ struct Rig : ranryu::test::SphRig {
         for (auto& p : moved) p.x += 2.0f * h;
         if (stale) pass(moved, v, s);
         pass(x, v, s);
-        return {read(sph.positions()), read(sph.velocities()), wavelet.energy().read<glm::vec4>(sph.count())};
+        return {read(fluid.positions()), read(fluid.velocities()), wavelet.energy().read<glm::vec4>(fluid.count())};
     }
     void pass(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, float s) {
-        sph.upload_state(x, v);
+        fluid.upload_state(x, v);
         timer.begin_frame();
-        sph.rebuild_grid();
-        wavelet.analyse(sph, s);
+        fluid.rebuild_grid();
+        wavelet.analyse(fluid, s);
         timer.end_frame();
     }
 };
@@ -303,11 +303,11 @@ TEST_CASE("wavelet: a sinusoidal flow's energy peaks at the wavelet's scale and 
 
 TEST_CASE("wavelet: a scale beyond the grid's reach is refused", "[wavelet]") {
     Rig rig;
-    const float largest = WaveletAnalysis::max_scale(rig.sph.grid().layout().cell);
+    const float largest = WaveletAnalysis::max_scale(rig.fluid.grid().layout().cell);
     rig.timer.begin_frame();
-    rig.sph.rebuild_grid();
-    CHECK_NOTHROW(rig.wavelet.analyse(rig.sph, largest));
-    CHECK_THROWS_AS(rig.wavelet.analyse(rig.sph, 1.01f * largest), ranryu::InputError);
-    CHECK_THROWS_AS(rig.wavelet.analyse(rig.sph, 0.0f), ranryu::InputError);
+    rig.fluid.rebuild_grid();
+    CHECK_NOTHROW(rig.wavelet.analyse(rig.fluid, largest));
+    CHECK_THROWS_AS(rig.wavelet.analyse(rig.fluid, 1.01f * largest), ranryu::InputError);
+    CHECK_THROWS_AS(rig.wavelet.analyse(rig.fluid, 0.0f), ranryu::InputError);
     rig.timer.end_frame();
 }

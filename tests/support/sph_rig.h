@@ -1,8 +1,9 @@
 #pragma once
-// Shared by the SPH GL tests: a scene parsed from inline JSON and its sim::Sph (which samples the
-// boundary and computes psi at construction), on the fixture's context, with the helpers the tests
-// use to run whole frames and read fields back.
+// Shared by the SPH GL tests: a scene parsed from inline JSON and its sim::Simulation (the fluid's
+// state, which samples the boundary and computes psi at construction, and the scene's solver), on the
+// fixture's context, with the helpers the tests use to run whole frames and read fields back.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "profile/gpu_timer.h"
 #include "scene/scene.h"
 #include "shader/source.h"
-#include "sim/sph.h"
+#include "sim/simulation.h"
+#include "sim/solvers/dfsph.h"
+#include "sim/solvers/wcsph.h"
 #include "support/gl_fixture.h"
 
 namespace ranryu::test {
@@ -21,26 +24,36 @@ struct SphRig {
     bool ready = (context(), true);
     scene::Scene scene;
     profile::GpuTimer timer{4, 4096};
-    sim::Sph sph;
+    sim::Simulation sim;
+    sim::Fluid& fluid;
     SphRig(const std::string& json, const std::string& origin) : SphRig(scene::parse(json, origin)) {}
-    explicit SphRig(scene::Scene s) : scene(std::move(s)), sph(shader::FileSource::embedded(), timer, scene) {}
+    explicit SphRig(scene::Scene s) : scene(std::move(s)), sim(shader::FileSource::embedded(), timer, scene), fluid(sim.fluid()) {}
 
-    // One whole frame: begin, the substeps the model asks for, end; then collect arrived records.
+    // The solver, for tests that drive its stages one by one; the scene must have chosen it.
+    sim::Wcsph& wcsph() { return solver<sim::Wcsph>("wcsph"); }
+    sim::Dfsph& dfsph() { return solver<sim::Dfsph>("dfsph"); }
+
+    // One whole frame: begin, the substeps the fluid plans, end; then collect arrived records.
     void frame(std::uint64_t index) {
         timer.begin_frame();
-        sph.begin_frame(index);
-        for (int s = 0; s < sph.substeps_this_frame(); ++s) sph.substep();
-        sph.end_frame();
+        sim.advance(index);
         timer.end_frame();
-        sph.poll_records();
+        fluid.poll_records();
     }
     // Waits for the outstanding timings and records.
     void finish() {
         timer.drain();
-        sph.drain_records();
+        fluid.drain_records();
     }
-    std::vector<glm::vec4> read(const gl::Buffer& b) const { return b.read<glm::vec4>(sph.count()); }
-    gpu::StepState step() const { return sph.step_state().read<gpu::StepState>(1)[0]; }
+    std::vector<glm::vec4> read(const gl::Buffer& b) const { return b.read<glm::vec4>(fluid.count()); }
+    gpu::StepState step() const { return fluid.step_state().read<gpu::StepState>(1)[0]; }
+
+private:
+    template <class S>
+    S& solver(const char* name) {
+        if (auto* s = dynamic_cast<S*>(&sim.solver())) return *s;
+        throw std::logic_error(std::string("SphRig: the scene's solver is not ") + name);
+    }
 };
 
 }  // namespace ranryu::test

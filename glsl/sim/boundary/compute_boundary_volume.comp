@@ -7,10 +7,10 @@
 // sparser than the fluid), which the sampling passes in w.
 // Input: boundary particles (x_b, V_cell,b) sorted by cell, with their cell ranges.
 // Output: weighted[b] = (x_b, psi_b), which the caller copies over the boundary array.
-#include "../sph/sph_common.glsl"
+#include "../fluid/fluid.glsl"
 
 layout(local_size_x = 128) in;
-layout(std430, binding = RANRYU_SSBO_SCRATCH) writeonly buffer Weighted { vec4 weighted[]; };   // (x_b, psi_b)
+layout(std430) writeonly buffer Weighted { vec4 weighted[]; };   // (x_b, psi_b)
 
 void main() {
     uint b = gl_GlobalInvocationID.x;

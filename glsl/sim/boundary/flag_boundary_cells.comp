@@ -3,10 +3,10 @@
 // (the cells a density walk from there visits, clamped the same way), else 0. The boundary is
 // static, so the flag holds for the whole run; the density pass skips the boundary runs of particles
 // whose cell reads 0, which changes no sum (those runs are empty). One invocation per cell.
-#include "../sph/sph_common.glsl"
+#include "../fluid/fluid.glsl"
 
 layout(local_size_x = 128) in;
-layout(std430, binding = RANRYU_SSBO_BOUNDARY_NEAR) writeonly buffer Near { uint near[]; };
+layout(std430) writeonly buffer BoundaryNear { uint near[]; };
 
 void main() {
     uint n = gl_GlobalInvocationID.x;

@@ -4,9 +4,9 @@
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
-layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) writeonly buffer Keys { uint keys[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_VALUES) writeonly buffer Values { uint values[]; };
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) writeonly buffer Keys { uint keys[]; };
+layout(std430) writeonly buffer Values { uint values[]; };
 
 #include "../grid.glsl"
 

@@ -3,27 +3,34 @@
 //   - from the keys sorted ascending, the run of each key:
 //         cell_start[k] = first i with key[i] = k,   cell_end[k] = last such i + 1.
 //     Cells with no particle keep what they held: the 0, 0 they were cleared to (NeighbourGrid::build
-//     with clear), or a stale entry that readers reject (sph_common.glsl, fluid_run).
+//     with clear), or a stale entry that readers reject (sim/fluid/fluid.glsl, fluid_run).
 //     Example: keys 2 2 5 7 7 7 -> start[2]=0 end[2]=2, start[5]=2 end[5]=3, start[7]=3 end[7]=6.
 //   - the gather of the particle arrays into sorted order,
 //     out[i] = in[value[i]],
 // so that the particles of one cell, and of neighbouring cells, are close in memory. With
-// RANRYU_REORDER_NOISE_SEED the turbulence's carried noise seeds move with them.
+// RANRYU_CARRIED_ARRAYS = 1 or 2, that many more per-particle arrays move with them (the fluid's
+// carried arrays: the turbulence's noise seeds, a solver's warm start), each of carried_words[a]
+// 32-bit words a particle.
 #include "../../shared/bindings.h"
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer Keys { uint keys[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_VALUES) readonly buffer Values { uint values[]; };
-layout(std430, binding = RANRYU_SSBO_CELL_START) writeonly buffer Start { uint cell_start[]; };
-layout(std430, binding = RANRYU_SSBO_CELL_END) writeonly buffer End { uint cell_end[]; };
-layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
-layout(std430, binding = RANRYU_SSBO_SORTED_POSITION) writeonly buffer SortedPositions { vec4 sorted_position[]; };
-layout(std430, binding = RANRYU_SSBO_SORTED_VELOCITY) writeonly buffer SortedVelocities { vec4 sorted_velocity[]; };
-#ifdef RANRYU_REORDER_NOISE_SEED
-layout(std430, binding = RANRYU_SSBO_NOISE_SEED) readonly buffer Seeds { NoiseSeed seed[]; };
-layout(std430, binding = RANRYU_SSBO_SORTED_NOISE_SEED) writeonly buffer SortedSeeds { NoiseSeed sorted_seed[]; };
+layout(std430) readonly buffer SortedKeys { uint keys[]; };
+layout(std430) readonly buffer SortedValues { uint values[]; };
+layout(std430) writeonly buffer CellStart { uint cell_start[]; };
+layout(std430) writeonly buffer CellEnd { uint cell_end[]; };
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) writeonly buffer SortedPositions { vec4 sorted_position[]; };
+layout(std430) writeonly buffer SortedVelocities { vec4 sorted_velocity[]; };
+#if RANRYU_CARRIED_ARRAYS >= 1
+layout(location = RANRYU_LOC_AUX) uniform uvec2 carried_words;
+layout(std430) readonly buffer Carried0 { uint carried0[]; };
+layout(std430) writeonly buffer SortedCarried0 { uint sorted_carried0[]; };
+#endif
+#if RANRYU_CARRIED_ARRAYS >= 2
+layout(std430) readonly buffer Carried1 { uint carried1[]; };
+layout(std430) writeonly buffer SortedCarried1 { uint sorted_carried1[]; };
 #endif
 
 void main() {
@@ -36,7 +43,10 @@ void main() {
     uint src = values[i];
     sorted_position[i] = position[src];
     sorted_velocity[i] = velocity[src];
-#ifdef RANRYU_REORDER_NOISE_SEED
-    sorted_seed[i] = seed[src];
+#if RANRYU_CARRIED_ARRAYS >= 1
+    for (uint w = 0u; w < carried_words.x; ++w) sorted_carried0[i * carried_words.x + w] = carried0[src * carried_words.x + w];
+#endif
+#if RANRYU_CARRIED_ARRAYS >= 2
+    for (uint w = 0u; w < carried_words.y; ++w) sorted_carried1[i * carried_words.y + w] = carried1[src * carried_words.y + w];
 #endif
 }

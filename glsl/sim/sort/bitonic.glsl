@@ -4,7 +4,7 @@
 // comparator puts the smaller pair at the lower index.
 //
 // Order: (key, value) lexicographic, so that with value = original index the result equals a
-// stable sort by key. In place on keys/values (RANRYU_SSBO_SORT_KEYS / _VALUES), first u_count.
+// stable sort by key. In place on keys/values (blocks Keys, Values), first u_count.
 //
 // Padding to the next power of two n happens in the kernel: positions [u_count, n) are virtual
 // pairs greater than every real one. Since comparators only ever move the larger pair up, those
@@ -22,8 +22,8 @@
 #define BITONIC_ITEMS RANRYU_SORT_BITONIC_ITEMS_PER_THREAD        // pairs per invocation, local passes
 #define BITONIC_TILE (BITONIC_GROUP * BITONIC_ITEMS)              // pairs per shared-memory tile (power of two)
 
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) buffer Keys { uint keys[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_VALUES) buffer Values { uint values[]; };
+layout(std430) buffer Keys { uint keys[]; };
+layout(std430) buffer Values { uint values[]; };
 layout(location = RANRYU_LOC_COUNT) uniform uint u_count;   // pairs being sorted
 
 bool pair_less(uint key_a, uint value_a, uint key_b, uint value_b) {

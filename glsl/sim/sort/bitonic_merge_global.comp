@@ -1,7 +1,7 @@
 #version 430
 // Bitonic sort, one step of stage k with stride j >= BITONIC_TILE (bitonic.glsl), over global
 // memory: the flip (j = k/2) or a half-cleaner (j < k/2).
-//   in/out  keys, values (RANRYU_SSBO_SORT_KEYS / _VALUES), first u_count pairs
+//   in/out  keys, values (blocks Keys, Values), first u_count pairs
 //   u_stage = (k, j)
 // Comparators c whose lower index is >= u_count are no-ops, and the lower index is >= c, so
 // c < u_count covers every comparator that can act. Any number of groups works (grid-stride loop);

@@ -1,7 +1,7 @@
 #version 430
 // Bitonic sort, the tail of a stage k > BITONIC_TILE (bitonic.glsl): the half-cleaner steps of
 // strides j = BITONIC_TILE/2 .. 1, whose comparators stay inside one tile, in shared memory.
-//   in/out  keys, values (RANRYU_SSBO_SORT_KEYS / _VALUES), first u_count pairs
+//   in/out  keys, values (blocks Keys, Values), first u_count pairs
 //   u_stage.x = k (the stride comes from the loop)
 // One workgroup per tile: dispatch ceil(u_count / BITONIC_TILE) groups.
 #include "sim/sort/bitonic.glsl"

@@ -1,7 +1,7 @@
 #version 430
 // Bitonic sort, first pass (bitonic.glsl): sorts every tile of BITONIC_TILE consecutive pairs by
 // (key, value) in shared memory, all stages k = 2 .. BITONIC_TILE.
-//   in/out  keys, values (RANRYU_SSBO_SORT_KEYS / _VALUES), first u_count pairs; each tile
+//   in/out  keys, values (blocks Keys, Values), first u_count pairs; each tile
 //           [t*BITONIC_TILE, (t+1)*BITONIC_TILE) ∩ [0, u_count) comes out ascending
 // One workgroup per tile: dispatch ceil(u_count / BITONIC_TILE) groups. When u_count <=
 // BITONIC_TILE this one dispatch is the whole sort.

@@ -1,7 +1,7 @@
 #version 430
 // Radix pass 1 of 3 (Satish et al. IPDPS 2009, "local histogram"): every workgroup counts the
 // digits of one tile of RADIX_TILE keys.
-//   in   keys (RANRYU_SSBO_SORT_KEYS), the first u_count
+//   in   keys (block Keys), the first u_count
 //   out  histogram[RADIX_DIGITS + d*T + t] = number of keys of tile t whose digit is d, for every
 //        d (zeros included), T = tile_count(); layout in radix.glsl
 // One workgroup per tile: dispatch tile_count() groups.
@@ -17,8 +17,8 @@ layout(local_size_x = RADIX_GROUP) in;
 
 #include "sim/sort/subgroup.glsl"
 
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer Keys { uint keys[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_HISTOGRAM) writeonly buffer Histogram { uint histogram[]; };
+layout(std430) readonly buffer Keys { uint keys[]; };
+layout(std430) writeonly buffer Histogram { uint histogram[]; };
 
 shared uint s_count[RADIX_DIGITS];
 

@@ -5,7 +5,7 @@
 // (2) the counts are scanned in (digit, tile) order, (3) every tile ranks its keys stably and
 // writes them to their global places.
 //
-// Histogram buffer (RANRYU_SSBO_SORT_HISTOGRAM), for T = tile_count() tiles:
+// Histogram buffer (block Histogram), for T = tile_count() tiles:
 //     [0, RADIX_DIGITS)                         total[d]: how many keys have digit d  (scan_counts)
 //     [RADIX_DIGITS + d*T + t]                  count_digits: keys of tile t with digit d;
 //                                               scan_counts: keys with digit d in tiles < t

@@ -26,7 +26,7 @@ layout(local_size_x = 256) in;
 
 #define SCAN_ITEMS 4   // tiles per invocation per chunk
 
-layout(std430, binding = RANRYU_SSBO_SORT_HISTOGRAM) buffer Histogram { uint histogram[]; };
+layout(std430) buffer Histogram { uint histogram[]; };
 
 #if defined(RANRYU_SCAN_SERIAL)
 // Few tiles (KeySort::kSerialScanTiles or fewer): one workgroup, and invocation d walks digit d's

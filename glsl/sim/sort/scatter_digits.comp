@@ -3,9 +3,9 @@
 // multi-split by ballots of Adinets & Merrill, "Onesweep: A Faster Least Significant Digit Radix
 // Sort for GPUs", arXiv 2206.01784, 2022, without its single-pass look-back): every workgroup sorts
 // its tile by this pass's digit in shared memory, stably, then writes each pair to its global place.
-//   in   keys, values (RANRYU_SSBO_SORT_KEYS / _VALUES), the first u_count pairs
+//   in   keys, values (blocks Keys, Values), the first u_count pairs
 //        histogram after scan_counts: total[d] and, per (d, t), keys with digit d in tiles < t
-//   out  keys, values (RANRYU_SSBO_SORT_KEYS_ALT / _VALUES_ALT): the pairs ordered by digit,
+//   out  keys, values (blocks KeysOut, ValuesOut): the pairs ordered by digit,
 //        pairs of equal digit in input order (stable), which is what makes LSD radix sort correct
 // One workgroup per tile: dispatch tile_count() groups.
 //
@@ -58,11 +58,11 @@ layout(local_size_x = RADIX_GROUP) in;
 #include "sim/sort/subgroup.glsl"
 #include "sim/sort/block_scan.glsl"
 
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer KeysIn { uint keys_in[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_VALUES) readonly buffer ValuesIn { uint values_in[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS_ALT) writeonly buffer KeysOut { uint keys_out[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_VALUES_ALT) writeonly buffer ValuesOut { uint values_out[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_HISTOGRAM) readonly buffer Histogram { uint histogram[]; };
+layout(std430) readonly buffer KeysIn { uint keys_in[]; };
+layout(std430) readonly buffer ValuesIn { uint values_in[]; };
+layout(std430) writeonly buffer KeysOut { uint keys_out[]; };
+layout(std430) writeonly buffer ValuesOut { uint values_out[]; };
+layout(std430) readonly buffer Histogram { uint histogram[]; };
 
 const uint PAD_KEY = 0xFFFFFFFFu;
 

@@ -15,7 +15,7 @@
 
 layout(local_size_x = 1) in;
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams sub; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) buffer State { SubparticleState state; };
+layout(std430) buffer Subparticles { SubparticleState state; };
 layout(location = RANRYU_LOC_SUBPARTICLE_GROUP) uniform uvec4 group;   // y: spawn's local size
 
 #include "../../surface/dispatch_2d.glsl"

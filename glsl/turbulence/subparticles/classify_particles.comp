@@ -14,9 +14,9 @@
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams sub; };
-layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) readonly buffer Energy { vec4 energy[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LEVELS) writeonly buffer Levels { uint level[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_BLOCKS) writeonly buffer Blocks { uvec4 block[]; };
+layout(std430) readonly buffer WaveletEnergy { vec4 energy[]; };
+layout(std430) writeonly buffer SubparticleLevels { uint level[]; };
+layout(std430) writeonly buffer SubparticleBlocks { uvec4 block[]; };
 
 shared uint counts[4];
 

@@ -12,9 +12,9 @@
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams sub; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LEVELS) readonly buffer Levels { uint level[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_BLOCKS) readonly buffer Blocks { uvec4 block[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LISTS) writeonly buffer Lists { uint list[]; };
+layout(std430) readonly buffer SubparticleLevels { uint level[]; };
+layout(std430) readonly buffer SubparticleBlocks { uvec4 block[]; };
+layout(std430) writeonly buffer SubparticleLists { uint list[]; };
 
 #include "../../surface/workgroup_scan.glsl"
 

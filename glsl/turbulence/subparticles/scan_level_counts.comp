@@ -10,8 +10,8 @@
 
 layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams sub; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_BLOCKS) buffer Blocks { uvec4 block[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) buffer State { SubparticleState state; };
+layout(std430) buffer SubparticleBlocks { uvec4 block[]; };
+layout(std430) buffer Subparticles { SubparticleState state; };
 layout(location = RANRYU_LOC_SUBPARTICLE_GROUP) uniform uvec4 group;   // x: classify's local size
 
 #include "../../surface/workgroup_scan.glsl"

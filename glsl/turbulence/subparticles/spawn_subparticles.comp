@@ -18,16 +18,16 @@
 
 layout(local_size_x = 128) in;
 layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { SubparticleParams sub; };
-layout(std430, binding = RANRYU_SSBO_POSITION) readonly buffer Positions { vec4 position[]; };
-layout(std430, binding = RANRYU_SSBO_VELOCITY) readonly buffer Velocities { vec4 velocity[]; };
-layout(std430, binding = RANRYU_SSBO_WAVELET_ENERGY) readonly buffer Energy { vec4 energy[]; };
-layout(std430, binding = RANRYU_SSBO_NOISE_SEED) readonly buffer Seeds { NoiseSeed seed[]; };
-layout(std430, binding = RANRYU_SSBO_STEP) readonly buffer Step { StepState step; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_STATE) readonly buffer State { SubparticleState state; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LEVELS) writeonly buffer Levels { uint level[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_LISTS) readonly buffer Lists { uint list[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_POSITION) writeonly buffer SubPositions { vec4 sub_position[]; };
-layout(std430, binding = RANRYU_SSBO_SUBPARTICLE_VELOCITY) writeonly buffer SubVelocities { vec4 sub_velocity[]; };
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) readonly buffer WaveletEnergy { vec4 energy[]; };
+layout(std430) readonly buffer NoiseSeeds { NoiseSeed seed[]; };
+layout(std430) readonly buffer Step { StepState step; };
+layout(std430) readonly buffer Subparticles { SubparticleState state; };
+layout(std430) writeonly buffer SubparticleLevels { uint level[]; };
+layout(std430) readonly buffer SubparticleLists { uint list[]; };
+layout(std430) writeonly buffer SubparticlePositions { vec4 sub_position[]; };
+layout(std430) writeonly buffer SubparticleVelocities { vec4 sub_velocity[]; };
 
 #include "../curl_noise.glsl"
 #include "../carried_noise.glsl"

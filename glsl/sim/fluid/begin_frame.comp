@@ -1,7 +1,7 @@
 #version 430
 // Opens a frame's record in StepState, one invocation: the frame must cover sph frame time plus
 // whatever the last frame left (frame_left carries over), in `substeps` substeps.
-#include "sph_common.glsl"
+#include "fluid.glsl"
 
 layout(local_size_x = 1) in;
 layout(location = RANRYU_LOC_COUNT) uniform uint substeps;
@@ -23,4 +23,7 @@ void main() {
     step.density_index = 0u;
     step.front = 0u;
     step.frame = frame_index;
+    step.iterations = uvec4(0u);
+    step.unconverged = uvec4(0u);
+    step.error = vec4(0.0);
 }

@@ -1,16 +1,17 @@
-// Blocks every SPH pass binds (docs/SPH.md), and the runs of particles in the 27 cells around a
-// particle, for fluid and for boundary particles. The including pass declares what it needs next.
+// The fluid state every SPH pass reads (engine/sim/fluid.h, docs/SPH.md): the parameter blocks, the
+// step record, the neighbour grid's cell ranges and the boundary particles, and the runs of particles
+// in the 27 cells around a particle. The including pass declares its per-particle arrays next.
 #include "../../shared/bindings.h"
 
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
-layout(std430, binding = RANRYU_SSBO_STEP) coherent buffer Step { StepState step; };
-layout(std430, binding = RANRYU_SSBO_CELL_START) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = RANRYU_SSBO_CELL_END) readonly buffer End { uint cell_end[]; };
-layout(std430, binding = RANRYU_SSBO_SORT_KEYS) readonly buffer SortedKeys { uint sorted_keys[]; };
-layout(std430, binding = RANRYU_SSBO_BOUNDARY) readonly buffer Boundary { vec4 boundary[]; };   // xyz, w: psi_b
-layout(std430, binding = RANRYU_SSBO_BOUNDARY_CELL_START) readonly buffer BStart { uint boundary_start[]; };
-layout(std430, binding = RANRYU_SSBO_BOUNDARY_CELL_END) readonly buffer BEnd { uint boundary_end[]; };
+layout(std430) coherent buffer Step { StepState step; };
+layout(std430) readonly buffer CellStart { uint cell_start[]; };   // per key: first sorted index of the cell
+layout(std430) readonly buffer CellEnd { uint cell_end[]; };       // per key: one past its last
+layout(std430) readonly buffer SortedKeys { uint sorted_keys[]; }; // per sorted index: the key (validates ranges)
+layout(std430) readonly buffer Boundary { vec4 boundary[]; };      // xyz, w: psi_b, in cell order
+layout(std430) readonly buffer BoundaryCellStart { uint boundary_start[]; };
+layout(std430) readonly buffer BoundaryCellEnd { uint boundary_end[]; };
 
 #include "../grid.glsl"
 #include "../kernel.glsl"
@@ -40,10 +41,10 @@ uvec2 cell_run(ivec3 c, bool fluid) {
 
 // The runs of particles around a particle: the body of FOR_EACH_RUN reads
 //     uvec2 run = NEIGHBOUR_RUN(center, fluid);
-// and loops over [run.x, run.y). With RANRYU_MERGE_ROWS (linear keys only; Sph defines it then) the
-// three cells of an x-row have consecutive keys, so their particles are contiguous and the row is one
-// run: 9 runs instead of 27. The merge is written without a loop: a loop form (min/max over the cells
-// with `continue`) read wrong sums on NVIDIA's driver 580 though not on Mesa.
+// and loops over [run.x, run.y). With RANRYU_MERGE_ROWS (linear keys only; the Fluid defines it then)
+// the three cells of an x-row have consecutive keys, so their particles are contiguous and the row is
+// one run: 9 runs instead of 27. The merge is written without a loop: a loop form (min/max over the
+// cells with `continue`) read wrong sums on NVIDIA's driver 580 though not on Mesa.
 uvec2 merge_row(uvec2 a, uvec2 b, uvec2 c) {
     bool has_a = a.y > a.x, has_b = b.y > b.x, has_c = c.y > c.x;
     uint first = has_a ? a.x : (has_b ? b.x : c.x);
@@ -66,6 +67,11 @@ uvec2 merge_row(uvec2 a, uvec2 b, uvec2 c) {
     for (int dx_ = -1; dx_ <= 1; ++dx_)
 #define NEIGHBOUR_RUN(center, fluid) cell_run((center) + ivec3(dx_, dy_, dz_), fluid)
 #endif
+
+// The flags a density pass stores in density[i].w (as the bits of a uint) for the passes after it:
+const uint kMasksComplete = 1u;    // the neighbour masks hold every fluid neighbour of i (neighbours.glsl)
+const uint kBoundaryNear = 2u;     // some boundary particle lies within h of i
+const uint kDeficient = 4u;        // fewer neighbours than a full support (DFSPH's divergence solve, docs/DFSPH.md (D5))
 
 // Workgroup maxima of non-negative floats (as bits, see StepState), each with one invocation that
 // has it, so that a pass makes one global atomic per workgroup instead of one per particle (a

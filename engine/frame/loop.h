@@ -1,0 +1,34 @@
+#pragma once
+// The frame loop every command runs (run, record, profile, validate): the frame as its list of
+// passes, with the command's own work at fixed points.
+//
+//     hooks.before(pipeline)        input, camera (run)
+//     pipeline.begin_frame()
+//     pipeline.simulate()
+//     pipeline.draw()               when the view draws
+//     hooks.after_draw(pipeline)    capture (record), present (run)
+//     pipeline.end_frame()
+//     pipeline.poll()               the records that came back (never waits)
+//     hooks.after(pipeline)         what the command does with them
+//
+// The loop ends after `frames` frames (none: until hooks.keep_going says stop), or at the first frame
+// whose record shows an instability: the caller decides what to report (the loop never throws it).
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "frame/pipeline.h"
+
+namespace ranryu::frame {
+
+struct FrameHooks {
+    std::function<void(Pipeline&)> before;
+    std::function<void(Pipeline&)> after_draw;
+    std::function<void(Pipeline&)> after;
+    std::function<bool(const Pipeline&)> keep_going;   // asked before each frame
+};
+
+// Runs frames; returns how many it ran.
+std::uint64_t run_frames(Pipeline& pipeline, std::optional<std::uint64_t> frames, const FrameHooks& hooks = {});
+
+}  // namespace ranryu::frame

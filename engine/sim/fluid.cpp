@@ -1,0 +1,296 @@
+#include "sim/fluid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "scene/scene.h"
+#include "sim/boundary.h"
+
+namespace ranryu::sim {
+namespace {
+
+std::uint32_t bits(float f) {
+    std::uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+// The neighbour grid covers the tank and its boundary layers, and headroom above the open top for
+// splashes (particles higher still share the top layer of cells: slower, never wrong).
+GridLayout fluid_grid(const scene::Scene& s, float h, int layers) {
+    const glm::vec3 pad(float(layers) * s.spacing + h);
+    glm::vec3 hi = s.tank_max + pad;
+    hi.y += 0.5f * (s.tank_max.y - s.tank_min.y);
+    return GridLayout::covering(s.tank_min - pad, hi, h, s.sph.morton);
+}
+
+// Neighbour loops as 9 x-row runs where the keys allow it (linear keys), 27 cells otherwise
+// (glsl/sim/fluid/fluid.glsl). RANRYU_NO_MERGE_ROWS=1 forces per-cell loops, for comparison.
+bool merge_rows(const scene::Scene& s) {
+    const char* off = std::getenv("RANRYU_NO_MERGE_ROWS");
+    return !s.sph.morton && !(off && std::string(off) == "1");
+}
+
+std::vector<glm::vec4> boundary_of(const scene::Scene& s) {
+    return sample_boundary(s, boundary_layers(s.spacing, 2.0f * s.spacing));
+}
+
+}  // namespace
+
+gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary) {
+    gpu::SphParams p{};
+    const float dx = s.spacing, h = 2.0f * dx, rho0 = s.sph.rest_density, c = s.sound_speed();
+    p.gravity = glm::vec4(s.gravity, 0.0f);
+    // The guard's domain: the tank, a spacing of slack at the walls and floor, and at the lid of a
+    // closed tank (domain_max.w = 1). Above an open top it reaches as high as a particle at the guard's
+    // speed bound could fly: a splash that comes back down has not left, and one faster than that
+    // breaks the speed criterion first.
+    const float g = std::max(glm::length(s.gravity), 1e-3f), v = guard_limits(s).speed;
+    p.domain_min = glm::vec4(s.tank_min - dx, 0.0f);
+    p.domain_max = glm::vec4(s.tank_max.x + dx, s.tank_closed ? s.tank_max.y + dx : s.tank_max.y + v * v / (2.0f * g),
+                             s.tank_max.z + dx, s.tank_closed ? 1.0f : 0.0f);
+    p.h = h;
+    p.mass = rho0 * dx * dx * dx;
+    p.rest_density = rho0;
+    p.stiffness = rho0 * c * c / 7.0f;
+    p.viscosity = s.sph.viscosity;
+    p.sound_speed = c;
+    p.spacing = dx;
+    p.cfl = s.sph.cfl;
+    p.force_factor = s.sph.force_factor;
+    p.dt_max = std::min(s.sph.max_time_step, s.frame_dt);
+    p.dt_floor = guard_limits(s).dt_floor;
+    p.density_limit = s.sph.density_limit;
+    p.speed_limit = guard_limits(s).speed;
+    p.particle_count = std::uint32_t(count);
+    p.boundary_count = std::uint32_t(boundary);
+    p.front_band = 3.0f * dx;   // from domain_min.y = floor - dx: particles within 2 dx of the floor
+    return p;
+}
+
+GuardLimits guard_limits(const scene::Scene& s) {
+    GuardLimits g;
+    g.density_ratio = s.sph.density_limit;
+    g.speed = s.sph.speed_limit > 0.0f ? s.sph.speed_limit : 5.0f * s.speed_estimate();
+    // A stable dt a hundred times below the CFL step at the expected speed means the run has blown up.
+    g.dt_floor = 0.01f * s.sph.cfl * s.spacing / (s.sound_speed() + s.speed_estimate());
+    return g;
+}
+
+Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene)
+    : timer_(timer),
+      begin_pass_(timer.pass("begin-frame")),
+      step_pass_(timer.pass("choose-time-step")),
+      integrate_pass_(timer.pass("integrate")),
+      diag_pass_(timer.pass("diagnostics")),
+      boundary_pass_(timer.pass("boundary-volume")),
+      boundary_cells_pass_(timer.pass("boundary-cells")),
+      defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
+               (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "")),
+      begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
+      choose_(shader::Program::compute(shaders, "sim/fluid/choose_time_step.comp")),
+      integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
+      boundary_volume_(shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", defines_)),
+      flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", defines_)),
+      limits_(guard_limits(scene)),
+      frame_dt_(scene.frame_dt),
+      max_substeps_(scene.sph.max_substeps),
+      grid_(shaders, timer,
+            fluid_grid(scene, 2.0f * scene.spacing, boundary_layers(scene.spacing, 2.0f * scene.spacing)),
+            // One sort serves the fluid every substep and the boundary once at start.
+            std::max({scene.particle_count(), boundary_of(scene).size(), std::size_t(1)}),
+            scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
+      runs_(merge_rows(scene) ? 9 : 27),
+      readback_(sizeof(gpu::StepState), 4, "StepState.readback",
+                [this](std::uint64_t, const void* bytes) { on_record(bytes); }) {
+    const std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
+    const std::vector<glm::vec4> wall = boundary_of(scene);
+    count_ = x.size();
+    boundary_count_ = wall.size();
+    params_ = sph_params(scene, count_, boundary_count_);
+    params_ubo_ = gl::Buffer(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, &params_, "SphParams");
+    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), GL_STATIC_DRAW, "fluid.obstacles");
+
+    const std::size_t n = std::max<std::size_t>(count_, 1);
+    for (int k = 0; k < 2; ++k) {
+        position_[k] = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.position." + std::to_string(k));
+        velocity_[k] = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.velocity." + std::to_string(k));
+    }
+    position_[0].upload(x.data(), x.size() * sizeof(glm::vec4));
+    velocity_[0].upload(v.data(), v.size() * sizeof(glm::vec4));
+    density_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.density");
+    accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.accel");
+    if (scene.sph.neighbour_masks)   // (start, mask) per run and particle
+        neighbours_ = gl::Buffer(n * 2 * std::size_t(runs_) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
+                                 "fluid.neighbour_masks");
+    ranges_ = grid_.make_ranges("fluid.cells");
+    boundary_ranges_ = grid_.make_ranges("fluid.boundary_cells");
+
+    gpu::StepState s{};
+    float v0 = 0.0f;
+    for (const glm::vec4& u : v) v0 = std::max(v0, glm::length(glm::vec3(u)));
+    s.max_speed = bits(v0);
+    s.max_accel = bits(glm::length(scene.gravity));
+    s.frame_min_dt = frame_dt_;
+    s.nan_index = s.escaped_index = 0xFFFFFFFFu;
+    step_ = gl::Buffer(sizeof s, GL_DYNAMIC_COPY, &s, "fluid.step");
+    dt_estimate_ = std::min(params_.cfl * params_.spacing / (params_.sound_speed + scene.speed_estimate()), params_.dt_max);
+    compute_boundary(wall);
+}
+
+// Start-up, not the frame path: the boundary sorted by cell once, psi_b from the sorted set, and the
+// cells that have boundary particles around them (the boundary is static).
+void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
+    const std::size_t m = std::max<std::size_t>(boundary_count_, 1);
+    gl::Buffer raw = gl::Buffer::from<glm::vec4>(wall, GL_STATIC_DRAW, "fluid.boundary.raw");
+    gl::Buffer zeros(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
+    gl::Buffer zeros_sorted(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
+    boundary_ = gl::Buffer(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary");
+    gl::Buffer weighted(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
+    const GridLayout& g = grid_.layout();
+    boundary_near_ = gl::Buffer(std::size_t(g.key_count) * sizeof(std::uint32_t), GL_STATIC_DRAW, nullptr, "fluid.boundary_near");
+    const GLuint zero = 0;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_near_.id());
+    glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);   // Morton keys between cells
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    timer_.begin_frame();
+    const shader::StorageSet buffers = bind_state().with("Weighted", weighted);
+    if (boundary_count_ > 0) {
+        grid_.build(raw, zeros, boundary_, zeros_sorted, boundary_ranges_, boundary_count_, /*clear=*/true);
+        auto pass = timer_.scope(boundary_pass_);
+        params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+        boundary_volume_.bind(buffers).dispatch(boundary_count_);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        glBindBuffer(GL_COPY_READ_BUFFER, weighted.id());
+        glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_.id());
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(boundary_count_ * sizeof(glm::vec4)));
+        glBindBuffer(GL_COPY_READ_BUFFER, 0);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(boundary_cells_pass_);
+        params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+        grid_.bind_params(boundary_count_);
+        if (boundary_count_ > 0) flag_boundary_.bind(buffers).dispatch(std::size_t(g.dims.x) * g.dims.y * g.dims.z);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    timer_.end_frame();
+    timer_.drain();
+    timer_.reset_samples();
+}
+
+int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill) {
+    if (carried_.size() == NeighbourGrid::max_carried)
+        throw Error("Fluid::carry: at most " + std::to_string(NeighbourGrid::max_carried) + " carried arrays (adding " + block + ")");
+    if (words == 0 || fill.size() != words) throw Error("Fluid::carry: " + block + " needs a fill of its words a particle");
+    const std::size_t n = std::max<std::size_t>(count_, 1);
+    std::vector<std::uint32_t> all(n * words);
+    for (std::size_t i = 0; i < n; ++i) std::copy(fill.begin(), fill.end(), all.begin() + std::ptrdiff_t(i * words));
+    Carried c{std::move(block), words, {}};
+    for (int k = 0; k < 2; ++k)
+        c.buffer[k] = gl::Buffer::from<std::uint32_t>(all, GL_DYNAMIC_COPY, "fluid.carried." + c.block + "." + std::to_string(k));
+    carried_.push_back(std::move(c));
+    return int(carried_.size() - 1);
+}
+
+// Tests: the next rebuild_grid() sorts these into cell order.
+void Fluid::upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v) {
+    if (x.size() != count_ || v.size() != count_) throw Error("Fluid::upload_state: expected " + std::to_string(count_) + " particles");
+    position_[current_].upload(x.data(), x.size() * sizeof(glm::vec4));
+    velocity_[current_].upload(v.data(), v.size() * sizeof(glm::vec4));
+    masks_current_ = false;
+}
+
+std::string Fluid::neighbour_defines() const { return defines_; }
+
+shader::StorageSet Fluid::bind_state() {
+    params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+    grid_.bind_params(count_);
+    shader::StorageSet set{{"Positions", &position_[current_]},
+                           {"Velocities", &velocity_[current_]},
+                           {"Density", &density_},
+                           {"Accelerations", &accel_},
+                           {"Step", &step_},
+                           {"CellStart", &ranges_.start},
+                           {"CellEnd", &ranges_.end},
+                           {"SortedKeys", &grid_.sort().sorted_keys()},   // validates ranges
+                           {"Boundary", &boundary_},
+                           {"BoundaryCellStart", &boundary_ranges_.start},
+                           {"BoundaryCellEnd", &boundary_ranges_.end},
+                           {"BoundaryNear", &boundary_near_},
+                           {"Obstacles", &obstacles_},
+                           {"NeighbourMasks", &neighbours_}};
+    for (const Carried& c : carried_) set.add(c.block, c.buffer[carried_current_]);
+    return set;
+}
+
+void Fluid::begin_frame(std::uint64_t frame_index) {
+    readback_.poll();
+    // Enough substeps to cover the frame, and what the last seen frame left over, at the smallest
+    // stable dt of the last record (records are frames late; the 0.9 absorbs growth in between), or
+    // at the scene's estimate until one has come back.
+    float need = frame_dt_, dt = dt_estimate_;
+    if (last_ && last_->frame_substeps > 0) {
+        dt = last_->frame_min_dt;
+        need += std::max(last_->frame_left, 0.0f);
+    }
+    substeps_ = fixed_dt_ ? std::max(1, int(std::lround(frame_dt_ / *fixed_dt_)))
+                          : std::clamp(int(std::ceil(need / (0.9f * std::max(dt, 1e-9f)))), 1, max_substeps_);
+    auto pass = timer_.scope(begin_pass_);
+    params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+    glProgramUniform1ui(begin_.id(), RANRYU_LOC_COUNT, GLuint(substeps_));
+    glProgramUniform1ui(begin_.id(), RANRYU_LOC_AUX, GLuint(frame_index));
+    glProgramUniform1f(begin_.id(), RANRYU_LOC_SHIFT, fixed_dt_ ? *fixed_dt_ * float(substeps_) : frame_dt_);
+    begin_.bind(bind_state()).dispatch(1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void Fluid::choose_time_step() {
+    auto pass = timer_.scope(step_pass_);
+    params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+    choose_.bind(bind_state()).dispatch(1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void Fluid::rebuild_grid() {
+    masks_current_ = false;
+    const int next = 1 - current_;
+    CarriedArray moved[NeighbourGrid::max_carried];
+    for (std::size_t a = 0; a < carried_.size(); ++a)
+        moved[a] = CarriedArray{&carried_[a].buffer[carried_current_], &carried_[a].buffer[1 - carried_current_], carried_[a].words};
+    grid_.build(position_[current_], velocity_[current_], position_[next], velocity_[next], ranges_, count_, /*clear=*/false,
+                std::span<const CarriedArray>(moved, carried_.size()));
+    current_ = next;
+    carried_current_ = 1 - carried_current_;
+}
+
+void Fluid::integrate() {
+    masks_current_ = false;
+    auto pass = timer_.scope(integrate_pass_);
+    integrate_.bind(bind_state()).dispatch(count_);
+    // The next substep's hash, the time step and the impostor draw read what this wrote.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+void Fluid::end_frame() {
+    auto pass = timer_.scope(diag_pass_);
+    readback_.copy(step_, 0, 0);
+}
+
+void Fluid::on_record(const void* bytes) {
+    gpu::StepState r;
+    std::memcpy(&r, bytes, sizeof r);
+    last_ = r;
+    if (sink_) sink_(r);
+    if (!instability_)
+        if (auto finding = check(r, limits_)) instability_ = finding;
+}
+
+}  // namespace ranryu::sim

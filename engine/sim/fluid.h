@@ -1,0 +1,161 @@
+#pragma once
+// The fluid's state: what every SPH solver (sim/solver.h), the turbulence (turbulence/force.h) and
+// the surface (surface/level_set.h) read and write, apart from the algorithm that advances it.
+//
+//     positions, velocities          vec4 per particle, in the neighbour grid's cell order of the
+//                                    last rebuild_grid(), moved by the last integration
+//     densities                      vec4 (rho, p, solver's own, flags): written by a solver's density
+//                                    pass, which also writes the neighbour masks (fluid/density_walk.glsl)
+//     accelerations                  vec4: the step's non-pressure accelerations (WCSPH: all of them)
+//     carried arrays                 per-particle arrays that the reorder moves with the particles
+//     grid, cell ranges, boundary    the neighbour grid, and the boundary particles with their psi_b
+//     step record (StepState)        the adaptive time step, the guard's findings, the solver's
+//                                    iteration record; read back frames late, never waited for
+//
+// and the passes that belong to the state, not to a solver:
+//
+//     begin_frame()       "begin-frame"        opens the frame's StepState record
+//     choose_time_step()  "choose-time-step"   docs/SPH.md (7), docs/DFSPH.md (D8), on the GPU
+//     rebuild_grid()      "hash", "sort.*", "reorder"   the state into cell order
+//     integrate()         "integrate"          docs/SPH.md (6) and (8): the explicit step
+//     end_frame()         "diagnostics"        queues the record's readback
+//
+// The CPU never waits: the substeps a frame are planned from records that arrive frames late (enough
+// at the smallest stable dt seen), and the dt each step uses is chosen on the GPU. A record that
+// breaks a guard criterion is kept as instability(); the caller stops the run.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "gl/readback.h"
+#include "profile/gpu_timer.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+#include "sim/grid.h"
+#include "sim/guard.h"
+
+namespace ranryu::scene { struct Scene; }
+
+namespace ranryu::sim {
+
+// SphParams for a scene (docs/SPH.md symbols table), with `count` fluid and `boundary` particles. The
+// time step's sound speed is the scene's: WCSPH's c, 0 for DFSPH (docs/DFSPH.md (D8)).
+gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);
+GuardLimits guard_limits(const scene::Scene& s);
+
+class Fluid {
+public:
+    // Samples the boundary, computes its psi_b and the cells near it (start-up passes
+    // "boundary-volume", "boundary-cells"), and places the scene's particles.
+    Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene);
+
+    // ---- the frame
+    void begin_frame(std::uint64_t frame_index);   // plans substeps_this_frame() from the records seen
+    int substeps_this_frame() const { return substeps_; }
+    void end_frame();
+    void choose_time_step();
+    void rebuild_grid();   // the masks are no longer current
+    void integrate();      // v += dt a, x += dt v, the projection and the guard (the masks are no longer current)
+
+    // ---- the state, in the cell order of the last rebuild_grid()
+    std::size_t count() const { return count_; }
+    std::size_t boundary_count() const { return boundary_count_; }
+    const gpu::SphParams& params() const { return params_; }
+    const gl::Buffer& positions() const { return position_[current_]; }
+    const gl::Buffer& velocities() const { return velocity_[current_]; }
+    const gl::Buffer& densities() const { return density_; }
+    const gl::Buffer& accelerations() const { return accel_; }
+    const gl::Buffer& boundary() const { return boundary_; }
+    const gl::Buffer& step_state() const { return step_; }
+    const CellRanges& cell_ranges() const { return ranges_; }
+    NeighbourGrid& grid() { return grid_; }
+    const NeighbourGrid& grid() const { return grid_; }
+
+    // Every buffer of the state by the storage block name the passes declare (glsl/sim/fluid/*.glsl):
+    // Positions, Velocities, Density, Accelerations, Step, CellStart, CellEnd, SortedKeys, Boundary,
+    // BoundaryCellStart, BoundaryCellEnd, BoundaryNear, Obstacles, NeighbourMasks (when on) and each
+    // carried array under its name. Binds the SphParams and GridParams uniform blocks too.
+    shader::StorageSet bind_state();
+    // "#define" lines every neighbour pass of this fluid is built with: RANRYU_MERGE_ROWS (9 merged
+    // rows of linear keys instead of 27 cells) and RANRYU_NEIGHBOUR_MASKS (sph.neighbour_masks).
+    std::string neighbour_defines() const;
+
+    // The density pass's (run start, mask) pairs, 2·runs·count() uints (sph.neighbour_masks), and
+    // whether they describe the current cell order and positions: a density pass sets it, and
+    // rebuild_grid() and every integration clear it.
+    const gl::Buffer& neighbour_masks() const { return neighbours_; }
+    bool neighbour_masks_current() const { return masks_current_; }
+    void set_neighbour_masks_current(bool current) { masks_current_ = current && neighbours_.id() != 0; }
+    int neighbour_runs() const { return runs_; }   // runs a neighbour walk visits: 9 merged rows or 27 cells
+
+    // ---- carried arrays: `words` 32-bit words per particle, every particle starting as `fill`
+    // (words words); the reorder moves them with the particles (at most NeighbourGrid::max_carried).
+    // `block` is the storage block name bind_state() gives the current one.
+    int carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill);
+    const gl::Buffer& carried(int id) const { return carried_[std::size_t(id)].buffer[carried_current_]; }
+
+    // ---- a solver's fused integration writes the next state into the other buffers, then swaps
+    gl::Buffer& next_positions() { return position_[1 - current_]; }
+    gl::Buffer& next_velocities() { return velocity_[1 - current_]; }
+    void swap_state() { current_ = 1 - current_; masks_current_ = false; }
+
+    // ---- records: the latest StepState read back (frames late), and the first instability seen
+    const std::optional<gpu::StepState>& last_record() const { return last_; }
+    const std::optional<Instability>& instability() const { return instability_; }
+    // Every record, as it arrives (validation series). Set before the first frame.
+    void set_record_sink(std::function<void(const gpu::StepState&)> sink) { sink_ = std::move(sink); }
+    void poll_records() { readback_.poll(); }   // collects what has arrived (never waits)
+    void drain_records() { readback_.drain(); } // waits for every queued one (end of a run)
+
+    // ---- tests
+    // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows.
+    void set_fixed_dt(float dt) { fixed_dt_ = dt; }
+    // Replaces the fluid state (count() positions and velocities, any order); the next
+    // rebuild_grid() sorts it into cell order.
+    void upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v);
+
+private:
+    void on_record(const void* bytes);
+    void compute_boundary(const std::vector<glm::vec4>& wall);
+
+    profile::GpuTimer& timer_;
+    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_;
+    std::string defines_;
+    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_;
+    gpu::SphParams params_{};
+    GuardLimits limits_;
+    float frame_dt_;
+    int max_substeps_;
+    NeighbourGrid grid_;
+    std::size_t count_ = 0, boundary_count_ = 0;
+    gl::Buffer position_[2], velocity_[2];
+    int current_ = 0;
+    gl::Buffer density_, accel_, boundary_, step_, params_ubo_;
+    gl::Buffer neighbours_;   // sph.neighbour_masks only
+    bool masks_current_ = false;
+    int runs_ = 9;
+    gl::Buffer obstacles_;       // obstacle_shapes(): the integration's last-resort projection (docs/SPH.md (8))
+    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)
+    CellRanges ranges_, boundary_ranges_;
+    struct Carried {
+        std::string block;
+        std::uint32_t words;
+        gl::Buffer buffer[2];
+    };
+    std::vector<Carried> carried_;
+    int carried_current_ = 0;
+    gl::AsyncReadback readback_;
+    std::optional<gpu::StepState> last_;
+    std::optional<Instability> instability_;
+    std::function<void(const gpu::StepState&)> sink_;
+    int substeps_ = 1;
+    float dt_estimate_;
+    std::optional<float> fixed_dt_;
+};
+
+}  // namespace ranryu::sim

@@ -1,0 +1,48 @@
+#pragma once
+// A pressure solver: the algorithm that advances the fluid's state (sim/fluid.h) by one step. The
+// solvers are siblings over one state, as in SPlisHSPlasH: WCSPH (docs/SPH.md) and DFSPH
+// (docs/DFSPH.md) in sim/solvers/; the turbulence, the surface and the frame loop see only the state
+// and this interface, so a solver is added without touching them.
+//
+// A step is, for every solver:
+//
+//     fluid.choose_time_step()            the step's dt, on the GPU
+//     fluid.rebuild_grid()                the state in cell order
+//     the solver's density pass           rho, the flags and the neighbour masks of this order
+//     hooks.after_density(fluid)          passes that read them (the wavelet analysis)
+//     the non-pressure accelerations      into fluid.accelerations()
+//     hooks.add_accelerations(fluid)      passes that add to them (the turbulence force)
+//     the pressure and the integration    positions and velocities of the step's end
+#include <memory>
+#include <string_view>
+
+#include "profile/gpu_timer.h"
+#include "scene/scene.h"
+#include "shader/source.h"
+
+namespace ranryu::sim {
+
+class Fluid;
+
+// Passes that act on the fluid between a solver's stages.
+class StepHooks {
+public:
+    virtual ~StepHooks() = default;
+    virtual void after_density(Fluid&) {}       // densities, flags and masks are current
+    virtual void add_accelerations(Fluid&) {}   // accelerations() holds the non-pressure ones; add to them
+};
+
+class Solver {
+public:
+    virtual ~Solver() = default;
+    virtual scene::Solver kind() const = 0;
+    // Once a frame, after fluid.begin_frame(): reads what has come back (iteration caps).
+    virtual void begin_frame(Fluid&) {}
+    virtual void step(Fluid& fluid, StepHooks& hooks) = 0;
+};
+
+// The scene's solver (scene.sph.solver), its programs built (start-up) and its arrays allocated for `fluid`.
+std::unique_ptr<Solver> make_solver(const shader::FileSource& shaders, profile::GpuTimer& timer,
+                                    const scene::Scene& scene, Fluid& fluid);
+
+}  // namespace ranryu::sim

@@ -1,0 +1,205 @@
+#include "sim/solvers/dfsph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <vector>
+
+#include "core/error.h"
+
+namespace ranryu::sim {
+namespace {
+
+constexpr int kInitialCap = 32;   // iterations a solve is issued before any record has come back
+constexpr GLbitfield kAfterIteration = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
+
+// The next frame's cap from the last record: 1.5 times the most one step needed, plus one; twice
+// the cap when a step stopped at it; within [least, most].
+std::uint32_t next_cap(std::uint32_t cap, std::uint32_t needed, std::uint32_t stopped, int least, int most) {
+    const double want = stopped ? 2.0 * cap : std::ceil(1.5 * needed) + 1.0;
+    return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
+}
+
+std::string defines(const Fluid& fluid, bool divergence) {
+    return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "");
+}
+
+}  // namespace
+
+Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid)
+    : timer_(timer),
+      density_pass_(timer.pass("dfsph.density")),
+      divergence_correct_(timer.pass("dfsph.divergence.correct")),
+      divergence_accelerate_(timer.pass("dfsph.divergence.accelerate")),
+      divergence_finish_(timer.pass("dfsph.divergence.finish")),
+      predict_pass_(timer.pass("dfsph.pressure.predict")),
+      pressure_correct_(timer.pass("dfsph.pressure.correct")),
+      pressure_accelerate_(timer.pass("dfsph.pressure.accelerate")),
+      integrate_pass_(timer.pass("dfsph.integrate")),
+      divergence_(scene.sph.divergence_solve),
+      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_))),
+      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false))),
+      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_))),
+      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false))),
+      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false))),
+      least_(scene.sph.min_iterations),
+      most_(scene.sph.max_iterations),
+      most_divergence_(scene.sph.max_divergence_iterations),
+      fluid_(fluid),
+      warm_(fluid.carry("Warm", 2, {0u, 0u})) {
+    if (accelerate_.local_size()[0] != correct_.local_size()[0])
+        throw Error("DFSPH: the accelerate and correct passes must share a workgroup size (one indirect dispatch serves both)");
+    const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
+    params_.eta = scene.sph.max_density_error;
+    params_.eta_divergence = scene.sph.max_divergence_error;
+    params_.relaxation = 0.5f;
+    params_.warm_start = scene.sph.warm_start;
+    params_.min_iterations = std::uint32_t(least_);
+    params_.min_divergence_iterations = 1;
+    params_.issued = std::uint32_t(std::clamp(kInitialCap, least_, most_));
+    params_.issued_divergence = std::uint32_t(std::clamp(kInitialCap, 1, most_divergence_));
+    params_.error_scale = float(2147483648.0 / double(n));
+    params_.deficient_neighbours = 20;
+    params_.boundary_viscosity = scene.sph.boundary_viscosity;
+    params_.groups = correct_.groups_for(fluid.count());
+    params_ubo_ = gl::Buffer(sizeof params_, GL_DYNAMIC_DRAW, &params_, "DfsphParams");
+    // A solve opens with its iterations' dispatch at full size, none run and no error summed.
+    std::vector<std::uint8_t> opened(2 * RANRYU_DFSPH_SOLVE_STRIDE, 0);
+    for (std::uint32_t k = 0; k < 2; ++k) {
+        gpu::SolveState st{};
+        st.dispatch = glm::uvec4(params_.groups, 1u, 1u, 0u);
+        st.solve = k;
+        std::memcpy(opened.data() + k * RANRYU_DFSPH_SOLVE_STRIDE, &st, sizeof st);
+    }
+    solve_ = gl::Buffer(opened.size(), GL_DYNAMIC_COPY, opened.data(), "dfsph.solve");
+    opened_ = gl::Buffer(opened.size(), GL_STATIC_DRAW, opened.data(), "dfsph.solve.opened");
+    kappa_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa");
+    pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+}
+
+const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
+
+void Dfsph::set_issued_iterations(int density, int divergence) {
+    fixed_caps_ = true;
+    params_.issued = std::uint32_t(std::clamp(density, 1, most_));
+    params_.issued_divergence = std::uint32_t(std::clamp(divergence, 1, most_divergence_));
+    upload_params();
+}
+
+void Dfsph::upload_params() { params_ubo_.upload_value(params_); }
+
+void Dfsph::begin_frame(Fluid& fluid) {
+    const auto& r = fluid.last_record();
+    if (fixed_caps_ || !r || r->frame == seen_frame_ || r->frame_substeps == 0) return;
+    seen_frame_ = r->frame;
+    const std::uint32_t cap = next_cap(params_.issued, r->iterations.z, r->unconverged.x, least_, most_);
+    const std::uint32_t cap_v = next_cap(params_.issued_divergence, r->iterations.w, r->unconverged.y, 1, most_divergence_);
+    if (cap != params_.issued || cap_v != params_.issued_divergence) {
+        params_.issued = cap;
+        params_.issued_divergence = cap_v;
+        upload_params();
+    }
+}
+
+shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
+    params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
+    shader::StorageSet set = fluid.bind_state();
+    set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_);
+    set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
+    return set;
+}
+
+void Dfsph::step(Fluid& fluid, StepHooks& hooks) {
+    fluid.choose_time_step();
+    fluid.rebuild_grid();
+    compute_density(fluid);
+    hooks.after_density(fluid);
+    hooks.add_accelerations(fluid);
+    solve_divergence(fluid);
+    predict_density(fluid);
+    solve_density(fluid);
+    integrate(fluid);
+}
+
+// The solve's SolveState back to its opening state (a GPU copy: nothing waits), after the last
+// iteration of the previous step wrote it.
+void Dfsph::open_solve(int solve) {
+    const auto offset = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_COPY_READ_BUFFER, opened_.id());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, solve_.id());
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, offset, offset, sizeof(gpu::SolveState));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+void Dfsph::compute_density(Fluid& fluid) {
+    if (divergence_) open_solve(1);
+    auto pass = timer_.scope(density_pass_);
+    density_.bind(state(fluid, 1)).dispatch(fluid.count());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    fluid.set_neighbour_masks_current(true);
+}
+
+// A solve's (D6) iterations: the first "correct" directly (the pass before it computed the first
+// accelerations), then `issued` − 1 pairs from the solve's indirect arguments, which the GPU sets to
+// zero workgroups once it has converged.
+void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId correct, profile::PassId accelerate) {
+    const shader::StorageSet set = state(fluid, solve);
+    {
+        auto pass = timer_.scope(correct);
+        correct_.bind(set).use();
+        glDispatchCompute(params_.groups, 1, 1);
+        glMemoryBarrier(kAfterIteration);
+    }
+    if (issued <= 1) return;
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
+    const auto offset = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE + offsetof(gpu::SolveState, dispatch));
+    for (int k = 1; k < issued; ++k) {
+        {
+            auto pass = timer_.scope(accelerate);
+            accelerate_.bind(set).use();
+            glDispatchComputeIndirect(offset);
+            glMemoryBarrier(kAfterIteration);
+        }
+        {
+            auto pass = timer_.scope(correct);
+            correct_.bind(set).use();
+            glDispatchComputeIndirect(offset);
+            glMemoryBarrier(kAfterIteration);
+        }
+    }
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
+void Dfsph::solve_divergence(Fluid& fluid) {
+    if (divergence_) iterate(fluid, 1, int(params_.issued_divergence), divergence_correct_, divergence_accelerate_);
+    auto pass = timer_.scope(divergence_finish_);
+    finish_.bind(state(fluid, 1)).dispatch(fluid.count());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void Dfsph::predict_density(Fluid& fluid) {
+    open_solve(0);
+    auto pass = timer_.scope(predict_pass_);
+    predict_.bind(state(fluid, 0)).dispatch(fluid.count());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void Dfsph::solve_density(Fluid& fluid) { iterate(fluid, 0, int(params_.issued), pressure_correct_, pressure_accelerate_); }
+
+void Dfsph::integrate(Fluid& fluid) {
+    {
+        auto pass = timer_.scope(integrate_pass_);
+        shader::StorageSet set = state(fluid, 0);
+        set.add("NextPositions", fluid.next_positions()).add("NextVelocities", fluid.next_velocities());
+        integrate_.bind(set).dispatch(fluid.count());
+        // The next step's hash, the time step and the impostor draw read what this wrote.
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    }
+    fluid.swap_state();
+}
+
+}  // namespace ranryu::sim

@@ -1,0 +1,76 @@
+#pragma once
+// Divergence-free SPH (docs/DFSPH.md; Bender & Koschier 2015, 2017). A step:
+//
+//     "choose-time-step", "hash", "sort.*", "reorder"       (Fluid)
+//     "dfsph.density"                rho, factor (D2), flags and masks, the non-pressure accelerations
+//                                    (D7), the divergence solve's source (D5), warm start and first
+//                                    pressure accelerations
+//     (hooks.after_density, hooks.add_accelerations)
+//     "dfsph.divergence.correct"     } (D6) iterations: the first direct, then "accelerate" and
+//     "dfsph.divergence.accelerate"  } "correct" issued in pairs, dispatched indirectly
+//     "dfsph.divergence.finish"      v += dt (a^p(kappa_v) + a)
+//     "dfsph.pressure.predict"       the density solve's source (D4), warm start and first a^p
+//     "dfsph.pressure.correct", "dfsph.pressure.accelerate"    (D6) iterations
+//     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
+//
+// Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
+// bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
+// CPU issues a cap of iterations a solve each step, learnt from the records that come back frames
+// late: 1.5 times the most one step needed, plus one, doubled when a step stopped at the cap, between
+// the scene's minimum and maximum. Iterations run and the errors reached come back in StepState.
+#include "gl/objects.h"
+#include "shader/program.h"
+#include "shared/bindings.h"
+#include "sim/fluid.h"
+#include "sim/solver.h"
+
+namespace ranryu::sim {
+
+class Dfsph final : public Solver {
+public:
+    Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
+    scene::Solver kind() const override { return scene::Solver::dfsph; }
+    void begin_frame(Fluid& fluid) override;
+    void step(Fluid& fluid, StepHooks& hooks) override;
+
+    // A step's stages, public for tests that compare each with the CPU reference; step() runs them
+    // with the hooks between compute_density() and solve_divergence().
+    void compute_density(Fluid& fluid);    // "dfsph.density"
+    void solve_divergence(Fluid& fluid);   // iterations and "dfsph.divergence.finish"
+    void predict_density(Fluid& fluid);    // "dfsph.pressure.predict"
+    void solve_density(Fluid& fluid);      // iterations
+    void integrate(Fluid& fluid);          // "dfsph.integrate"
+
+    // The iterations a solve is issued this frame (its cap), and a way for tests to fix them.
+    int issued_iterations() const { return int(params_.issued); }
+    int issued_divergence_iterations() const { return int(params_.issued_divergence); }
+    void set_issued_iterations(int density, int divergence);
+
+    // Per-particle arrays, in the fluid's current cell order (tests).
+    const gl::Buffer& kappa() const { return kappa_; }                    // float: the solve's current kappa
+    const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }   // vec4: xyz a^p, w the source s_i
+    const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
+    const gl::Buffer& solve_states() const { return solve_; }             // SolveState, density at 0, divergence at RANRYU_DFSPH_SOLVE_STRIDE
+    const gpu::DfsphParams& params() const { return params_; }
+
+private:
+    shader::StorageSet state(Fluid& fluid, int solve) const;
+    void iterate(Fluid& fluid, int solve, int issued, profile::PassId correct, profile::PassId accelerate);
+    void upload_params();
+    void open_solve(int solve);
+
+    profile::GpuTimer& timer_;
+    profile::PassId density_pass_, divergence_correct_, divergence_accelerate_, divergence_finish_, predict_pass_,
+        pressure_correct_, pressure_accelerate_, integrate_pass_;
+    bool divergence_;
+    shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
+    gpu::DfsphParams params_{};
+    int least_, most_, most_divergence_;
+    bool fixed_caps_ = false;
+    std::uint64_t seen_frame_ = ~std::uint64_t(0);
+    gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_;
+    const Fluid& fluid_;
+    int warm_;
+};
+
+}  // namespace ranryu::sim

@@ -1,0 +1,28 @@
+#version 430
+// A Jacobi iteration's first half (docs/DFSPH.md (D3), (D6)): the pressure accelerations of the kappa
+// the last residual pass left,
+//     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − kappa_i Σ_b psi_b gradW_ib.
+// Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
+#include "dfsph.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };
+layout(std430) readonly buffer Kappa { float kappa[]; };
+layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source, kept
+
+#include "../fluid/neighbours.glsl"
+
+float kappa_i_;
+vec3 a_;
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= kappa_i_ * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= sph.particle_count) return;   // no barriers in this pass
+    kappa_i_ = kappa[i];
+    a_ = vec3(0.0);
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
+    pressure_accel[i].xyz = a_;
+}

@@ -1,0 +1,87 @@
+#version 430
+// The DFSPH density pass, "dfsph.density" (docs/DFSPH.md "A step"), one neighbour walk for:
+//   rho_i (docs/SPH.md (2)), factor_i = 1/D_i (D2), the flags and neighbour masks (density_walk.glsl);
+//   the non-pressure accelerations a_i (D7) on the step's start velocities, into Accelerations;
+//   with RANRYU_DIVERGENCE_SOLVE, the divergence solve's start: the source s_i of (D5), the warm start
+//   kappa_v,i = w·kappa_v of the last step (Warm.y), and its pressure accelerations (D3), the first
+//   iteration's first half.
+// Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
+// Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
+#include "dfsph.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) writeonly buffer Density { vec4 density[]; };
+layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
+#ifdef RANRYU_DIVERGENCE_SOLVE
+layout(std430) readonly buffer Warm { vec2 warm[]; };
+layout(std430) writeonly buffer Kappa { float kappa[]; };
+layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };
+#endif
+
+#include "../fluid/density_walk.glsl"
+
+vec3 xi_, vi_, grad_fluid_, grad_wall_, viscous_, viscous_wall_, pressure_;
+float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_;
+
+void visit_fluid(uint j, vec3 d, float r2) {
+    float r = sqrt(r2);
+    fluid_sum_ += kernel_w(r, sph.h);
+    vec3 g = kernel_grad(d, r, sph.h);   // 0 for j = i
+    vec3 vj = velocity[j].xyz;
+    grad_fluid_ += sph.mass * g;
+    squares_ += sph.mass * sph.mass * dot(g, g);
+    rate_ += sph.mass * dot(vi_ - vj, g);
+    viscous_ += (sph.mass / sph.rest_density) * dot(vi_ - vj, d) / (r2 + 0.01 * sph.h * sph.h) * g;
+#ifdef RANRYU_DIVERGENCE_SOLVE
+    pressure_ -= sph.mass * (kappa_i_ + dfsph.warm_start * warm[j].y) * g;
+#endif
+}
+
+void visit_boundary(uint b, vec3 d, float r2) {
+    float r = sqrt(r2), psi = boundary[b].w;
+    wall_sum_ += psi * kernel_w(r, sph.h);
+    vec3 g = kernel_grad(d, r, sph.h);
+    grad_wall_ += psi * g;
+    rate_ += psi * dot(vi_, g);
+    viscous_wall_ += (psi / sph.rest_density) * dot(vi_, d) / (r2 + 0.01 * sph.h * sph.h) * g;
+#ifdef RANRYU_DIVERGENCE_SOLVE
+    pressure_ -= kappa_i_ * psi * g;
+#endif
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
+    float ratio = 0.0, magnitude = 0.0;
+    if (live) {
+        xi_ = position[i].xyz;
+        vi_ = velocity[i].xyz;
+        grad_fluid_ = grad_wall_ = viscous_ = viscous_wall_ = pressure_ = vec3(0.0);
+        fluid_sum_ = wall_sum_ = squares_ = rate_ = 0.0;
+        kappa_i_ = 0.0;
+#ifdef RANRYU_DIVERGENCE_SOLVE
+        kappa_i_ = dfsph.warm_start * warm[i].y;
+#endif
+        uint count;
+        uint flags = walk_neighbours(i, xi_, count);
+        if (count < dfsph.deficient_neighbours) flags |= kDeficient;
+        float rho = sph.mass * fluid_sum_ + wall_sum_;
+        vec3 sum = grad_fluid_ + grad_wall_;
+        float diagonal = dot(sum, sum) + squares_;   // (D2)
+        density[i] = vec4(rho, 0.0, diagonal > 0.0 ? 1.0 / diagonal : 0.0, uintBitsToFloat(flags));
+        vec3 a = sph.gravity.xyz + kViscosityFactor * (sph.viscosity * viscous_ + dfsph.boundary_viscosity * viscous_wall_);
+        accel[i] = vec4(a, 0.0);
+#ifdef RANRYU_DIVERGENCE_SOLVE
+        kappa[i] = kappa_i_;
+        pressure_accel[i] = vec4(pressure_, (flags & kDeficient) != 0u ? 0.0 : -step.dt * max(rate_, 0.0));   // (D5)
+#endif
+        ratio = rho / sph.rest_density;
+        magnitude = length(a);
+    }
+    uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
+    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) step.density_index = m.y;
+    m = workgroup_max(live ? max_bits(magnitude) : 0u, i);
+    if (gl_LocalInvocationIndex == 0u) atomicMax(step.max_accel, m.x);
+}

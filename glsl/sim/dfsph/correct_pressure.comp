@@ -1,0 +1,80 @@
+#version 430
+// A Jacobi iteration's second half (docs/DFSPH.md (D6)): the density change the pressure accelerations
+// make over the step,
+//     delta_i = dt^2 [Σ_j m (a_i − a_j)·gradW_ij + Σ_b psi_b a_i·gradW_ib],
+// the residual r_i = delta_i − s_i, and kappa_i ← max(kappa_i + omega r_i factor_i / dt^2, 0). In the
+// solve's first iteration a particle whose source asks for no pressure (s_i = 0: not compressed, or
+// deficient) drops its warm start first: the last step's pressure is a guess only where the fluid
+// still needs one (as SPlisHSPlasH warm-starts), and a stale one would push as if it did.
+// The iteration's mean error (1/N) Σ_i min(max(r_i, 0)/rho0, 1) is summed on the GPU: each workgroup
+// adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
+// When the solve has converged (at least its minimum iterations, the error at most its eta) or has
+// run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
+// iterations issued after it do no work, and adds the solve to the frame's record in StepState. The
+// CPU issues the iterations and never waits for the decision. Dispatched directly for the first
+// iteration, then indirectly from the SolveState.
+#include "dfsph.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };
+layout(std430) buffer Kappa { float kappa[]; };
+layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
+layout(std430) coherent buffer Solve { SolveState solve; };
+
+#include "../fluid/neighbours.glsl"
+
+vec3 a_i_;
+float change_;
+void visit_fluid(uint j, vec3 d, float r2) { change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, kernel_grad(d, sqrt(r2), sph.h)); }
+void visit_boundary(uint b, vec3 d, float r2) { change_ += boundary[b].w * dot(a_i_, kernel_grad(d, sqrt(r2), sph.h)); }
+
+shared float wg_error_[gl_WorkGroupSize.x];
+
+// The last workgroup's decision, one invocation.
+void decide() {
+    uint total = atomicAdd(solve.error_sum, 0u);   // every workgroup added its part before counting itself
+    float mean = float(total) / (dfsph.error_scale * float(sph.particle_count));
+    uint it = solve.iterations + 1u, s = solve.solve;
+    solve.iterations = it;
+    uint least = s == 0u ? dfsph.min_iterations : 1u;
+    uint cap = s == 0u ? dfsph.issued : dfsph.issued_divergence;
+    bool converged = it >= least && mean <= (s == 0u ? dfsph.eta : dfsph.eta_divergence);
+    if (converged || it >= cap) {
+        solve.dispatch.x = 0u;
+        step.iterations[s] += it;
+        step.iterations[s + 2u] = max(step.iterations[s + 2u], it);
+        if (!converged) step.unconverged[s] += 1u;
+        step.error[s] += mean;
+        step.error[s + 2u] = max(step.error[s + 2u], mean);
+    }
+    solve.error_sum = 0u;
+    solve.groups_done = 0u;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x, l = gl_LocalInvocationIndex;
+    float error = 0.0;
+    if (i < sph.particle_count) {   // no early return: the workgroup sums below have barriers
+        vec4 d = density[i], own = pressure_accel[i];
+        a_i_ = own.xyz;
+        change_ = 0.0;
+        for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
+        float dt2 = step.dt * step.dt;
+        float residual = dt2 * change_ - own.w;
+        float kappa_i = solve.iterations == 0u && own.w == 0.0 ? 0.0 : kappa[i];
+        kappa[i] = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
+        error = clamp(residual / sph.rest_density, 0.0, 1.0);
+    }
+    wg_error_[l] = error;
+    barrier();
+    for (uint half_ = gl_WorkGroupSize.x / 2u; half_ > 0u; half_ /= 2u) {
+        if (l < half_) wg_error_[l] += wg_error_[l + half_];
+        barrier();
+    }
+    if (l == 0u) {
+        atomicAdd(solve.error_sum, uint(wg_error_[0] * dfsph.error_scale + 0.5));
+        memoryBarrierBuffer();
+        if (atomicAdd(solve.groups_done, 1u) == gl_NumWorkGroups.x - 1u) decide();
+    }
+}

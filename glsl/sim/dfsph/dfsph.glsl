@@ -1,0 +1,16 @@
+// What every DFSPH pass shares (docs/DFSPH.md; engine/sim/solvers/dfsph.h): the fluid's blocks, the
+// solver's constants, and its per-particle arrays, which each pass declares as it uses them:
+//     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags)
+//     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
+//     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w the solve's
+//                     source s_i of (D4) or (D5)
+//     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
+//                     density solve, kappa_v of the last divergence solve), the warm starts of (D6)
+//     Solve           SolveState of the solve under way (shared/bindings.h); the Dfsph opens it (a copy
+//                     of its initial state) before the pass that computes the solve's source
+#include "../fluid/fluid.glsl"
+
+layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsph; };
+
+// 2(d + 2) of (D7), d = 3.
+const float kViscosityFactor = 10.0;

@@ -1,0 +1,39 @@
+#version 430
+// The divergence solve's end and the non-pressure step (docs/DFSPH.md "A step"), in place:
+//     v_i ← v_i + dt (a^p_i(kappa_v) + a_i),
+// a^p of the solve's final kappa_v (D3) and a_i the non-pressure accelerations (D7, and what the
+// step's hooks added). kappa_v is kept in Warm.y for the next step's warm start. Without
+// RANRYU_DIVERGENCE_SOLVE: v_i ← v_i + dt a_i, and Warm.y = 0.
+#include "dfsph.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) buffer Velocities { vec4 velocity[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };
+layout(std430) readonly buffer Accelerations { vec4 accel[]; };
+layout(std430) buffer Warm { vec2 warm[]; };
+#ifdef RANRYU_DIVERGENCE_SOLVE
+layout(std430) readonly buffer Kappa { float kappa[]; };
+
+#include "../fluid/neighbours.glsl"
+
+float kappa_i_;
+vec3 a_;
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= kappa_i_ * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+#endif
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= sph.particle_count) return;   // no barriers in this pass
+    vec3 a = accel[i].xyz;
+    float kappa_v = 0.0;
+#ifdef RANRYU_DIVERGENCE_SOLVE
+    kappa_i_ = kappa_v = kappa[i];
+    a_ = vec3(0.0);
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
+    a += a_;
+#endif
+    velocity[i].xyz += step.dt * a;
+    warm[i].y = kappa_v;
+}

@@ -1,0 +1,49 @@
+#version 430
+// The density solve's end and the step's integration, "dfsph.integrate" (docs/DFSPH.md "A step"):
+//     v_i ← v_i + dt a^p_i(kappa),   x_i ← x_i + dt v_i,
+// then the last-resort projection of docs/SPH.md (8) and the guard's records (motion.glsl). The new
+// positions and velocities go to the fluid's other buffers (NextPositions, NextVelocities: this pass
+// reads its neighbours' current positions); the Fluid swaps them after. kappa is kept in Warm.x for
+// the next step's warm start, and the step's pressure p_i = (kappa_i + kappa_v,i) rho_i^2 in Density.y.
+#include "dfsph.glsl"
+
+layout(local_size_x = 256) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) writeonly buffer NextPositions { vec4 next_position[]; };
+layout(std430) writeonly buffer NextVelocities { vec4 next_velocity[]; };
+layout(std430) buffer Density { vec4 density[]; };
+layout(std430) readonly buffer Kappa { float kappa[]; };
+layout(std430) buffer Warm { vec2 warm[]; };
+
+#include "../fluid/neighbours.glsl"
+#include "../fluid/motion.glsl"
+
+float kappa_i_;
+vec3 a_;
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= kappa_i_ * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
+    uvec2 bits = uvec2(0u);
+    if (live) {
+        vec4 d = density[i];
+        vec3 x0 = position[i].xyz;
+        kappa_i_ = kappa[i];
+        a_ = vec3(0.0);
+        for_each_neighbour(i, x0, floatBitsToUint(d.w));
+        vec3 v = velocity[i].xyz + step.dt * a_;
+        vec3 x = x0 + step.dt * v;
+        keep_out_of_obstacles(x0, x, v);
+        keep_in_tank(x, v);
+        next_position[i] = vec4(x, position[i].w);
+        next_velocity[i] = vec4(v, velocity[i].w);
+        vec2 w = vec2(kappa_i_, warm[i].y);
+        warm[i] = w;
+        density[i].y = (w.x + w.y) * d.x * d.x;
+        bits = record_particle(i, x, v);
+    }
+    record_maxima(bits, i);
+}

@@ -1,0 +1,43 @@
+#version 430
+// The density solve's start, "dfsph.pressure.predict" (docs/DFSPH.md (D4)): with v* the velocities
+// after the divergence solve and the non-pressure step,
+//     rho*_i = rho_i + dt Drho_i/Dt(v*),   s_i = rho0 − max(rho*_i, rho0),
+// the warm start kappa_i = w·kappa of the last step (Warm.x) and its pressure accelerations (D3): the
+// first iteration's first half.
+#include "dfsph.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };
+layout(std430) readonly buffer Warm { vec2 warm[]; };
+layout(std430) writeonly buffer Kappa { float kappa[]; };
+layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source
+
+#include "../fluid/neighbours.glsl"
+
+vec3 vi_, a_;
+float rate_, kappa_i_;
+void visit_fluid(uint j, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    rate_ += sph.mass * dot(vi_ - velocity[j].xyz, g);
+    a_ -= sph.mass * (kappa_i_ + dfsph.warm_start * warm[j].x) * g;
+}
+void visit_boundary(uint b, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    rate_ += boundary[b].w * dot(vi_, g);
+    a_ -= kappa_i_ * boundary[b].w * g;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= sph.particle_count) return;   // no barriers in this pass
+    vec4 d = density[i];
+    vi_ = velocity[i].xyz;
+    kappa_i_ = dfsph.warm_start * warm[i].x;
+    rate_ = 0.0;
+    a_ = vec3(0.0);
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
+    kappa[i] = kappa_i_;
+    pressure_accel[i] = vec4(a_, sph.rest_density - max(d.x + step.dt * rate_, sph.rest_density));
+}

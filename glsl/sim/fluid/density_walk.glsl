@@ -1,0 +1,63 @@
+// The neighbour walk of a density pass (WCSPH's and DFSPH's): every candidate in the 27 cells (or 9
+// merged rows) around particle i is tested against h, and with RANRYU_NEIGHBOUR_MASKS the ones inside
+// are recorded as per-run masks for the passes after it (neighbours.glsl describes the layout).
+//
+// Needs fluid.glsl and a `Positions` block (vec4 position[]) declared before it. The including pass
+// defines the visitors:
+//     void visit_fluid(uint j, vec3 d, float r2);      // every fluid j within h, j == i included
+//     void visit_boundary(uint b, vec3 d, float r2);   // every boundary b within h
+// The boundary runs are walked only in cells that have a boundary particle in their 27 cells
+// (flag_boundary_cells.comp, once at start).
+layout(std430) readonly buffer BoundaryNear { uint boundary_near[]; };
+#ifdef RANRYU_NEIGHBOUR_MASKS
+layout(std430) writeonly buffer NeighbourMasks { uint neighbours[]; };
+#endif
+
+void visit_fluid(uint j, vec3 d, float r2);
+void visit_boundary(uint b, vec3 d, float r2);
+
+// Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear of fluid.glsl) and
+// in `count` how many neighbours it has within h, fluid (j != i) and boundary.
+uint walk_neighbours(uint i, vec3 xi, out uint count) {
+    ivec3 c = grid_cell(xi);
+    float h2 = sph.h * sph.h;
+    uint flags = 0u, run_index = 0u;
+    count = 0u;
+    bool near_boundary = boundary_near[cell_key(c)] != 0u;   // else every boundary run below is empty
+#ifdef RANRYU_NEIGHBOUR_MASKS
+    flags = kMasksComplete;
+#endif
+    FOR_EACH_RUN {
+        uvec2 run = NEIGHBOUR_RUN(c, true);
+        uint mask = 0u;
+        for (uint j = run.x; j < run.y; ++j) {   // |d|² first: most candidates lie outside h
+            vec3 d = xi - position[j].xyz;
+            float r2 = dot(d, d);
+            if (r2 < h2) {
+                visit_fluid(j, d, r2);
+                uint bit = j - run.x;
+                if (j != i) {
+                    ++count;
+                    if (bit < 32u) mask |= 1u << bit;
+                    else flags &= ~kMasksComplete;
+                }
+            }
+        }
+#ifdef RANRYU_NEIGHBOUR_MASKS
+        neighbours[2u * run_index * sph.particle_count + i] = run.x;
+        neighbours[(2u * run_index + 1u) * sph.particle_count + i] = mask;
+#endif
+        ++run_index;
+        run = near_boundary ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
+        for (uint b = run.x; b < run.y; ++b) {
+            vec3 d = xi - boundary[b].xyz;
+            float r2 = dot(d, d);
+            if (r2 < h2) {
+                visit_boundary(b, d, r2);
+                flags |= kBoundaryNear;
+                ++count;
+            }
+        }
+    }
+    return flags;
+}

@@ -1,0 +1,101 @@
+// The end of a step, shared by every solver's integration (docs/SPH.md (6), (8)): the last-resort
+// projection out of the tank's walls and the obstacles, and the guard's records. Needs fluid.glsl and
+// declares the Obstacles block.
+//
+// The projection: a particle whose centre the step put more than kSlack spacings inside a solid (the
+// tank's walls and floor, and the obstacles) goes back to that depth, and the part of its velocity
+// into the solid is removed. The particle boundary keeps resting fluid half a spacing off every
+// surface, and under load lets it dip to 0.15 dx past it (the floor under a column in its start-up
+// ringing); the slack leaves that alone, so the projection catches only what the particle boundary
+// lets through (splash particles too sparse for any pressure, thin obstacles).
+
+// engine/sim/boundary.h obstacle_shapes(): (count, 0, 0, 0), then per obstacle a box as (min, 0),
+// (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0).
+layout(std430) readonly buffer Obstacles { vec4 obstacle[]; };
+
+const float kSlack = 0.25;   // spacings a centre may lie inside a solid before it is projected
+
+// The tank's walls and floor, and its lid when the tank is closed (domain_max.w = 1). The guard's
+// domain is the tank grown by one spacing at the walls and floor, and at a lid (engine/sim/fluid.cpp,
+// sph_params), so the tank is the domain less that spacing. A wall is a slab as thick as its boundary
+// layers, ceil(h/dx) + 1 spacings (engine/sim/boundary.cpp); the side walls bound the fluid at every
+// height (the guard's domain does), so a splash thrown above an open top comes back down into the
+// tank. A particle beyond a slab's far face went through the wall: it is left where it is, for the
+// guard to report.
+void keep_in_tank(inout vec3 x, inout vec3 v) {
+    float slack = kSlack * sph.spacing;
+    vec3 lo = sph.domain_min.xyz + sph.spacing - slack;
+    vec3 hi = sph.domain_max.xyz - sph.spacing + slack;
+    bool lid = sph.domain_max.w > 0.5;
+    float thick = (ceil(sph.h / sph.spacing) + 1.0) * sph.spacing - slack;
+    for (int a = 0; a < 3; ++a) {
+        if (x[a] < lo[a] && x[a] > lo[a] - thick) { x[a] = lo[a]; v[a] = max(v[a], 0.0); }
+        if ((a != 1 || lid) && x[a] > hi[a] && x[a] < hi[a] + thick) { x[a] = hi[a]; v[a] = min(v[a], 0.0); }
+    }
+}
+
+// Obstacles are solid throughout: a centre more than the slack inside one goes back to that depth
+// (a sphere: radially; a box: through the face it entered by, which is the face of least depth among
+// those the particle was outside of before the step, so it cannot tunnel through a thin box). The
+// slack is at most a quarter of a box's thickness or half a sphere's radius.
+void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
+    uint n = uint(obstacle[0].x);
+    float slack = kSlack * sph.spacing;
+    for (uint k = 0u; k < n; ++k) {
+        vec4 a = obstacle[1u + 2u * k], b = obstacle[2u + 2u * k];
+        if (a.w > 0.5) {   // sphere: centre a.xyz, radius b.x
+            float inner = b.x - min(slack, 0.5 * b.x);
+            vec3 d = x - a.xyz;
+            float r = length(d);
+            if (r >= inner) continue;
+            vec3 normal = r > 1e-6 * b.x ? d / r : (length(x0 - a.xyz) > 0.0 ? normalize(x0 - a.xyz) : vec3(0.0, 1.0, 0.0));
+            x = a.xyz + inner * normal;
+            v -= min(dot(v, normal), 0.0) * normal;
+        } else {           // box [a, b], its solid for this purpose [lo, hi]
+            vec3 inset = min(vec3(slack), 0.25 * (b.xyz - a.xyz));
+            vec3 lo = a.xyz + inset, hi = b.xyz - inset;
+            if (any(lessThanEqual(x, lo)) || any(greaterThanEqual(x, hi))) continue;
+            vec3 below = x - lo, above = hi - x;   // depths past the lower and upper faces
+            bool entered = any(lessThanEqual(x0, lo)) || any(greaterThanEqual(x0, hi));
+            float best = 3.4e38;
+            int axis = 0;
+            float side = -1.0;
+            for (int c = 0; c < 3; ++c) {
+                if ((!entered || x0[c] <= lo[c]) && below[c] < best) { best = below[c]; axis = c; side = -1.0; }
+                if ((!entered || x0[c] >= hi[c]) && above[c] < best) { best = above[c]; axis = c; side = 1.0; }
+            }
+            x[axis] = side < 0.0 ? lo[axis] : hi[axis];
+            v[axis] = side < 0.0 ? min(v[axis], 0.0) : max(v[axis], 0.0);
+        }
+    }
+}
+
+// Guard records (StepState) for the particle that ends the step at x with velocity v: non-finite
+// values and particles outside the domain (an atomic each: rare); returns the bits of |v| and of the
+// surge front (x - domain_min.x for particles within sph.front_band of domain_min.y), for the
+// caller's workgroup maxima (record_maxima).
+uvec2 record_particle(uint i, vec3 x, vec3 v) {
+    if (any(isnan(x)) || any(isinf(x)) || any(isnan(v)) || any(isinf(v))) {
+        atomicAdd(step.nan_count, 1u);
+        atomicMin(step.nan_index, i);
+        return uvec2(0u);
+    }
+    if (any(lessThan(x, sph.domain_min.xyz)) || any(greaterThan(x, sph.domain_max.xyz))) {
+        atomicAdd(step.escaped_count, 1u);
+        atomicMin(step.escaped_index, i);
+    }
+    uint front = x.y - sph.domain_min.y < sph.front_band ? max_bits(x.x - sph.domain_min.x) : 0u;
+    return uvec2(max_bits(length(v)), front);
+}
+
+// The workgroup's largest speed and front into StepState: one atomic a workgroup. Every invocation
+// calls it (barriers); `bits` is record_particle()'s result, or 0 for invocations past the count.
+void record_maxima(uvec2 bits, uint i) {
+    uvec2 s = workgroup_max(bits.x, i);
+    uvec2 f = workgroup_max(bits.y, i);
+    if (gl_LocalInvocationIndex == 0u) {
+        atomicMax(step.max_speed, s.x);
+        if (s.x > atomicMax(step.frame_max_speed, s.x)) step.speed_index = s.y;
+        atomicMax(step.front, f.x);
+    }
+}

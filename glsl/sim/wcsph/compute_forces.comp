@@ -1,0 +1,47 @@
+#version 430
+// WCSPH acceleration of every fluid particle (docs/SPH.md eqs. (4), (5)) plus gravity:
+//     a_i = g - sum_j m (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij - sum_b psi_b (p_i/rho_i^2) gradW_ib
+//           + 10 nu sum_j (2m/(rho_i + rho_j)) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
+// Input: sorted positions, velocities, density (rho, p, p/rho^2, flags) of i and the pair terms
+// (rho, p/rho^2) of its neighbours, found as the density pass left them (neighbours.glsl).
+// Output: accel[i].xyz. Records the substep's max |a| for the time step (eq. (7)).
+#include "../fluid/fluid.glsl"
+
+layout(local_size_x = 128) in;
+layout(std430) readonly buffer Positions { vec4 position[]; };
+layout(std430) readonly buffer Velocities { vec4 velocity[]; };
+layout(std430) readonly buffer Density { vec4 density[]; };
+layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
+layout(std430) readonly buffer PairTerms { vec2 pair_terms[]; };   // (rho_j, p_j/rho_j^2)
+
+#include "../fluid/neighbours.glsl"
+
+vec3 vi_, di_, a_pressure_, a_viscous_, a_wall_;
+
+// One fluid pair's pressure and viscous terms (eqs. (4), (5)).
+void visit_fluid(uint j, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec2 tj = pair_terms[j];
+    a_pressure_ -= (di_.z + tj.y) * g;
+    a_viscous_ += (2.0 * dot(vi_ - velocity[j].xyz, d) / ((r2 + 0.01 * sph.h * sph.h) * (di_.x + tj.x))) * g;
+}
+
+void visit_boundary(uint b, vec3 d, float r2) { a_wall_ -= boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
+    float magnitude = 0.0;
+    if (live) {
+        vec4 density_i = density[i];
+        vi_ = velocity[i].xyz;
+        di_ = density_i.xyz;
+        a_pressure_ = a_viscous_ = a_wall_ = vec3(0.0);
+        for_each_neighbour(i, position[i].xyz, floatBitsToUint(density_i.w));
+        vec3 a = sph.gravity.xyz + sph.mass * (a_pressure_ + 10.0 * sph.viscosity * a_viscous_) + di_.z * a_wall_;
+        accel[i] = vec4(a, 0.0);
+        magnitude = length(a);
+    }
+    uvec2 m = workgroup_max(live ? max_bits(magnitude) : 0u, i);
+    if (gl_LocalInvocationIndex == 0u) atomicMax(step.max_accel, m.x);
+}
