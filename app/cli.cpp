@@ -15,9 +15,9 @@ namespace {
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
-                "--shader-dir", "--gl-debug"}},
-    {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--shading",
-                 "--shader-dir", "--gl-debug"}},
+                "--records", "--shader-dir", "--gl-debug"}},
+    {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
+                 "--shading", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
     {"validate", {"--spacing", "--solver", "--json", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
@@ -136,6 +136,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
+        else if (opt == "--records") o.records = value;
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
@@ -201,6 +202,8 @@ std::string command_help(const std::string& cmd) {
   --export-mesh       also write the surface of each frame as frame_00000.ply, ... (binary PLY:
                       marching cubes' triangles with normals, 3 vertices each; needs a surface
                       shading of an SPH scene)
+  --records FILE      also write the SPH simulation's record of every frame as CSV (time, steps,
+                      dt, speeds, density, solver iterations and errors, the guard's counts)
 )";
     if (cmd == "profile")
         return "usage: ranryu profile [options]\n\nRun a scene headless for N frames and print, per GPU pass: calls per frame,\n"
@@ -209,6 +212,7 @@ std::string command_help(const std::string& cmd) {
   --warmup N          frames run before timing starts (default 30)
   --json FILE         also write the report as JSON (device, driver, date, scene, particles, passes)
   --csv FILE          also write it as CSV, one row per pass
+  --records FILE      also write the SPH simulation's record of every frame as CSV (warm-up included)
 )";
     if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
     if (cmd == "validate")

@@ -23,6 +23,7 @@ struct Options {
     std::string screenshot;       // run: PNG of the window's last frame
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
+    std::string records;          // record/profile: the simulation's per-frame records as CSV
     std::string shader_dir;       // read shaders from this folder instead of the embedded copies
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
     std::string shading;          // run/record/profile: phong | gouraud | fresnel | particles; empty: the scene's default

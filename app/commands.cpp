@@ -108,18 +108,25 @@ int scenes(const Options&) {
 
 namespace {
 
-// The summary of what the simulation did from the frame `from` on, fed by the fluid's records.
+// The summary of what the simulation did from the frame `from` on, fed by the fluid's records, and
+// (--records) every record as a CSV row.
 class SimulationLog {
 public:
-    SimulationLog(frame::Pipeline& p, std::uint64_t from) : from_(from) {
+    SimulationLog(frame::Pipeline& p, std::uint64_t from, const std::string& records = {}) : from_(from) {
         if (sim::Simulation* sim = p.simulation()) {
             summary_.emplace();
             summary_->solver = scene::solver_name(p.scene().sph.solver);
-            sim->fluid().set_record_sink([this](const gpu::StepState& r) {
+            if (!records.empty()) csv_ = profile::record_csv_header();
+            sim->fluid().set_record_sink([this, keep = !records.empty()](const gpu::StepState& r) {
                 if (r.frame >= from_) summary_->add(r);
                 else summary_->start_time = r.time;
+                if (keep) csv_ += profile::record_csv_row(r);
             });
         }
+    }
+    // Writes the rows (after the run: not the frame path).
+    void write_records(const std::string& path) const {
+        if (!path.empty()) profile::write_text_file(path, csv_, "--records " + path);
     }
     void start_clock() { start_ = std::chrono::steady_clock::now(); }
     void stop_clock() {
@@ -130,6 +137,7 @@ public:
 private:
     std::uint64_t from_;
     std::optional<profile::SimulationSummary> summary_;
+    std::string csv_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -150,7 +158,7 @@ int record(const Options& o) {
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
-    SimulationLog log(pipeline, 0);
+    SimulationLog log(pipeline, 0, o.records);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     std::unique_ptr<record::Recorder> recorder;
     std::unique_ptr<record::MeshExporter> meshes;   // --export-mesh: frame_NNNNN.ply, gated the same way
@@ -203,6 +211,7 @@ int record(const Options& o) {
                               {"criterion", bad->criterion}, {"particle", bad->particle},
                               {"value", bad->value}, {"limit", bad->limit}};
     profile::write_text_file(out / "run.json", run.dump(2) + "\n", "run.json in --out " + out.string());
+    log.write_records(o.records);
     std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(recorder->frames_written()),
                 size.x, size.y, out.string().c_str());
     std::printf("%s", profile::table(report).c_str());
@@ -217,10 +226,13 @@ int profile_cmd(const Options& o) {
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
-    SimulationLog log(pipeline, std::uint64_t(o.warmup));
+    SimulationLog log(pipeline, std::uint64_t(o.warmup), o.records);
     frame::run_frames(pipeline, std::uint64_t(o.warmup));
     pipeline.drain();
-    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    if (const auto& bad = pipeline.instability()) {
+        log.write_records(o.records);
+        throw sim::UnstableError(*bad);
+    }
     pipeline.timer().reset_samples();
     if (turbulence::Subparticles* sub = pipeline.subparticles()) sub->count_from(pipeline.frames());
     log.start_clock();
@@ -228,6 +240,7 @@ int profile_cmd(const Options& o) {
     pipeline.drain();
     log.stop_clock();
     pipeline.poll();
+    log.write_records(o.records);
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());

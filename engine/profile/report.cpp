@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <numeric>
@@ -206,6 +207,25 @@ std::string to_csv(const Report& r) {
     for (const PassRow& p : r.passes) line(p);
     line(r.frame);
     return out.str();
+}
+
+std::string record_csv_header() {
+    return "frame,time,substeps,min_dt,max_speed,max_density,iterations,divergence_iterations,most_iterations,"
+           "most_divergence_iterations,unconverged,unconverged_divergence,error,divergence_error,max_error,nan,escaped\n";
+}
+
+std::string record_csv_row(const gpu::StepState& r) {
+    auto f = [](std::uint32_t bits) {
+        float x;
+        std::memcpy(&x, &bits, sizeof x);
+        return x;
+    };
+    char line[512];
+    std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u\n", r.frame, double(r.time),
+                  r.frame_substeps, double(r.frame_min_dt), double(f(r.frame_max_speed)), double(f(r.frame_max_density)),
+                  r.iterations.x, r.iterations.y, r.iterations.z, r.iterations.w, r.unconverged.x, r.unconverged.y,
+                  double(r.error.x), double(r.error.y), double(r.error.z), r.nan_count, r.escaped_count);
+    return line;
 }
 
 std::string utc_now_iso8601() {

@@ -71,6 +71,11 @@ std::string table(const Report& r);
 nlohmann::json to_json(const Report& r);
 std::string to_csv(const Report& r);
 
+// One StepState record as a CSV row (and the header naming its columns): the frame, simulated time,
+// steps, the smallest stable dt, largest speed and density, solver iterations and errors, guard counts.
+std::string record_csv_header();
+std::string record_csv_row(const gpu::StepState& r);
+
 std::string utc_now_iso8601();
 
 // Writes a whole text file atomically ("<path>.tmp", then rename). `what` names the input in the

@@ -202,6 +202,16 @@ Solver parse_solver(const std::string& name, const std::string& what) {
     throw InputError(what + " = \"" + name + "\" is not one of \"dfsph\", \"wcsph\"");
 }
 
+std::vector<float> Scene::initial_pressures() const {
+    std::vector<float> p;
+    const float g = glm::length(gravity);
+    for_each_site(*this, [&](glm::vec3 x, const Block& b) {
+        const bool resting = b.min.y <= tank_min.y + 1e-6f && glm::length(b.velocity) == 0.0f;
+        p.push_back(resting ? sph.rest_density * g * std::max(b.max.y - x.y, 0.0f) : 0.0f);
+    });
+    return p;
+}
+
 Scene parse(const std::string& text, const std::string& origin) {
     json j;
     try {

@@ -50,7 +50,7 @@ struct SphSettings {
     int max_iterations = 100;             // density solve
     int max_divergence_iterations = 100;
     bool divergence_solve = true;         // (D5); false: the density solve alone
-    float warm_start = 0.5f;              // w of (D6)
+    float warm_start = 1.0f;              // w of (D6)
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie
@@ -136,6 +136,9 @@ struct Scene {
     // Particle positions on the lattice of every block, in block order, less those inside obstacles.
     std::vector<glm::vec4> initial_positions() const;
     std::vector<glm::vec4> initial_velocities() const;
+    // ρ0·|g|·(top − y) for each initial particle of a block at rest on the tank's floor (the pressure
+    // of the block at rest under gravity), 0 for the others: an incompressible solver's first guess.
+    std::vector<float> initial_pressures() const;
     std::size_t particle_count() const;
 };
 

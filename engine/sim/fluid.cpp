@@ -189,10 +189,12 @@ void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
 int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill) {
     if (carried_.size() == NeighbourGrid::max_carried)
         throw Error("Fluid::carry: at most " + std::to_string(NeighbourGrid::max_carried) + " carried arrays (adding " + block + ")");
-    if (words == 0 || fill.size() != words) throw Error("Fluid::carry: " + block + " needs a fill of its words a particle");
     const std::size_t n = std::max<std::size_t>(count_, 1);
+    if (words == 0 || (fill.size() != words && fill.size() != count_ * words))
+        throw Error("Fluid::carry: " + block + " needs a fill of one particle's words or of every particle's");
     std::vector<std::uint32_t> all(n * words);
-    for (std::size_t i = 0; i < n; ++i) std::copy(fill.begin(), fill.end(), all.begin() + std::ptrdiff_t(i * words));
+    if (fill.size() == count_ * words && count_ > 0) std::copy(fill.begin(), fill.end(), all.begin());
+    else for (std::size_t i = 0; i < n; ++i) std::copy(fill.begin(), fill.begin() + words, all.begin() + std::ptrdiff_t(i * words));
     Carried c{std::move(block), words, {}};
     for (int k = 0; k < 2; ++k)
         c.buffer[k] = gl::Buffer::from<std::uint32_t>(all, GL_DYNAMIC_COPY, "fluid.carried." + c.block + "." + std::to_string(k));

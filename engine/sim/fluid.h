@@ -93,9 +93,10 @@ public:
     void set_neighbour_masks_current(bool current) { masks_current_ = current && neighbours_.id() != 0; }
     int neighbour_runs() const { return runs_; }   // runs a neighbour walk visits: 9 merged rows or 27 cells
 
-    // ---- carried arrays: `words` 32-bit words per particle, every particle starting as `fill`
-    // (words words); the reorder moves them with the particles (at most NeighbourGrid::max_carried).
-    // `block` is the storage block name bind_state() gives the current one.
+    // ---- carried arrays: `words` 32-bit words per particle, starting as `fill`: one particle's
+    // words for every particle, or every particle's in the scene's initial order; the reorder moves
+    // them with the particles (at most NeighbourGrid::max_carried). `block` is the storage block name
+    // bind_state() gives the current one.
     int carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill);
     const gl::Buffer& carried(int id) const { return carried_[std::size_t(id)].buffer[carried_current_]; }
 

@@ -94,9 +94,13 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     // (D4), (D5): the density change the pressure must make over the step, never an expansion.
     const std::vector<double> rate = density_rates(x, v, boundary, psi, params, s);
     r.source.resize(n);
+    std::vector<bool> drop(n);   // the warm start is dropped where the particle separates (D6)
     for (size_t i = 0; i < n; ++i) {
-        if (which == Solve::density) r.source[i] = rho0 - std::max(density[i] + dt * rate[i], rho0);
-        else r.source[i] = f.neighbours[i] < s.deficient_neighbours ? 0.0 : -dt * std::max(rate[i], 0.0);
+        // ρ0 − ρ*_i (density) or −Δt·Dρ/Dt (divergence): s_i is its negative part.
+        const bool deficient = which == Solve::divergence && f.neighbours[i] < s.deficient_neighbours;
+        const double change = which == Solve::density ? rho0 - (density[i] + dt * rate[i]) : -dt * rate[i];
+        r.source[i] = deficient ? 0.0 : std::min(change, 0.0);
+        drop[i] = deficient || change > 0.01 * rho0;
     }
     const int lo = which == Solve::density ? s.min_iterations : s.min_divergence_iterations;
     const int hi = which == Solve::density ? s.max_iterations : s.max_divergence_iterations;
@@ -112,8 +116,7 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
                 change += s.boundary_factor * psi[b] * glm::dot(a[i], kernel.gradW(x[i] - boundary[b]));
             change *= dt * dt;
             const double residual = change - r.source[i];
-            // The first iteration drops the warm start where the source asks for no pressure.
-            const double start = r.iterations == 0 && r.source[i] == 0.0 ? 0.0 : kappa[i];
+            const double start = r.iterations == 0 && drop[i] ? 0.0 : kappa[i];
             kappa[i] = std::max(start + s.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
             error += std::max(residual, 0.0) / rho0;
         }

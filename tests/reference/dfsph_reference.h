@@ -28,7 +28,7 @@ struct Settings {
     int min_iterations = 1, max_iterations = 100;
     int min_divergence_iterations = 1, max_divergence_iterations = 100;
     double relaxation = 0.5;           // ω of (D6)
-    double warm_start = 0.5;           // w of (D6): κ⁰ = w·κ of the previous step
+    double warm_start = 1.0;           // w of (D6): κ⁰ = w·κ of the previous step
     int deficient_neighbours = 20;     // (D5): fewer neighbours (fluid and boundary, within h) than this: no divergence correction
     double boundary_viscosity = 0.0;   // ν_b of (D7) (m²/s); 0: free-slip walls
 };
@@ -63,7 +63,8 @@ std::vector<glm::dvec3> nonpressure_accelerations(const std::vector<glm::dvec3>&
 enum class Solve { divergence, density };
 
 // One solve of (D4)/(D5) with the Jacobi iteration of (D6), starting from kappa (the warm start,
-// updated in place; the first iteration drops it where s_i = 0). Velocities get the final pressure
+// updated in place; the first iteration drops it where the particle separates: deficient, or its
+// predicted change leaves it more than 1 % of ρ0 below ρ0). Velocities get the final pressure
 // accelerations: v += dt·a(κ).
 struct SolveResult {
     int iterations = 0;

@@ -14,11 +14,25 @@ namespace {
 constexpr int kInitialCap = 32;   // iterations a solve is issued before any record has come back
 constexpr GLbitfield kAfterIteration = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
 
-// The next frame's cap from the last record: 1.5 times the most one step needed, plus one; twice
-// the cap when a step stopped at it; within [least, most].
-std::uint32_t next_cap(std::uint32_t cap, std::uint32_t needed, std::uint32_t stopped, int least, int most) {
-    const double want = stopped ? 2.0 * cap : std::ceil(1.5 * needed) + 1.0;
+// The next frames' cap: 1.5 times the most one step needed over the recent records, plus two; at
+// least twice the cap when the latest record has a step that stopped at it; within [least, most].
+std::uint32_t next_cap(std::uint32_t cap, std::uint32_t needed, bool stopped, int least, int most) {
+    double want = std::ceil(1.5 * needed) + 2.0;
+    if (stopped) want = std::max(want, 2.0 * cap);
     return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
+}
+
+// The warm start before the first step: the density solve's kappa = p/rho^2 of each block at rest on
+// the floor under its own weight (Scene::initial_pressures), so a resting column starts out held.
+std::vector<std::uint32_t> initial_warm_start(const scene::Scene& scene) {
+    const std::vector<float> p = scene.initial_pressures();
+    std::vector<std::uint32_t> words(2 * p.size(), 0u);
+    const float rho0 = scene.sph.rest_density;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const float kappa = p[i] / (rho0 * rho0);
+        std::memcpy(&words[2 * i], &kappa, sizeof kappa);
+    }
+    return words;
 }
 
 std::string defines(const Fluid& fluid, bool divergence) {
@@ -48,7 +62,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
       fluid_(fluid),
-      warm_(fluid.carry("Warm", 2, {0u, 0u})) {
+      warm_(fluid.carry("Warm", 2, initial_warm_start(scene))) {
     if (accelerate_.local_size()[0] != correct_.local_size()[0])
         throw Error("DFSPH: the accelerate and correct passes must share a workgroup size (one indirect dispatch serves both)");
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
@@ -94,8 +108,12 @@ void Dfsph::begin_frame(Fluid& fluid) {
     const auto& r = fluid.last_record();
     if (fixed_caps_ || !r || r->frame == seen_frame_ || r->frame_substeps == 0) return;
     seen_frame_ = r->frame;
-    const std::uint32_t cap = next_cap(params_.issued, r->iterations.z, r->unconverged.x, least_, most_);
-    const std::uint32_t cap_v = next_cap(params_.issued_divergence, r->iterations.w, r->unconverged.y, 1, most_divergence_);
+    recent_[recent_next_] = glm::uvec2(r->iterations.z, r->iterations.w);
+    recent_next_ = (recent_next_ + 1) % recent_.size();
+    glm::uvec2 needed(0u);
+    for (const glm::uvec2& k : recent_) needed = glm::max(needed, k);
+    const std::uint32_t cap = next_cap(params_.issued, needed.x, r->unconverged.x > 0, least_, most_);
+    const std::uint32_t cap_v = next_cap(params_.issued_divergence, needed.y, r->unconverged.y > 0, 1, most_divergence_);
     if (cap != params_.issued || cap_v != params_.issued_divergence) {
         params_.issued = cap;
         params_.issued_divergence = cap_v;

@@ -16,8 +16,13 @@
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
 // CPU issues a cap of iterations a solve each step, learnt from the records that come back frames
-// late: 1.5 times the most one step needed, plus one, doubled when a step stopped at the cap, between
-// the scene's minimum and maximum. Iterations run and the errors reached come back in StepState.
+// late: 1.5 times the most one step needed over the last records, plus two, doubled when a step
+// stopped at the cap, between the scene's minimum and maximum. Iterations run and the errors reached
+// come back in StepState; a step that stops at its cap is counted there, and profile reports it.
+#include <array>
+
+#include <glm/glm.hpp>
+
 #include "gl/objects.h"
 #include "shader/program.h"
 #include "shared/bindings.h"
@@ -68,6 +73,8 @@ private:
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
     std::uint64_t seen_frame_ = ~std::uint64_t(0);
+    std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
+    std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_;
     const Fluid& fluid_;
     int warm_;

@@ -3,9 +3,9 @@
 // make over the step,
 //     delta_i = dt^2 [Σ_j m (a_i − a_j)·gradW_ij + Σ_b psi_b a_i·gradW_ib],
 // the residual r_i = delta_i − s_i, and kappa_i ← max(kappa_i + omega r_i factor_i / dt^2, 0). In the
-// solve's first iteration a particle whose source asks for no pressure (s_i = 0: not compressed, or
-// deficient) drops its warm start first: the last step's pressure is a guess only where the fluid
-// still needs one (as SPlisHSPlasH warm-starts), and a stale one would push as if it did.
+// solve's first iteration a particle that separates from the fluid (warm_start_drop(), dfsph.glsl)
+// drops its warm start first: the last step's pressure is a guess only where the fluid still holds
+// together, and a stale one would throw a splash particle away as if it were still compressed.
 // The iteration's mean error (1/N) Σ_i min(max(r_i, 0)/rho0, 1) is summed on the GPU: each workgroup
 // adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
@@ -61,8 +61,8 @@ void main() {
         change_ = 0.0;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
-        float residual = dt2 * change_ - own.w;
-        float kappa_i = solve.iterations == 0u && own.w == 0.0 ? 0.0 : kappa[i];
+        float residual = dt2 * change_ - min(own.w, 0.0);
+        float kappa_i = solve.iterations == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
         kappa[i] = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
         error = clamp(residual / sph.rest_density, 0.0, 1.0);
     }

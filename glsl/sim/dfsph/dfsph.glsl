@@ -2,8 +2,8 @@
 // solver's constants, and its per-particle arrays, which each pass declares as it uses them:
 //     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags)
 //     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
-//     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w the solve's
-//                     source s_i of (D4) or (D5)
+//     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
+//                     source s_i of (D4) or (D5) is min(w, 0); w > warm_start_drop() drops the warm start
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
 //                     density solve, kappa_v of the last divergence solve), the warm starts of (D6)
 //     Solve           SolveState of the solve under way (shared/bindings.h); the Dfsph opens it (a copy
@@ -14,3 +14,9 @@ layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsp
 
 // 2(d + 2) of (D7), d = 3.
 const float kViscosityFactor = 10.0;
+
+// A particle whose predicted density change leaves it this far below rho0 (or that is deficient in
+// neighbours) starts its solve from no pressure instead of the last step's (D6): 1 % of rho0 is
+// separation (a splash, the free surface), far beyond the solve's own error, while the bulk of a
+// resting column, within eta of rho0 either way, keeps its hydrostatic pressure.
+float warm_start_drop() { return 0.01 * sph.rest_density; }

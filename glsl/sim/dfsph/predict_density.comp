@@ -3,7 +3,8 @@
 // after the divergence solve and the non-pressure step,
 //     rho*_i = rho_i + dt Drho_i/Dt(v*),   s_i = rho0 − max(rho*_i, rho0),
 // the warm start kappa_i = w·kappa of the last step (Warm.x) and its pressure accelerations (D3): the
-// first iteration's first half.
+// first iteration's first half. PressureAccel.w holds rho0 − rho*_i: its negative part is s_i, and its
+// positive part tells the first iteration how far below rho0 the particle will be (D6's warm start).
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -39,5 +40,5 @@ void main() {
     a_ = vec3(0.0);
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
     kappa[i] = kappa_i_;
-    pressure_accel[i] = vec4(a_, sph.rest_density - max(d.x + step.dt * rate_, sph.rest_density));
+    pressure_accel[i] = vec4(a_, sph.rest_density - (d.x + step.dt * rate_));
 }
