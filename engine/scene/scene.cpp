@@ -263,6 +263,8 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.max_divergence_iterations = p.integer("max_divergence_iterations", h.max_divergence_iterations, 1, 1000);
         h.divergence_solve = p.boolean("divergence_solve", h.divergence_solve);
         h.warm_start = float(p.number("warm_start", h.warm_start, 0.0, 1.0));
+        h.divergence_warm_start = float(p.number("divergence_warm_start", h.divergence_warm_start, 0.0, 1.0));
+        h.relaxation = float(p.number("relaxation", h.relaxation, 0.05, 1.0));
         h.boundary_viscosity = float(p.number("boundary_viscosity", h.boundary_viscosity, 0.0, 10.0));
         const std::string keys = p.string("neighbour_keys", "linear");
         if (keys != "linear" && keys != "morton") p.fail("\"sph.neighbour_keys\" = \"" + keys + "\" is not one of \"linear\", \"morton\"");

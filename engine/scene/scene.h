@@ -44,13 +44,15 @@ struct SphSettings {
     float force_factor = 0.25f;     // eq. (7), (D8)
     float max_time_step = 0.005f;   // (s): the largest step, also at rest (at most the frame)
     // DFSPH (docs/DFSPH.md):
-    float max_density_error = 1e-3f;      // eta of (D6), a fraction of rho0
+    float max_density_error = 1e-4f;      // eta of (D6), a fraction of rho0
     float max_divergence_error = 1e-3f;   // eta_v of (D6)
     int min_iterations = 2;               // density solve
     int max_iterations = 100;             // density solve
     int max_divergence_iterations = 100;
     bool divergence_solve = true;         // (D5); false: the density solve alone
-    float warm_start = 1.0f;              // w of (D6)
+    float warm_start = 1.0f;              // w of (D6), the density solve's
+    float divergence_warm_start = 0.5f;   // w of (D6), the divergence solve's
+    float relaxation = 0.5f;              // omega of (D6)
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie

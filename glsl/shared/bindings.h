@@ -149,7 +149,7 @@ RANRYU_STRUCT(DfsphParams) {
     float eta;                   // density solve: bound on the mean error, units of rho0 (D6)
     float eta_divergence;        // divergence solve: likewise for dt·Drho/Dt (D6)
     float relaxation;            // omega of (D6)
-    float warm_start;            // w of (D6)
+    float warm_start;            // w of (D6), the density solve's
     uint min_iterations;         // density solve
     uint min_divergence_iterations;
     uint issued;                 // iterations the CPU issues a density solve this frame (its cap)
@@ -158,8 +158,12 @@ RANRYU_STRUCT(DfsphParams) {
     uint deficient_neighbours;   // (D5): fewer neighbours than this, no divergence correction
     float boundary_viscosity;    // nu_b of (D7) (m^2/s)
     uint groups;                 // workgroups of the iteration passes over every particle
+    float warm_start_divergence; // w of (D6), the divergence solve's
+    uint pad0;
+    uint pad1;
+    uint pad2;
 }
-RANRYU_STRUCT_END(DfsphParams, 48)
+RANRYU_STRUCT_END(DfsphParams, 64)
 
 // One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
 // bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual

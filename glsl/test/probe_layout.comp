@@ -16,7 +16,7 @@
 //   StepState:    its 20 scalars, then iterations, unconverged, error                32 words
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
-//   DfsphParams:  its 12 scalars in order                                            12 words
+//   DfsphParams:  its 16 scalars in order                                            16 words
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
 //   kMacros:      the RANRYU_* macros, in the order of the array below               23 words
 #include "../shared/bindings.h"
@@ -87,6 +87,7 @@ void main() {
     put(dfsph.eta); put(dfsph.eta_divergence); put(dfsph.relaxation); put(dfsph.warm_start);
     put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
+    put(dfsph.warm_start_divergence); put(dfsph.pad0); put(dfsph.pad1); put(dfsph.pad2);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
 

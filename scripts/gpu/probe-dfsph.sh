@@ -19,5 +19,5 @@ json.dump(s, open(sys.argv[1], "w"))
 PY
   timeout 300 build/gpu/app/ranryu profile --scene "$out/$name.scene.json" --spacing "$dx" --shading particles --size 640x360 \
     --frames "$frames" --warmup 0 --records "$out/$name.csv" > "$out/$name.txt" 2>&1
-  echo "== $name (rc $?)"; grep -E "^(simulation|  density|  divergence|[0-9.]+ fps|ranryu:)" "$out/$name.txt"
+  echo "== $name (rc $?)"; grep -E "^(simulation|  density|  divergence|[0-9.]+ fps|ranryu:|dfsph|frame )" "$out/$name.txt"
 done

@@ -154,6 +154,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.deficient_neighbours", {offsetof(gpu::DfsphParams, deficient_neighbours), GL_UNSIGNED_INT}},
         {"dfsph.boundary_viscosity", {offsetof(gpu::DfsphParams, boundary_viscosity), GL_FLOAT}},
         {"dfsph.groups", {offsetof(gpu::DfsphParams, groups), GL_UNSIGNED_INT}},
+        {"dfsph.warm_start_divergence", {offsetof(gpu::DfsphParams, warm_start_divergence), GL_FLOAT}},
+        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
+        {"dfsph.pad1", {offsetof(gpu::DfsphParams, pad1), GL_UNSIGNED_INT}},
+        {"dfsph.pad2", {offsetof(gpu::DfsphParams, pad2), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -410,6 +414,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.deficient_neighbours = d.u();
     dp.boundary_viscosity = d.f();
     dp.groups = d.u();
+    dp.warm_start_divergence = d.f();
+    for (std::uint32_t* u : {&dp.pad0, &dp.pad1, &dp.pad2}) *u = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -452,7 +458,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.eta); expect.put(dp.eta_divergence); expect.put(dp.relaxation); expect.put(dp.warm_start);
     expect.put(dp.min_iterations); expect.put(dp.min_divergence_iterations); expect.put(dp.issued);
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
-    expect.put(dp.boundary_viscosity); expect.put(dp.groups);
+    expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
+    expect.put(dp.pad0); expect.put(dp.pad1); expect.put(dp.pad2);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve);

@@ -139,7 +139,7 @@ StepResult step(State& state, const std::vector<dvec3>& boundary, const std::vec
     const Factors f = factors(state.x, boundary, psi, params, s);
     const std::vector<dvec3> nonpressure = nonpressure_accelerations(state.x, state.v, boundary, psi, params, s);
     for (size_t i = 0; i < n; ++i) {
-        state.kappa_v[i] = divergence_solve ? s.warm_start * state.kappa_v[i] : 0.0;
+        state.kappa_v[i] = divergence_solve ? s.divergence_warm_start * state.kappa_v[i] : 0.0;
         state.kappa[i] *= s.warm_start;
     }
     if (divergence_solve)

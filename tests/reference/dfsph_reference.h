@@ -23,12 +23,13 @@ namespace ranryu::reference::dfsph {
 
 struct Settings {
     double boundary_factor = 2.0;      // γ of (D1)-(D3): 2 makes the boundary a mirror of each fluid particle, 1 is Akinci's
-    double eta = 1e-3;                 // density solve: mean error bound, in units of ρ0
+    double eta = 1e-4;                 // density solve: mean error bound, in units of ρ0
     double eta_divergence = 1e-3;      // divergence solve: mean of dt·Dρ/Dt bound, in units of ρ0
     int min_iterations = 1, max_iterations = 100;
     int min_divergence_iterations = 1, max_divergence_iterations = 100;
     double relaxation = 0.5;           // ω of (D6)
-    double warm_start = 1.0;           // w of (D6): κ⁰ = w·κ of the previous step
+    double warm_start = 1.0;           // w of (D6): κ⁰ = w·κ of the previous step (density solve)
+    double divergence_warm_start = 0.5;   // likewise, the divergence solve
     int deficient_neighbours = 20;     // (D5): fewer neighbours (fluid and boundary, within h) than this: no divergence correction
     double boundary_viscosity = 0.0;   // ν_b of (D7) (m²/s); 0: free-slip walls
 };

@@ -44,12 +44,10 @@ std::string defines(const Fluid& fluid, bool divergence) {
 Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid)
     : timer_(timer),
       density_pass_(timer.pass("dfsph.density")),
-      divergence_correct_(timer.pass("dfsph.divergence.correct")),
-      divergence_accelerate_(timer.pass("dfsph.divergence.accelerate")),
+      divergence_solve_(timer.pass("dfsph.divergence.solve")),
       divergence_finish_(timer.pass("dfsph.divergence.finish")),
       predict_pass_(timer.pass("dfsph.pressure.predict")),
-      pressure_correct_(timer.pass("dfsph.pressure.correct")),
-      pressure_accelerate_(timer.pass("dfsph.pressure.accelerate")),
+      pressure_solve_(timer.pass("dfsph.pressure.solve")),
       integrate_pass_(timer.pass("dfsph.integrate")),
       divergence_(scene.sph.divergence_solve),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_))),
@@ -68,8 +66,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
     params_.eta = scene.sph.max_density_error;
     params_.eta_divergence = scene.sph.max_divergence_error;
-    params_.relaxation = 0.5f;
+    params_.relaxation = scene.sph.relaxation;
     params_.warm_start = scene.sph.warm_start;
+    params_.warm_start_divergence = scene.sph.divergence_warm_start;
     params_.min_iterations = std::uint32_t(least_);
     params_.min_divergence_iterations = 1;
     params_.issued = std::uint32_t(std::clamp(kInitialCap, least_, most_));
@@ -161,39 +160,31 @@ void Dfsph::compute_density(Fluid& fluid) {
     fluid.set_neighbour_masks_current(true);
 }
 
-// A solve's (D6) iterations: the first "correct" directly (the pass before it computed the first
-// accelerations), then `issued` − 1 pairs from the solve's indirect arguments, which the GPU sets to
-// zero workgroups once it has converged.
-void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId correct, profile::PassId accelerate) {
+// A solve's (D6) iterations, timed as one pass: the first "correct" directly (the pass before it
+// computed the first accelerations), then `issued` − 1 pairs from the solve's indirect arguments,
+// which the GPU sets to zero workgroups once it has converged.
+void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
     const shader::StorageSet set = state(fluid, solve);
-    {
-        auto pass = timer_.scope(correct);
-        correct_.bind(set).use();
-        glDispatchCompute(params_.groups, 1, 1);
-        glMemoryBarrier(kAfterIteration);
-    }
+    auto pass = timer_.scope(pass_id);
+    correct_.bind(set).use();
+    glDispatchCompute(params_.groups, 1, 1);
+    glMemoryBarrier(kAfterIteration);
     if (issued <= 1) return;
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
     const auto offset = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE + offsetof(gpu::SolveState, dispatch));
     for (int k = 1; k < issued; ++k) {
-        {
-            auto pass = timer_.scope(accelerate);
-            accelerate_.bind(set).use();
-            glDispatchComputeIndirect(offset);
-            glMemoryBarrier(kAfterIteration);
-        }
-        {
-            auto pass = timer_.scope(correct);
-            correct_.bind(set).use();
-            glDispatchComputeIndirect(offset);
-            glMemoryBarrier(kAfterIteration);
-        }
+        accelerate_.bind(set).use();
+        glDispatchComputeIndirect(offset);
+        glMemoryBarrier(kAfterIteration);
+        correct_.bind(set).use();
+        glDispatchComputeIndirect(offset);
+        glMemoryBarrier(kAfterIteration);
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
 void Dfsph::solve_divergence(Fluid& fluid) {
-    if (divergence_) iterate(fluid, 1, int(params_.issued_divergence), divergence_correct_, divergence_accelerate_);
+    if (divergence_) iterate(fluid, 1, int(params_.issued_divergence), divergence_solve_);
     auto pass = timer_.scope(divergence_finish_);
     finish_.bind(state(fluid, 1)).dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -206,7 +197,7 @@ void Dfsph::predict_density(Fluid& fluid) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void Dfsph::solve_density(Fluid& fluid) { iterate(fluid, 0, int(params_.issued), pressure_correct_, pressure_accelerate_); }
+void Dfsph::solve_density(Fluid& fluid) { iterate(fluid, 0, int(params_.issued), pressure_solve_); }
 
 void Dfsph::integrate(Fluid& fluid) {
     {

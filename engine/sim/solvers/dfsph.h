@@ -6,11 +6,12 @@
 //                                    (D7), the divergence solve's source (D5), warm start and first
 //                                    pressure accelerations
 //     (hooks.after_density, hooks.add_accelerations)
-//     "dfsph.divergence.correct"     } (D6) iterations: the first direct, then "accelerate" and
-//     "dfsph.divergence.accelerate"  } "correct" issued in pairs, dispatched indirectly
+//     "dfsph.divergence.solve"       (D6) iterations: the first correct_pressure.comp direct, then
+//                                    accelerate.comp and correct_pressure.comp issued in pairs,
+//                                    dispatched indirectly
 //     "dfsph.divergence.finish"      v += dt (a^p(kappa_v) + a)
 //     "dfsph.pressure.predict"       the density solve's source (D4), warm start and first a^p
-//     "dfsph.pressure.correct", "dfsph.pressure.accelerate"    (D6) iterations
+//     "dfsph.pressure.solve"         (D6) iterations, likewise
 //     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
@@ -60,13 +61,12 @@ public:
 
 private:
     shader::StorageSet state(Fluid& fluid, int solve) const;
-    void iterate(Fluid& fluid, int solve, int issued, profile::PassId correct, profile::PassId accelerate);
+    void iterate(Fluid& fluid, int solve, int issued, profile::PassId pass);
     void upload_params();
     void open_solve(int solve);
 
     profile::GpuTimer& timer_;
-    profile::PassId density_pass_, divergence_correct_, divergence_accelerate_, divergence_finish_, predict_pass_,
-        pressure_correct_, pressure_accelerate_, integrate_pass_;
+    profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_;
     bool divergence_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     gpu::DfsphParams params_{};

@@ -35,7 +35,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
     rate_ += sph.mass * dot(vi_ - vj, g);
     viscous_ += (sph.mass / sph.rest_density) * dot(vi_ - vj, d) / (r2 + 0.01 * sph.h * sph.h) * g;
 #ifdef RANRYU_DIVERGENCE_SOLVE
-    pressure_ -= sph.mass * (kappa_i_ + dfsph.warm_start * warm[j].y) * g;
+    pressure_ -= sph.mass * (kappa_i_ + dfsph.warm_start_divergence * warm[j].y) * g;
 #endif
 }
 
@@ -62,7 +62,7 @@ void main() {
         fluid_sum_ = wall_sum_ = squares_ = rate_ = 0.0;
         kappa_i_ = 0.0;
 #ifdef RANRYU_DIVERGENCE_SOLVE
-        kappa_i_ = dfsph.warm_start * warm[i].y;
+        kappa_i_ = dfsph.warm_start_divergence * warm[i].y;
 #endif
         uint count;
         uint flags = walk_neighbours(i, xi_, count);
