@@ -99,6 +99,7 @@ public:
     // bind_state() gives the current one.
     int carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill);
     const gl::Buffer& carried(int id) const { return carried_[std::size_t(id)].buffer[carried_current_]; }
+    gl::Buffer& carried(int id) { return carried_[std::size_t(id)].buffer[carried_current_]; }
 
     // ---- a solver's fused integration writes the next state into the other buffers, then swaps
     gl::Buffer& next_positions() { return position_[1 - current_]; }

@@ -94,6 +94,11 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
 
 const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
 
+void Dfsph::upload_warm_start(const std::vector<glm::vec2>& kappa) {
+    if (kappa.size() != fluid_.count()) throw Error("Dfsph::upload_warm_start: expected " + std::to_string(fluid_.count()) + " pairs");
+    fluid_.carried(warm_).upload(kappa.data(), kappa.size() * sizeof(glm::vec2));
+}
+
 void Dfsph::set_issued_iterations(int density, int divergence) {
     fixed_caps_ = true;
     params_.issued = std::uint32_t(std::clamp(density, 1, most_));

@@ -21,6 +21,7 @@
 // stopped at the cap, between the scene's minimum and maximum. Iterations run and the errors reached
 // come back in StepState; a step that stops at its cap is counted there, and profile reports it.
 #include <array>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -56,6 +57,9 @@ public:
     const gl::Buffer& kappa() const { return kappa_; }                    // float: the solve's current kappa
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }   // vec4: xyz a^p, w the source s_i
     const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
+    // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
+    // rebuild_grid() moves them with the particles).
+    void upload_warm_start(const std::vector<glm::vec2>& kappa);
     const gl::Buffer& solve_states() const { return solve_; }             // SolveState, density at 0, divergence at RANRYU_DFSPH_SOLVE_STRIDE
     const gpu::DfsphParams& params() const { return params_; }
 
@@ -76,7 +80,7 @@ private:
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_;
-    const Fluid& fluid_;
+    Fluid& fluid_;
     int warm_;
 };
 

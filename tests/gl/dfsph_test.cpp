@@ -1,0 +1,434 @@
+// The DFSPH passes of glsl/sim/dfsph/ (driven through sim::Dfsph's stages) against the double-precision
+// CPU reference of docs/DFSPH.md (tests/reference/dfsph_reference.h), on fresh random states: jittered,
+// compressed lattices with random velocities and random warm starts, uploaded and read back after
+// each stage. The reference starts every stage from what the GPU read back, so each difference is the
+// float rounding of the stage under test (and, where a stage consumes another's output, the bound of
+// that output carried through).
+//
+// Tolerances. The GPU works in float (unit roundoff u = 2^-24), the reference in double. A sum of N
+// terms t_k, each computed with relative error at most c·u, is off by at most (N + c)·u·Σ|t_k|
+// (Higham 2002 §4.2, first order); we take c = 16 for a kernel gradient times a few products. Each
+// check names the sum it bounds; a term computed from an input carrying an error E adds |∂t/∂input|·E.
+#include "support/gl_fixture.h"
+#include "support/sph_rig.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "reference/dfsph_reference.h"
+#include "reference/sph_reference.h"
+#include "scene/scene.h"
+#include "shared/bindings.h"
+
+namespace {
+
+namespace ref = ranryu::reference;
+namespace df = ranryu::reference::dfsph;
+namespace gpu = ranryu::gpu;
+using glm::dvec3;
+
+constexpr double kU = std::numeric_limits<float>::epsilon() / 2.0;
+constexpr double kC = 16.0;   // relative error of one term, in units of u (see the header)
+
+// 512 fluid particles (an 8x8x8 block at spacing 0.03 m) in a cubic tank of side 0.3 m, DFSPH;
+// `sph` adds keys to the "sph" object.
+std::string scene_json(const std::string& sph = "") {
+    return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
+               "sph": {"solver": "dfsph", "viscosity": 1e-3)" + (sph.empty() ? "" : ", " + sph) + R"(},
+               "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
+}
+
+dvec3 d3(const glm::vec4& v) { return dvec3(glm::vec3(v)); }
+std::vector<dvec3> d3(const std::vector<glm::vec4>& v) {
+    std::vector<dvec3> out(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) out[i] = d3(v[i]);
+    return out;
+}
+
+struct Rig : ranryu::test::SphRig {
+    explicit Rig(const std::string& sph = "") : SphRig(scene_json(sph), "dfsph_test") {}
+
+    ref::Params params() const {
+        const gpu::SphParams& p = fluid.params();
+        return ref::Params::from_spacing(double(p.spacing), double(p.rest_density), 0.0, double(p.viscosity),
+                                         dvec3(glm::vec3(p.gravity)));
+    }
+    df::Settings settings() {
+        const gpu::DfsphParams& p = dfsph().params();
+        df::Settings s;
+        s.boundary_factor = 1.0;
+        s.eta = double(p.eta);
+        s.eta_divergence = double(p.eta_divergence);
+        s.relaxation = double(p.relaxation);
+        s.warm_start = double(p.warm_start);
+        s.divergence_warm_start = double(p.warm_start_divergence);
+        s.deficient_neighbours = int(p.deficient_neighbours);
+        s.boundary_viscosity = double(p.boundary_viscosity);
+        return s;
+    }
+    // The boundary particles and their psi_b, as the GPU computed them.
+    void boundary(std::vector<dvec3>& xb, std::vector<double>& psi) const {
+        xb.clear(), psi.clear();
+        for (const glm::vec4& b : fluid.boundary().read<glm::vec4>(fluid.boundary_count())) {
+            xb.push_back(d3(b));
+            psi.push_back(double(b.w));
+        }
+    }
+    std::vector<float> read_floats(const ranryu::gl::Buffer& b) const { return b.read<float>(fluid.count()); }
+    std::vector<glm::vec2> warm() { return dfsph().warm_start().read<glm::vec2>(fluid.count()); }
+};
+
+// The block on a lattice of pitch `ratio`·dx at `corner`, jittered by ±`jitter`·dx, velocities in
+// ±`speed`; no pair distance within 1e-5·h of h (float and double would disagree on a neighbour).
+void block_state(ranryu::test::Random& rng, const Rig& rig, glm::vec3 corner, float ratio, float jitter, float speed,
+                 std::vector<glm::vec4>& x, std::vector<glm::vec4>& v) {
+    const float dx = rig.scene.spacing;
+    const double h = 2.0 * double(dx);
+    REQUIRE(rig.fluid.count() == 512);
+    for (int attempt = 0;; ++attempt) {
+        REQUIRE(attempt < 100);
+        x.clear();
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 8; ++j)
+                for (int i = 0; i < 8; ++i) {
+                    const glm::vec3 w(rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter));
+                    x.emplace_back(corner + ((glm::vec3(float(i), float(j), float(k)) + 0.5f) * ratio + w) * dx, 0.0f);
+                }
+        bool ok = true;
+        for (std::size_t a = 0; a < x.size() && ok; ++a)
+            for (std::size_t b = a + 1; b < x.size() && ok; ++b) ok = std::abs(glm::length(d3(x[a]) - d3(x[b])) - h) >= 1e-5 * h;
+        if (ok) break;
+    }
+    v.resize(x.size());
+    for (auto& u : v) u = glm::vec4(rng.uniform(-speed, speed), rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0f);
+}
+
+// Per particle: Σ_j m|∇W_ij| over fluid neighbours j != i and Σ_b psi_b|∇W_ib| (the magnitudes the
+// bounds scale with), and the number of terms.
+struct Magnitudes {
+    std::vector<double> fluid, wall;
+    std::vector<int> terms;
+};
+Magnitudes magnitudes(const std::vector<dvec3>& x, const std::vector<dvec3>& xb, const std::vector<double>& psi, const ref::Params& p) {
+    const ref::CubicKernel k{p.h};
+    Magnitudes m{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0), std::vector<int>(x.size(), 0)};
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        for (std::size_t j = 0; j < x.size(); ++j)
+            if (j != i && glm::length(x[i] - x[j]) < p.h) m.fluid[i] += p.mass * glm::length(k.gradW(x[i] - x[j])), ++m.terms[i];
+        for (std::size_t b = 0; b < xb.size(); ++b)
+            if (glm::length(x[i] - xb[b]) < p.h) m.wall[i] += psi[b] * glm::length(k.gradW(x[i] - xb[b])), ++m.terms[i];
+    }
+    return m;
+}
+
+double vec_error(const glm::vec4& got, const dvec3& want) { return glm::length(d3(got) - want); }
+
+// Runs the stages of one step on the state (x, v, warm), reading everything back after each.
+struct Stages {
+    std::vector<glm::vec4> x, v, density, accel, kappa_v0_accel, v_after_divergence, predict, x_end, v_end, density_end;
+    std::vector<float> kappa_v0, kappa_v, kappa0, kappa;
+    std::vector<glm::vec2> warm;   // sorted, as the density pass read it
+    float dt = 0.0f;
+};
+
+Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, const std::vector<glm::vec2>& warm,
+                  float dt, int iterations) {
+    Stages s;
+    auto& d = rig.dfsph();
+    d.set_issued_iterations(iterations, iterations);
+    rig.fluid.upload_state(x, v);
+    d.upload_warm_start(warm);
+    rig.fluid.set_fixed_dt(dt);
+    rig.timer.begin_frame();
+    rig.sim.begin_frame(0);
+    rig.fluid.choose_time_step();
+    rig.fluid.rebuild_grid();
+    s.warm = rig.warm();
+    d.compute_density(rig.fluid);
+    s.x = rig.read(rig.fluid.positions());
+    s.v = rig.read(rig.fluid.velocities());
+    s.density = rig.read(rig.fluid.densities());
+    s.accel = rig.read(rig.fluid.accelerations());
+    s.kappa_v0 = rig.read_floats(d.kappa());
+    s.kappa_v0_accel = rig.read(d.pressure_accelerations());
+    d.solve_divergence(rig.fluid);
+    s.kappa_v = rig.read_floats(d.kappa());
+    s.v_after_divergence = rig.read(rig.fluid.velocities());
+    d.predict_density(rig.fluid);
+    s.kappa0 = rig.read_floats(d.kappa());
+    s.predict = rig.read(d.pressure_accelerations());
+    d.solve_density(rig.fluid);
+    s.kappa = rig.read_floats(d.kappa());
+    d.integrate(rig.fluid);
+    s.x_end = rig.read(rig.fluid.positions());
+    s.v_end = rig.read(rig.fluid.velocities());
+    s.density_end = rig.read(rig.fluid.densities());
+    s.dt = rig.step().dt;
+    rig.sim.end_frame();
+    rig.timer.end_frame();
+    rig.finish();
+    return s;
+}
+
+std::uint32_t flags_of(const glm::vec4& d) {
+    std::uint32_t f;
+    std::memcpy(&f, &d.w, sizeof f);
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accelerations and divergence start match the reference",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A compressed block against the floor and two walls (boundary terms), another in mid-tank.
+    const glm::vec3 corner = GENERATE(glm::vec3(0.0f), glm::vec3(0.02f, 0.03f, 0.025f));
+    INFO("block at " << corner.x << " " << corner.y << " " << corner.z);
+    Rig rig(R"("boundary_viscosity": 2e-3)");
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, corner, 0.95f, 0.15f, 0.5f, x, v);
+    std::vector<glm::vec2> warm(x.size());
+    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    const Stages s = run_stages(rig, x, v, warm, 4e-4f, 1);
+
+    const ref::Params p = rig.params();
+    const df::Settings set = rig.settings();
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    rig.boundary(xb, psi);
+    const std::vector<dvec3> xs = d3(s.x), vs = d3(s.v);
+    const Magnitudes m = magnitudes(xs, xb, psi, p);
+    const std::vector<double> rho = ref::densities(xs, xb, psi, p);
+    const df::Factors f = df::factors(xs, xb, psi, p, set);
+    const std::vector<dvec3> a_np = df::nonpressure_accelerations(xs, vs, xb, psi, p, set);
+    std::vector<double> kv0(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y);
+    const std::vector<dvec3> a_p = df::pressure_accelerations(xs, kv0, xb, psi, p, set);
+    const std::vector<double> rate = df::density_rates(xs, vs, xb, psi, p, set);
+    const double dt = double(s.dt), h = p.h;
+    REQUIRE(dt == Approx(4e-4).epsilon(1e-6));
+
+    int deficient = 0, walls = 0;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        INFO("particle " << i << " at " << xs[i].x << " " << xs[i].y << " " << xs[i].z);
+        const double n = double(m.terms[i]) + 1.0;
+        // (2): Σ m W + Σ psi W, each W at most 8/(pi h^3) (the kernel's peak).
+        const double w_peak = 8.0 / (3.14159265358979 * h * h * h);
+        CHECK(std::abs(double(s.density[i].x) - rho[i]) <= (n + kC) * kU * (p.mass * n + 2.0 * rho[i]) * 1.0 + kU * w_peak * p.mass);
+        // (D2): 1/D with D = |A + B|^2 + Σ m^2|∇W|^2: |A + B| carries (n + c) u (Σ m|∇W| + Σ psi|∇W|), so
+        // |A + B|^2 twice that times |A + B|; the squares (n + c) u of their sum; the reciprocal adds u.
+        const double ab = m.fluid[i] + m.wall[i];
+        const double d_bound = (n + kC) * kU * (2.0 * ab * ab + ab * ab) + kU;
+        const double d_ref = 1.0 / f.factor[i];
+        CHECK(std::abs(1.0 / double(s.density[i].z) - d_ref) <= d_bound + 4.0 * kU * d_ref);
+        const bool gpu_deficient = (flags_of(s.density[i]) & 4u) != 0u;
+        CHECK(gpu_deficient == (f.neighbours[i] < set.deficient_neighbours));
+        deficient += gpu_deficient;
+        walls += (flags_of(s.density[i]) & 2u) != 0u;
+        // (D7): g + 10 ν Σ (m/ρ0)(v_ij·x_ij)/(r² + 0.01h²)∇W + 10 ν_b Σ ...; each viscous term is at most
+        // V·2|v|max/(r)·|∇W|/... bounded by the same sum with |v_ij||x_ij|/(r² + 0.01 h²) <= |v_ij|/(0.2h).
+        const double vmax = 2.0 * 0.5 * std::sqrt(3.0);
+        const double visc = 10.0 * (p.viscosity * m.fluid[i] / p.rest_density + set.boundary_viscosity * m.wall[i] / p.rest_density) *
+                            vmax / (0.2 * h);
+        CHECK(vec_error(s.accel[i], a_np[i]) <= (n + kC) * kU * (visc + glm::length(p.gravity)) + kU * glm::length(p.gravity));
+        // (D3) with kappa_v^0 = w kappa_v: Σ m(κ_i + κ_j)|∇W| + κ_i Σ psi|∇W|, κ <= its largest.
+        double kmax = 0.0;
+        for (double k : kv0) kmax = std::max(kmax, k);
+        CHECK(std::abs(double(s.kappa_v0[i]) - kv0[i]) <= 2.0 * kU * kv0[i]);
+        CHECK(vec_error(s.kappa_v0_accel[i], a_p[i]) <= (n + kC) * kU * (2.0 * kmax * m.fluid[i] + kmax * m.wall[i]));
+        // (D5): w = −dt Dρ/Dt (ρ0 for a deficient particle), Dρ/Dt a sum of m(v_i − v_j)·∇W and psi v_i·∇W.
+        const double w = gpu_deficient ? p.rest_density : -dt * rate[i];
+        CHECK(std::abs(double(s.kappa_v0_accel[i].w) - w) <= (n + kC) * kU * dt * vmax * ab + kU * std::abs(w));
+    }
+    // The states exercise what they are meant to: walls in reach of the first block, every particle of
+    // the compressed blocks full of neighbours but some at their faces.
+    if (corner == glm::vec3(0.0f)) CHECK(walls > 100);
+    CHECK(deficient < int(xs.size()));
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and the integration match the reference", "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
+    std::vector<glm::vec2> warm(x.size());
+    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    const Stages s = run_stages(rig, x, v, warm, 4e-4f, 1);
+
+    const ref::Params p = rig.params();
+    const df::Settings set = rig.settings();
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    rig.boundary(xb, psi);
+    const std::vector<dvec3> xs = d3(s.x);
+    const Magnitudes m = magnitudes(xs, xb, psi, p);
+    const double dt = double(s.dt);
+    const std::size_t n = xs.size();
+    const ref::CubicKernel k{p.h};
+    const df::Factors f = df::factors(xs, xb, psi, p, set);
+
+    // One relaxed Jacobi update (D6) from the GPU's own κ and a(κ) of the stage before it: returns the
+    // new κ and its bound, given the bound `a_err` of the accelerations it read.
+    auto iterate = [&](const std::vector<float>& kappa_in, const std::vector<glm::vec4>& accel_in, const std::vector<double>& a_err,
+                       bool first, std::vector<double>& bound) {
+        std::vector<double> out(n);
+        bound.assign(n, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            double change = 0.0, size = 0.0, carried = 0.0;
+            for (std::size_t j = 0; j < n; ++j) {
+                if (j == i || glm::length(xs[i] - xs[j]) >= p.h) continue;
+                const dvec3 g = k.gradW(xs[i] - xs[j]);
+                change += p.mass * glm::dot(d3(accel_in[i]) - d3(accel_in[j]), g);
+                size += p.mass * (glm::length(d3(accel_in[i])) + glm::length(d3(accel_in[j]))) * glm::length(g);
+                carried += p.mass * (a_err[i] + a_err[j]) * glm::length(g);
+            }
+            for (std::size_t b = 0; b < xb.size(); ++b) {
+                if (glm::length(xs[i] - xb[b]) >= p.h) continue;
+                const dvec3 g = k.gradW(xs[i] - xb[b]);
+                change += psi[b] * glm::dot(d3(accel_in[i]), g);
+                size += psi[b] * glm::length(d3(accel_in[i])) * glm::length(g);
+                carried += psi[b] * a_err[i] * glm::length(g);
+            }
+            const double w = double(accel_in[i].w), source = std::min(w, 0.0);
+            const double residual = dt * dt * change - source;
+            const double start = first && w > 0.01 * p.rest_density ? 0.0 : double(kappa_in[i]);
+            out[i] = std::max(start + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            const double terms = double(m.terms[i]) + kC;
+            bound[i] = set.relaxation * f.factor[i] * (terms * kU * size + carried) + 4.0 * kU * (std::abs(out[i]) + std::abs(start)) +
+                       set.relaxation * std::abs(residual) * f.factor[i] / (dt * dt) * (terms * kU * 3.0);
+        }
+        return out;
+    };
+    auto a_bound = [&](const std::vector<float>& kappa) {
+        double kmax = 0.0;
+        for (float q : kappa) kmax = std::max(kmax, double(q));
+        std::vector<double> e(n);
+        for (std::size_t i = 0; i < n; ++i) e[i] = (double(m.terms[i]) + kC) * kU * (2.0 * kmax * m.fluid[i] + kmax * m.wall[i]);
+        return e;
+    };
+
+    // The divergence solve's one iteration, from the density pass's κ_v^0 and a(κ_v^0).
+    std::vector<double> kv_bound;
+    const std::vector<double> kv = iterate(s.kappa_v0, s.kappa_v0_accel, a_bound(s.kappa_v0), true, kv_bound);
+    for (std::size_t i = 0; i < n; ++i) {
+        INFO("particle " << i << ": κ_v " << s.kappa_v[i] << " want " << kv[i] << " bound " << kv_bound[i]);
+        CHECK(std::abs(double(s.kappa_v[i]) - kv[i]) <= kv_bound[i]);
+    }
+    // v += dt (a(κ_v) + a_np) in place, with a(κ_v) of the GPU's κ_v.
+    std::vector<double> kv_gpu(s.kappa_v.begin(), s.kappa_v.end());
+    const std::vector<dvec3> a_v = df::pressure_accelerations(xs, kv_gpu, xb, psi, p, set);
+    const std::vector<double> av_err = a_bound(s.kappa_v);
+    for (std::size_t i = 0; i < n; ++i) {
+        const dvec3 want = d3(s.v[i]) + dt * (a_v[i] + d3(s.accel[i]));
+        CHECK(vec_error(s.v_after_divergence[i], want) <= dt * av_err[i] + 4.0 * kU * (glm::length(want) + dt * glm::length(a_v[i])));
+    }
+    // The density solve's start (D4): a(w κ) and ρ0 − (ρ + dt Dρ/Dt(v*)), from the velocities v*.
+    const std::vector<dvec3> vstar = d3(s.v_after_divergence);
+    const std::vector<double> rate = df::density_rates(xs, vstar, xb, psi, p, set);
+    std::vector<double> k0(n);
+    for (std::size_t i = 0; i < n; ++i) k0[i] = set.warm_start * double(s.warm[i].x);
+    const std::vector<dvec3> a0 = df::pressure_accelerations(xs, k0, xb, psi, p, set);
+    const std::vector<double> a0_err = a_bound(s.kappa0);
+    double vmax = 0.0;
+    for (const dvec3& u : vstar) vmax = std::max(vmax, glm::length(u));
+    for (std::size_t i = 0; i < n; ++i) {
+        CHECK(std::abs(double(s.kappa0[i]) - k0[i]) <= 2.0 * kU * k0[i]);
+        CHECK(vec_error(s.predict[i], a0[i]) <= a0_err[i]);
+        const double want = p.rest_density - (double(s.density[i].x) + dt * rate[i]);
+        const double ab = m.fluid[i] + m.wall[i];
+        CHECK(std::abs(double(s.predict[i].w) - want) <= (double(m.terms[i]) + kC) * kU * dt * 2.0 * vmax * ab + 4.0 * kU * p.rest_density);
+    }
+    // The density solve's one iteration, then the integration: v += dt a(κ), x += dt v.
+    std::vector<double> k_bound;
+    const std::vector<double> kk = iterate(s.kappa0, s.predict, a0_err, true, k_bound);
+    for (std::size_t i = 0; i < n; ++i) CHECK(std::abs(double(s.kappa[i]) - kk[i]) <= k_bound[i]);
+    std::vector<double> k_gpu(s.kappa.begin(), s.kappa.end());
+    const std::vector<dvec3> a_k = df::pressure_accelerations(xs, k_gpu, xb, psi, p, set);
+    const std::vector<double> ak_err = a_bound(s.kappa);
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const dvec3 v_end = vstar[i] + dt * a_k[i], x_end = xs[i] + dt * v_end;
+        // The last-resort projection moves a particle only past a quarter spacing into a wall; none is here.
+        if (x_end.x < 0.0 || x_end.y < 0.0 || x_end.z < 0.0) continue;
+        ++checked;
+        const double ev = dt * ak_err[i] + 4.0 * kU * (glm::length(v_end) + dt * glm::length(a_k[i]));
+        CHECK(vec_error(s.v_end[i], v_end) <= ev);
+        CHECK(vec_error(s.x_end[i], x_end) <= dt * ev + 4.0 * kU * (glm::length(x_end) + dt * glm::length(v_end)));
+        // The step's pressure: (κ + κ_v) ρ².
+        const double pressure = (double(s.kappa[i]) + double(s.kappa_v[i])) * double(s.density[i].x) * double(s.density[i].x);
+        CHECK(std::abs(double(s.density_end[i].y) - pressure) <= 8.0 * kU * pressure);
+    }
+    CHECK(checked > n / 2);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: the density solve reaches its bound, the GPU stops iterating once it has, and the warm start saves iterations",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A block compressed to pitch 0.99 (ρ ≈ 1.03 ρ0) resting on the floor, one step of 2 ms from no
+    // pressure, at most 100 iterations: more than it needs (Jacobi on 8 layers from nothing).
+    Rig rig;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.0f), 0.99f, 0.05f, 0.0f, x, v);
+    const Stages s = run_stages(rig, x, v, std::vector<glm::vec2>(x.size(), glm::vec2(0.0f)), 2e-3f, 100);
+    const gpu::StepState st = rig.step();
+    const auto states = rig.dfsph().solve_states().read<std::uint8_t>(2 * RANRYU_DFSPH_SOLVE_STRIDE);
+    gpu::SolveState density{};
+    std::memcpy(&density, states.data(), sizeof density);
+    const double eta = double(rig.dfsph().params().eta);
+    INFO("density solve: " << st.iterations.x << " iterations, last error " << st.error.x << " (bound " << eta << ")");
+    CHECK(st.unconverged.x == 0u);
+    CHECK(double(st.error.x) <= eta);
+    CHECK(st.iterations.x >= 2u);    // the minimum
+    CHECK(st.iterations.x < 100u);   // converged before the cap...
+    CHECK(density.iterations == st.iterations.x);
+    CHECK(density.dispatch.x == 0u);   // ...and the iterations issued after it dispatched no work
+    CHECK(density.solve == 0u);
+
+    // What the step left: the density the final velocities predict, ρ_i + dt Dρ/Dt(v), from the state
+    // the solve ran on. Its mean excess over ρ0 is what the solve bounds: the reported error is the
+    // residual of the last κ before its update, and the update contracts it (ω = 0.5).
+    const ref::Params p = rig.params();
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    rig.boundary(xb, psi);
+    const std::vector<dvec3> xs = d3(s.x);
+    const std::vector<double> rate = df::density_rates(xs, d3(s.v_end), xb, psi, p, rig.settings());
+    double excess = 0.0;
+    for (std::size_t i = 0; i < xs.size(); ++i) excess += std::max(double(s.density[i].x) + double(s.dt) * rate[i] - p.rest_density, 0.0);
+    excess /= double(xs.size()) * p.rest_density;
+    INFO("mean predicted excess " << excess);
+    CHECK(excess <= eta);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: warm-starting from the last step's pressure takes fewer iterations than starting from none", "[dfsph]") {
+    // The 8x8x8 block at rest on the floor, three frames of one 4 ms step each: the column's pressure
+    // settles, and each step needs only what changed since the last when it starts from the last.
+    auto iterations = [](const std::string& sph) {
+        Rig rig(sph);
+        rig.fluid.set_fixed_dt(rig.scene.frame_dt);
+        rig.dfsph().set_issued_iterations(100, 100);
+        std::uint32_t last = 0;
+        rig.fluid.set_record_sink([&](const gpu::StepState& r) { last = r.iterations.x; });
+        for (int f = 0; f < 3; ++f) rig.frame(std::uint64_t(f));
+        rig.finish();
+        REQUIRE_FALSE(rig.fluid.instability().has_value());
+        return last;
+    };
+    const std::uint32_t warm = iterations(R"("warm_start": 1)"), cold = iterations(R"("warm_start": 0)");
+    INFO("third step: " << warm << " iterations warm-started, " << cold << " from no pressure");
+    CHECK(2 * warm <= cold);
+    ranryu::test::require_no_gl_errors();
+}
