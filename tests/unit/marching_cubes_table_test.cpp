@@ -46,8 +46,11 @@ PhiGrid sphere(glm::vec3 origin, float h, glm::uvec3 dims, glm::vec3 centre, flo
     for (std::uint32_t k = 0; k < dims.z; ++k)
         for (std::uint32_t j = 0; j < dims.y; ++j)
             for (std::uint32_t i = 0; i < dims.x; ++i) {
-                float f = R - float(glm::length(glm::dvec3(g.node({i, j, k})) - glm::dvec3(centre)));
-                g.phi[g.index({i, j, k})] = f == 0.0f ? -1e-30f : f;
+                // Kept 1e-3 h off zero: a crossing closer to a node than a float's resolution of the
+                // position lands on the node, where the weld (by exact position) would merge distinct
+                // edge vertices into one and the mesh would read as non-manifold.
+                const float f = R - float(glm::length(glm::dvec3(g.node({i, j, k})) - glm::dvec3(centre)));
+                g.phi[g.index({i, j, k})] = std::abs(f) < 1e-3f * h ? std::copysign(1e-3f * h, f) : f;
             }
     return g;
 }
