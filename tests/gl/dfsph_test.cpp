@@ -299,7 +299,7 @@ TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and t
                 size += psi[b] * glm::length(d3(accel_in[i])) * glm::length(g);
                 carried += psi[b] * a_err[i] * glm::length(g);
             }
-            const double w = double(accel_in[i].w), source = std::min(w, 0.0);
+            const double w = double(accel_in[i].w), source = w;
             const double residual = dt * dt * change - source;
             const double start = first && w > 0.01 * p.rest_density ? 0.0 : double(kappa_in[i]);
             out[i] = std::max(start + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);

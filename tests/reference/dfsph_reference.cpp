@@ -91,15 +91,16 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     const double rho0 = params.rest_density;
     const size_t n = x.size();
     SolveResult r;
-    // (D4), (D5): the density change the pressure must make over the step, never an expansion.
+    // (D4), (D5): the density change that would bring i to ρ0 (to a steady density); with κ ≥ 0 the
+    // solve only ever removes an excess (D6).
     const std::vector<double> rate = density_rates(x, v, boundary, psi, params, s);
     r.source.resize(n);
     std::vector<bool> drop(n);   // the warm start is dropped where the particle separates (D6)
     for (size_t i = 0; i < n; ++i) {
-        // ρ0 − ρ*_i (density) or −Δt·Dρ/Dt (divergence): s_i is its negative part.
+        // s_i = ρ0 − ρ*_i (density) or −Δt·Dρ/Dt (divergence); ρ0 where i is deficient (no correction).
         const bool deficient = which == Solve::divergence && f.neighbours[i] < s.deficient_neighbours;
         const double change = which == Solve::density ? rho0 - (density[i] + dt * rate[i]) : -dt * rate[i];
-        r.source[i] = deficient ? 0.0 : std::min(change, 0.0);
+        r.source[i] = deficient ? rho0 : change;
         drop[i] = deficient || change > 0.01 * rho0;
     }
     const int lo = which == Solve::density ? s.min_iterations : s.min_divergence_iterations;

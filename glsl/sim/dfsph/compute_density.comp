@@ -75,7 +75,7 @@ void main() {
         accel[i] = vec4(a, 0.0);
 #ifdef RANRYU_DIVERGENCE_SOLVE
         kappa[i] = kappa_i_;
-        // (D5): the negative part is s_i (a deficient particle: 0); a positive w drops the warm start.
+        // (D5): s_i (a deficient particle: rho0, so no correction); a positive w drops the warm start.
         pressure_accel[i] = vec4(pressure_, (flags & kDeficient) != 0u ? sph.rest_density : -step.dt * rate_);
 #endif
         ratio = rho / sph.rest_density;

@@ -61,7 +61,7 @@ void main() {
         change_ = 0.0;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
-        float residual = dt2 * change_ - min(own.w, 0.0);
+        float residual = dt2 * change_ - own.w;
         float kappa_i = solve.iterations == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
         kappa[i] = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
         error = clamp(residual / sph.rest_density, 0.0, 1.0);

@@ -3,7 +3,7 @@
 //     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags)
 //     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
-//                     source s_i of (D4) or (D5) is min(w, 0); w > warm_start_drop() drops the warm start
+//                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
 //                     density solve, kappa_v of the last divergence solve), the warm starts of (D6)
 //     Solve           SolveState of the solve under way (shared/bindings.h); the Dfsph opens it (a copy

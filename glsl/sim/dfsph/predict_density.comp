@@ -1,10 +1,10 @@
 #version 430
 // The density solve's start, "dfsph.pressure.predict" (docs/DFSPH.md (D4)): with v* the velocities
 // after the divergence solve and the non-pressure step,
-//     rho*_i = rho_i + dt Drho_i/Dt(v*),   s_i = rho0 − max(rho*_i, rho0),
+//     rho*_i = rho_i + dt Drho_i/Dt(v*),   s_i = rho0 − rho*_i,
 // the warm start kappa_i = w·kappa of the last step (Warm.x) and its pressure accelerations (D3): the
-// first iteration's first half. PressureAccel.w holds rho0 − rho*_i: its negative part is s_i, and its
-// positive part tells the first iteration how far below rho0 the particle will be (D6's warm start).
+// first iteration's first half. PressureAccel.w holds s_i; where positive, it tells the first iteration
+// how far below rho0 the particle will be (D6's warm start).
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
