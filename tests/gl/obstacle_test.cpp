@@ -207,7 +207,8 @@ TEST_CASE("boundary: every surface gives the fluid beside it the flat wall's bou
 namespace {
 
 // What a run showed, over every substep: the deepest any particle's centre lay inside an obstacle or
-// beyond the tank's walls or floor (the side walls at any height), and how hard the jet hit.
+// beyond the tank's walls or floor (the side walls at any height) or its lid when closed, and how
+// hard the jet hit.
 struct JetRun {
     double obstacle_depth = 0.0, wall_depth = 0.0;
     glm::dvec3 obstacle_at{0.0}, wall_at{0.0};
@@ -241,7 +242,7 @@ JetRun run_jet(const Scene& scene, int frames) {
                 }
                 if (s.obstacles.empty() && p.x > double(s.tank_max.x) - dx) ++near;
                 const glm::dvec3 below = glm::dvec3(s.tank_min) - p, above = p - glm::dvec3(s.tank_max);
-                const double d = std::max({below.x, below.y, below.z, above.x, above.z});
+                const double d = std::max({below.x, below.y, below.z, above.x, above.z, s.tank_closed ? above.y : -1.0});
                 if (d > r.wall_depth) r.wall_depth = d, r.wall_at = p;
             }
             r.near = std::max(r.near, near);
@@ -320,4 +321,21 @@ TEST_CASE("obstacle: a fast jet at a sphere leaves no particle inside it or outs
     const float dx = GENERATE(0.025f, 0.0175f);
     INFO(solver << " at dx = " << dx);
     check_jet(run_jet(jet_scene("jet-at-sphere.json", solver, dx), 30), dx);
+}
+
+TEST_CASE("obstacle: under a lid, a fast jet's run-up up a wall stays in the tank", "[obstacle]") {
+    // The wall case in a closed tank (tank.closed: a lid of boundary particles at 0.3 m): the run-up
+    // that rises to 0.5 m in the open tank meets the lid and stays below it, within the same bound.
+    const std::string solver = GENERATE(as<std::string>(), "wcsph", "dfsph");
+    const float dx = 0.025f;
+    INFO(solver << " at dx = " << dx);
+    Scene s = jet_scene("jet-at-box.json", solver, dx, false);
+    s.tank_closed = true;
+    const JetRun r = run_jet(s, 30);
+    INFO("deepest beyond the tank or lid " << r.wall_depth / dx << " dx at " << r.wall_at.x << " " << r.wall_at.y << " " << r.wall_at.z
+                                           << "; highest " << r.highest << " m");
+    CHECK(r.unstable.empty());
+    CHECK(r.wall_depth <= 0.25 * dx + 1e-6);
+    CHECK(r.speed > 4.0);
+    CHECK(r.highest > double(s.tank_max.y) - 2.0 * dx);   // the run-up reached the lid
 }
