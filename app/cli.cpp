@@ -19,7 +19,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
-    {"validate", {"--spacing", "--solver", "--json", "--shader-dir", "--gl-debug"}},
+    {"validate", {"--scene", "--spacing", "--solver", "--json", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
 const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh"};
@@ -87,7 +87,7 @@ Options parse(const std::vector<std::string>& args) {
             value = args[++i];
         }
         if (!kFlags.count(opt) && value.empty()) throw InputError(opt + ": needs a value");
-        if (opt == "--scene") o.scene = value;
+        if (opt == "--scene") o.scene = value, o.scene_given = true;
         else if (opt == "--frames") o.frames = parse_int(opt, value, first == "run" ? 0 : 1, 1'000'000);
         else if (opt == "--size" && first == "export-field") o.field_size = parse_int(opt, value, 8, 256);
         else if (opt == "--extent") o.extent = parse_float(opt, value, 1e-6f, 1e6f, "an extent in metres in [1e-6, 1e6]");
@@ -222,7 +222,9 @@ Run a case headless and print the simulation next to its reference, with the err
   dam-break     surge front Z = z/a against T = t sqrt(2g/a), next to Martin & Moyce (1952)
   hydrostatic   pressure against depth next to rho0 g (H - z), and the spurious velocity
 
-  --spacing DX        particle spacing in metres (default: the bundled scene's)
+  --scene FILE        the case's scene from a file instead of the bundled one of its name (to vary
+                      its settings, e.g. "sph": {"boundary_viscosity": 1e-3} for no-slip walls)
+  --spacing DX        particle spacing in metres (default: the scene's)
   --solver NAME       dfsph | wcsph (default: the scene's)
   --json FILE         also write the series and errors as JSON
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary

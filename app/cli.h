@@ -16,6 +16,7 @@ struct Options {
     bool help = false;            // COMMAND --help
 
     std::string scene = "dam-break";
+    bool scene_given = false;     // --scene was on the command line (validate: else the case's own)
     std::optional<int> frames;    // unset: the command's default
     std::optional<int> width, height;
     std::string out;              // record: output folder

@@ -16,7 +16,7 @@ namespace ranryu::app {
 int validate(const Options& o) {
     if (o.case_name != "dam-break" && o.case_name != "hydrostatic")
         throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic)");
-    const scene::Scene scene = with_options(scene::load(o.case_name), o);
+    const scene::Scene scene = with_options(scene::load(o.scene_given ? o.scene : o.case_name), o);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     nlohmann::json j = {{"case", o.case_name},
@@ -24,7 +24,9 @@ int validate(const Options& o) {
                         {"driver", ctx->info().version},
                         {"date", profile::utc_now_iso8601()},
                         {"spacing", scene.spacing},
-                        {"solver", scene::solver_name(scene.sph.solver)}};
+                        {"solver", scene::solver_name(scene.sph.solver)},
+                        {"scene_origin", scene.origin},
+                        {"boundary_viscosity", scene.sph.boundary_viscosity}};
     if (o.case_name == "dam-break") {
         const validation::DamBreakResult r = validation::dam_break(scene, shaders);
         std::printf("dam-break (Martin & Moyce 1952, n^2 = 2): a = %.3f m, spacing %.4f m (a/dx = %.1f), %zu particles\n", r.a,
@@ -53,6 +55,8 @@ int validate(const Options& o) {
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",
                     r.max_error, r.max_speed, r.rms_speed);
+        std::printf("floor layer: %.4f of rho0 g H; away from the side walls (a kernel support): interior %.4f, floor layer %.4f\n",
+                    r.floor_error, r.core_error, r.core_floor_error);
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
         nlohmann::json layers = nlohmann::json::array();
@@ -61,6 +65,9 @@ int validate(const Options& o) {
                   {"particles", r.particles},
                   {"layers", layers},
                   {"max_error_over_rho_g_H", r.max_error},
+                  {"floor_error_over_rho_g_H", r.floor_error},
+                  {"core_error_over_rho_g_H", r.core_error},
+                  {"core_floor_error_over_rho_g_H", r.core_floor_error},
                   {"max_speed", r.max_speed},
                   {"rms_speed", r.rms_speed},
                   {"steps", r.steps},

@@ -118,8 +118,13 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     const double rho0 = scene.sph.rest_density, g = glm::length(scene.gravity), dx = scene.spacing;
     r.reference_scale = rho0 * g * r.height;
     const int layers = int(std::ceil(r.height / dx)) + 2;
-    std::vector<double> sum(std::size_t(layers), 0.0);
-    std::vector<long> n(std::size_t(layers), 0);
+    std::vector<double> sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0);
+    std::vector<long> n(std::size_t(layers), 0), core_n(std::size_t(layers), 0);
+    const double support = 2.0 * dx;
+    auto in_core = [&](const glm::vec4& p) {
+        return p.x - scene.tank_min.x > support && scene.tank_max.x - p.x > support && p.z - scene.tank_min.z > support &&
+               scene.tank_max.z - p.z > support;
+    };
     const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     std::vector<glm::vec4> x, v, d;
     for (int f = 0; f < average_frames; ++f) {
@@ -128,7 +133,9 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         d = fluid.densities().read<glm::vec4>(fluid.count());
         for (std::size_t i = 0; i < x.size(); ++i) {
             const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
-            if (k >= 0 && k < layers) sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
+            if (k < 0 || k >= layers) continue;
+            sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
+            if (in_core(x[i])) core_sum[std::size_t(k)] += d[i].y, ++core_n[std::size_t(k)];
         }
     }
     v = fluid.velocities().read<glm::vec4>(fluid.count());
@@ -154,8 +161,15 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         // eq. (4)) to one below the free surface (where the summation density lacks neighbours
         // above and reads low). The layers outside are printed, not compared.
         const double from_floor = l.z - scene.tank_min.y;
-        if (from_floor > h && from_floor < r.height - h)
+        const double core = core_n[std::size_t(k)] ? core_sum[std::size_t(k)] / double(core_n[std::size_t(k)]) : l.reference;
+        if (from_floor > h && from_floor < r.height - h) {
             r.max_error = std::max(r.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
+            r.core_error = std::max(r.core_error, std::abs(core - l.reference) / r.reference_scale);
+        }
+        if (k == 0) {
+            r.floor_error = std::abs(l.pressure - l.reference) / r.reference_scale;
+            r.core_floor_error = std::abs(core - l.reference) / r.reference_scale;
+        }
     }
     return r;
 }

@@ -32,6 +32,10 @@ struct HydrostaticResult {
     struct Layer { double z, pressure, reference; int particles; };
     std::vector<Layer> layers;
     double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) in the interior: a kernel support from floor and surface
+    double floor_error = 0.0;   // |p - p_ref| / (rho0 g H) of the layer on the floor
+    // The same as max_error over the particles more than a kernel support from the side walls too (the
+    // layers' core), and the floor layer's core: what the walls' boundary term does not reach.
+    double core_error = 0.0, core_floor_error = 0.0;
     double max_speed = 0.0, rms_speed = 0.0;
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock

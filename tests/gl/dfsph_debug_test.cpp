@@ -61,3 +61,34 @@ TEST_CASE("dfsph debug: fastest particles of the dam break", "[.dfsph-debug]") {
         rig.fluid.poll_records();
     }
 }
+
+// Hidden: the hydrostatic tank under DFSPH at RANRYU_DEBUG_SPACING, frame by frame: the rms and max
+// speed, where the fastest particle is, the step's records.
+TEST_CASE("dfsph debug: the tank at rest, frame by frame", "[.dfsph-rest]") {
+    const float dx = std::getenv("RANRYU_DEBUG_SPACING") ? std::strtof(std::getenv("RANRYU_DEBUG_SPACING"), nullptr) : 0.02f;
+    const int frames = std::getenv("RANRYU_DEBUG_FRAMES") ? std::atoi(std::getenv("RANRYU_DEBUG_FRAMES")) : 60;
+    ranryu::scene::Scene s = ranryu::scene::with_spacing(ranryu::scene::load("hydrostatic"), dx, "debug");
+    s.sph.solver = ranryu::scene::Solver::dfsph;
+    if (const char* e = std::getenv("RANRYU_DEBUG_VISCOSITY")) s.sph.viscosity = std::strtof(e, nullptr);
+    if (const char* e = std::getenv("RANRYU_DEBUG_WARM")) s.sph.warm_start = std::strtof(e, nullptr), s.sph.divergence_warm_start = std::strtof(e, nullptr);
+    if (const char* e = std::getenv("RANRYU_DEBUG_SOLVER")) s.sph.solver = std::string(e) == "wcsph" ? ranryu::scene::Solver::wcsph : ranryu::scene::Solver::dfsph;
+    ranryu::test::SphRig rig(s);
+    for (int f = 0; f < frames && !rig.fluid.instability(); ++f) {
+        rig.frame(std::uint64_t(f));
+        const auto v = rig.read(rig.fluid.velocities());
+        const auto x = rig.read(rig.fluid.positions());
+        const auto dens = rig.read(rig.fluid.densities());
+        double s2 = 0; float vmax = 0; std::size_t imax = 0;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const float l = glm::length(glm::vec3(v[i]));
+            s2 += double(l) * l;
+            if (l > vmax) vmax = l, imax = i;
+        }
+        const auto st = rig.step();
+        std::printf("frame %d: dt %.3g substeps %u iters (%u %u) err (%.2e %.2e) rms %.4f max %.4f at (%.3f %.3f %.3f) v (%.3f %.3f %.3f) rho %.1f p %.1f\n",
+                    f, st.dt, st.frame_substeps, st.iterations.x, st.iterations.y, st.error.x, st.error.y,
+                    std::sqrt(s2 / double(v.size())), vmax, x[imax].x, x[imax].y, x[imax].z, v[imax].x, v[imax].y, v[imax].z,
+                    dens[imax].x, dens[imax].y);
+    }
+    rig.finish();
+}

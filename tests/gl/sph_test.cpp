@@ -630,7 +630,8 @@ TEST_CASE("sph: a hydrostatic tank stays at rest", "[sph]") {
     ranryu::test::Random rng;   // no randomness; the seed is logged for the common form
     INFO("seed " << rng.seed());
     Rig rig(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.32, 0.4, 0.32]},
-                "particles": {"spacing": 0.04, "blocks": [{"min": [0, 0, 0], "max": [0.32, 0.24, 0.32]}]}})");
+                "particles": {"spacing": 0.04, "blocks": [{"min": [0, 0, 0], "max": [0.32, 0.24, 0.32]}]},
+                "sph": {"solver": "wcsph"}})");
     Fluid& sph = rig.fluid;
     REQUIRE(sph.count() == 384);
     const ref::Params c = rig.params();

@@ -1,7 +1,9 @@
-// The validation cases at llvmpipe sizes, with bounds derived from the resolution and the physics.
+// The validation cases at llvmpipe sizes, for each solver, with bounds derived from the resolution and
+// the physics.
 #include "support/gl_fixture.h"
 
 #include <cmath>
+#include <string>
 
 #include "scene/scene.h"
 #include "shader/source.h"
@@ -9,28 +11,58 @@
 
 using namespace ranryu;
 
-TEST_CASE("validate: dam break surge front against Martin & Moyce (1952) at a/dx = 8", "[validation]") {
+namespace {
+
+scene::Scene case_scene(const std::string& name, float dx, scene::Solver solver) {
+    scene::Scene s = scene::with_spacing(scene::load(name), dx, "test");
+    s.sph.solver = solver;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("validate: dam break surge front against Martin & Moyce (1952) at a/dx = 8, both solvers", "[validation]") {
     test::context();
-    const scene::Scene s = scene::with_spacing(scene::load("dam-break"), 0.025f, "test");
-    const validation::DamBreakResult r = validation::dam_break(s, shader::FileSource::embedded());
-    INFO("rms " << r.rms_error << ", max " << r.max_error << " over " << r.compared.size() << " points");
+    const auto& shaders = shader::FileSource::embedded();
+    const validation::DamBreakResult w = validation::dam_break(case_scene("dam-break", 0.025f, scene::Solver::wcsph), shaders);
+    scene::Scene free_slip = case_scene("dam-break", 0.025f, scene::Solver::dfsph);
+    scene::Scene no_slip = free_slip;
+    no_slip.sph.boundary_viscosity = no_slip.sph.viscosity;   // the wall as fluid at rest (docs/DFSPH.md (D7))
+    const validation::DamBreakResult f = validation::dam_break(free_slip, shaders);
+    const validation::DamBreakResult n = validation::dam_break(no_slip, shaders);
+    INFO("WCSPH rms " << w.rms_error << ", max " << w.max_error << ", " << w.steps << " steps; DFSPH free-slip rms " << f.rms_error
+                      << ", max " << f.max_error << ", " << f.steps << " steps; no-slip rms " << n.rms_error << ", max " << n.max_error);
     // Every experimental time up to T = 3.33 is covered, and the front moves forward.
-    CHECK(r.compared.size() == 15);
-    CHECK(r.simulated.back().second > 4.0);
-    // Bound: at a/dx = 8 the front is located to one spacing, dx/a = 0.125 in Z, and the leading
+    for (const auto* r : {&w, &f, &n}) {
+        CHECK(r->compared.size() == 15);
+        CHECK(r->simulated.back().second > 4.0);
+    }
+    // WCSPH. At a/dx = 8 the front is located to one spacing, dx/a = 0.125 in Z, and the leading
     // particle of a tip one particle thick runs ahead by about another; Martin & Moyce's repeated runs
     // scatter by about 0.1 in Z, and their early times lag a free release (the gate's opening). So
     // rms <= 2 dx/a + 0.1 = 0.35 and max <= 4 dx/a = 0.5. Measured on llvmpipe: rms 0.20, max 0.39.
-    CHECK(r.rms_error <= 2.0 * 0.125 + 0.1);
-    CHECK(r.max_error <= 4.0 * 0.125);
+    CHECK(w.rms_error <= 2.0 * 0.125 + 0.1);
+    CHECK(w.max_error <= 4.0 * 0.125);
+    // DFSPH, free-slip: the same bounds. Measured: rms 0.21, max 0.39, as WCSPH.
+    CHECK(f.rms_error <= 2.0 * 0.125 + 0.1);
+    CHECK(f.max_error <= 4.0 * 0.125);
+    // No-slip walls drag the toe: closer to the experiment than free-slip by more than the scatter of
+    // one spacing's worth in rms (0.125 / 4). Measured: rms 0.16 against 0.21.
+    CHECK(n.rms_error <= f.rms_error - 0.125 / 4.0);
+    CHECK(n.max_error <= f.max_error);
+    // Substeps, from the GPU's records over the same frames at the same spacing: WCSPH's step is bound
+    // by the artificial sound speed c = 10 v_max (dt = 0.4 dx / (c + v)), DFSPH's by the flow speed
+    // (dt = 0.4 dx / v): about 10x fewer at the surge's speed. Required (issue 11): at least 5x.
+    CHECK(double(w.steps) >= 5.0 * double(f.steps));
     test::require_no_gl_errors();
 }
 
-TEST_CASE("validate: a tank at rest follows rho0 g (H - z) in its interior", "[validation]") {
+TEST_CASE("validate: WCSPH tank at rest follows rho0 g (H - z) in its interior", "[validation]") {
     test::context();
-    const scene::Scene s = scene::with_spacing(scene::load("hydrostatic"), 0.02f, "test");
+    const scene::Scene s = case_scene("hydrostatic", 0.02f, scene::Solver::wcsph);
     const validation::HydrostaticResult r = validation::hydrostatic(s, shader::FileSource::embedded(), 0.5);
     const double g = 9.81, H = r.height, c = s.sound_speed();
+    REQUIRE(c > 0.0);
     INFO("interior error " << r.max_error << " of rho0 g H; speed max " << r.max_speed << ", rms " << r.rms_speed
                            << "; g H / c = " << g * H / c);
     REQUIRE(r.layers.size() >= 10);
@@ -48,5 +80,38 @@ TEST_CASE("validate: a tank at rest follows rho0 g (H - z) in its interior", "[v
     // (measured after 1 s: rms 1.1, max 2.6 g H / c).
     CHECK(r.rms_speed <= 1.5 * g * H / c);
     CHECK(r.max_speed <= 4.0 * g * H / c);
+    test::require_no_gl_errors();
+}
+
+TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings", "[validation]") {
+    test::context();
+    // 0.025 m and 0.02 m: 10 and 12 layers, 4 and 5 particles across the tank's 0.1 m depth, so most of
+    // the column lies within a kernel support of a wall. Measured on llvmpipe (docs/VALIDATION.md):
+    // interior 0.21 and 0.15 of rho0 g H, floor layer 1.09 and 1.00, spurious rms speed 0.11 and 0.08
+    // m/s. The floor layer reads about twice hydrostatic: the boundary's pressure term (docs/DFSPH.md
+    // (D3)) carries the fluid particle's own pressure once, where a fluid neighbour carries its own as
+    // well, so the solve holds the column with twice the pressure at the wall. Issue 11 asks for 1 %
+    // and 2 %: not met; these bounds guard what there is and that the error does not grow as dx shrinks.
+    const auto& shaders = shader::FileSource::embedded();
+    const validation::HydrostaticResult coarse = validation::hydrostatic(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph), shaders, 0.5);
+    const validation::HydrostaticResult fine = validation::hydrostatic(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph), shaders, 0.5);
+    INFO("interior " << coarse.max_error << " then " << fine.max_error << "; floor layer " << coarse.floor_error << " then "
+                     << fine.floor_error << "; rms speed " << coarse.rms_speed << " then " << fine.rms_speed << " m/s");
+    for (const auto* r : {&coarse, &fine}) {
+        REQUIRE(r->layers.size() >= 10);
+        // Pressure grows with depth, less one layer's weight of noise (the floor layer and the top
+        // kernel support aside, as for WCSPH).
+        for (std::size_t k = 1; k + 2 < r->layers.size(); ++k)
+            CHECK(r->layers[k].pressure >= r->layers[k + 1].pressure - 1000.0 * 9.81 * r->spacing);
+        CHECK(r->max_error <= 0.25);
+        CHECK(r->floor_error <= 1.25);
+        // No acoustic ringing here: the initial lattice rearranges at the walls within the first frame
+        // (rms 0.1 m/s after it) and nu = 1e-4 m^2/s barely damps that. Bound: a tenth of the free-fall
+        // speed over the column's height, sqrt(2 g H) = 2.2 m/s, in rms.
+        CHECK(r->rms_speed <= 0.1 * std::sqrt(2.0 * 9.81 * r->height));
+    }
+    // Not growing as dx shrinks, within the scatter of the averaging (0.02 of rho0 g H).
+    CHECK(fine.max_error <= coarse.max_error + 0.02);
+    CHECK(fine.floor_error <= coarse.floor_error + 0.02);
     test::require_no_gl_errors();
 }
