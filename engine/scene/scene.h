@@ -57,7 +57,7 @@ struct SphSettings {
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie
                                     // inside h, and forces reads that instead of testing every candidate
-                                    // again (glsl/sim/sph/compute_density.comp; docs/PERFORMANCE.md)
+                                    // again (glsl/sim/fluid/density_walk.glsl; docs/PERFORMANCE.md)
     std::string sort = "radix";     // "radix" | "bitonic"
     int max_substeps = 2000;        // per frame, the most the CPU will issue (a runaway bound; the guard's dt floor stops collapse)
     float density_limit = 1.5f;     // guard: rho/rho0 bound

@@ -1,5 +1,5 @@
 // Hidden (not run by default or by ctest): a debugging aid for DFSPH on the GPU host. Runs the dam
-// break at RANRYU_DEBUG_SPACING (m) for RANRYU_DEBUG_FRAMES frames, reads the state back after every
+// break (or RANRYU_DEBUG_SCENE) at RANRYU_DEBUG_SPACING (m) for RANRYU_DEBUG_FRAMES frames, reads the state back after every
 // step, and at the first step whose fastest particle exceeds RANRYU_DEBUG_SPEED (m/s) prints the
 // fastest particles and those of the largest kappa and kappa_v with their DFSPH fields, then fails.
 // It found the wall jets that a loose density tolerance let grow at 1M particles (docs/DFSPH.md).
@@ -16,7 +16,9 @@ TEST_CASE("dfsph debug: fastest particles of the dam break", "[.dfsph-debug]") {
     const float dx = std::getenv("RANRYU_DEBUG_SPACING") ? std::strtof(std::getenv("RANRYU_DEBUG_SPACING"), nullptr) : 0.004f;
     const int frames = std::getenv("RANRYU_DEBUG_FRAMES") ? std::atoi(std::getenv("RANRYU_DEBUG_FRAMES")) : 20;
     const float trigger = std::getenv("RANRYU_DEBUG_SPEED") ? std::strtof(std::getenv("RANRYU_DEBUG_SPEED"), nullptr) : 3.5f;
-    ranryu::scene::Scene s = ranryu::scene::with_spacing(ranryu::scene::load("dam-break"), dx, "debug");
+    const char* name = std::getenv("RANRYU_DEBUG_SCENE") ? std::getenv("RANRYU_DEBUG_SCENE") : "dam-break";
+    ranryu::scene::Scene s = ranryu::scene::with_spacing(ranryu::scene::load(name), dx, "debug");
+    s.sph.solver = ranryu::scene::Solver::dfsph;
     ranryu::test::SphRig rig(s);
     auto& d = rig.dfsph();
     for (int f = 0; f < frames && !rig.fluid.instability(); ++f) {
@@ -71,6 +73,9 @@ TEST_CASE("dfsph debug: the tank at rest, frame by frame", "[.dfsph-rest]") {
     s.sph.solver = ranryu::scene::Solver::dfsph;
     if (const char* e = std::getenv("RANRYU_DEBUG_VISCOSITY")) s.sph.viscosity = std::strtof(e, nullptr);
     if (const char* e = std::getenv("RANRYU_DEBUG_WARM")) s.sph.warm_start = std::strtof(e, nullptr), s.sph.divergence_warm_start = std::strtof(e, nullptr);
+    if (const char* e = std::getenv("RANRYU_DEBUG_DIVERGENCE")) s.sph.divergence_solve = std::atoi(e) != 0;
+    if (const char* e = std::getenv("RANRYU_DEBUG_MAX_DT")) s.sph.max_time_step = std::strtof(e, nullptr);
+    if (const char* e = std::getenv("RANRYU_DEBUG_ETA")) s.sph.max_density_error = std::strtof(e, nullptr);
     if (const char* e = std::getenv("RANRYU_DEBUG_SOLVER")) s.sph.solver = std::string(e) == "wcsph" ? ranryu::scene::Solver::wcsph : ranryu::scene::Solver::dfsph;
     ranryu::test::SphRig rig(s);
     for (int f = 0; f < frames && !rig.fluid.instability(); ++f) {
