@@ -1,6 +1,7 @@
-// `ranryu export-field`: samples the turbulence field y of METHOD.md §4 (engine/turbulence/noise.h) on
-// an N³ grid on the GPU and writes it as a NumPy .npy v1.0 file: float32, shape (N, N, N, 3), C order,
-// f[i, j, k] = y(L·(i, j, k)/N). Written to a temporary file beside the target, then renamed over it.
+// `ranryu export-field`: samples the turbulence field y of docs/METHOD.md §4
+// (engine/turbulence/noise.h) on an N³ grid on the GPU and writes it as a NumPy .npy v1.0 file:
+// float32, shape (N, N, N, 3), C order, f[i, j, k] = y(L·(i, j, k)/N). Written to a temporary file
+// beside the target, then renamed over it.
 #include <bit>
 #include <cmath>
 #include <cstdio>

@@ -278,9 +278,9 @@ Scene parse(const std::string& text, const std::string& origin) {
         p.finish();
     }
     {
-        // The turbulence force (METHOD.md §5, engine/turbulence/force.h). scale <= 1/3: the wavelet's
-        // truncation radius 3 s must fit in the neighbour grid's cell h (wavelet.h). Octaves up to 16:
-        // 2^16 x stays well inside float's exact range for tanks of metres.
+        // The turbulence force (docs/METHOD.md §5, engine/turbulence/force.h). scale <= 1/3: the
+        // wavelet's truncation radius 3 s must fit in the neighbour grid's cell h (wavelet.h).
+        // Octaves up to 16: 2^16 x stays well inside float's exact range for tanks of metres.
         Reader t = r.object("turbulence");
         TurbulenceSettings& u = s.turbulence;
         u.amplitude = float(t.number("amplitude", u.amplitude, 0.0, 1e4));

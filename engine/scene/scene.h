@@ -26,8 +26,8 @@ struct Obstacle {
     bool contains(glm::vec3 p, float margin = 0.0f) const;
 };
 
-// What moves the particles: "ballistic" (gravity and bouncing walls only, the seed's opening
-// example) or "sph" (docs/SPH.md).
+// What moves the particles: "ballistic" (gravity and bouncing walls only, the talk's opening
+// example, docs/METHOD.md §0) or "sph" (docs/SPH.md).
 enum class Model { ballistic, sph };
 
 // The pressure solver (sim/solver.h): DFSPH (docs/DFSPH.md) or WCSPH (docs/SPH.md (3)).
@@ -64,7 +64,7 @@ struct SphSettings {
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
 };
 
-// Sub-particles (METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches
+// Sub-particles (docs/METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches
 // `threshold` split into 8^L sub-particles, L = 1 + floor(log2(ê/threshold) / (2β)) up to `levels`.
 // levels = 0 (the default): nothing is built and no pass runs.
 struct SubparticleSettings {
@@ -74,7 +74,7 @@ struct SubparticleSettings {
     bool enabled() const { return levels > 0; }
 };
 
-// The turbulence force (METHOD.md §5; engine/turbulence/force.h): off unless amplitude > 0, and
+// The turbulence force (docs/METHOD.md §5; engine/turbulence/force.h): off unless amplitude > 0, and
 // then only with model "sph". With amplitude 0 nothing is constructed and no pass runs.
 struct TurbulenceSettings {
     float amplitude = 0.0f;           // A (1/m): the force per unit mass is A·ê·y (force.h)

@@ -11,7 +11,7 @@ namespace ranryu::shader {
 // A read-only tree of shader files addressed by paths relative to glsl/ ("sim/integrate.comp").
 class FileSource {
 public:
-    // The files embedded at build time (cmake/EmbedShaders.cmake).
+    // The files embedded at build time (cmake/Embed.cmake).
     static FileSource embedded();
     // The files under `root`, read when asked (for editing shaders without rebuilding).
     static FileSource directory(std::filesystem::path root);

@@ -24,9 +24,9 @@ int boundary_layers(float spacing, float support);
 // reach it.
 std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers);
 
-// The obstacles as the integrate pass's last-resort projection reads them (glsl/sim/sph/
-// integrate_particles.comp, storage block Obstacles): element 0 is (count, 0, 0, 0); then two vec4 an
-// obstacle: a box as (min, 0), (max, 0); a sphere as (center, 1), (radius, 0, 0, 0).
+// The obstacles as the integrate pass's last-resort projection reads them
+// (glsl/sim/fluid/motion.glsl, storage block Obstacles): element 0 is (count, 0, 0, 0);
+// then two vec4 an obstacle: a box as (min, 0), (max, 0); a sphere as (center, 1), (radius, 0, 0, 0).
 std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s);
 
 }  // namespace ranryu::sim

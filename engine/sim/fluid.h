@@ -5,7 +5,8 @@
 //     positions, velocities          vec4 per particle, in the neighbour grid's cell order of the
 //                                    last rebuild_grid(), moved by the last integration
 //     densities                      vec4 (rho, p, solver's own, flags): written by a solver's density
-//                                    pass, which also writes the neighbour masks (fluid/density_walk.glsl)
+//                                    pass, which also writes the neighbour masks
+//                                    (glsl/sim/fluid/density_walk.glsl)
 //     accelerations                  vec4: the step's non-pressure accelerations (WCSPH: all of them)
 //     carried arrays                 per-particle arrays that the reorder moves with the particles
 //     grid, cell ranges, boundary    the neighbour grid, and the boundary particles with their psi_b

@@ -1,5 +1,5 @@
 #pragma once
-// The uniform-grid neighbour search (METHOD.md §1; Green 2008): hash -> sort -> cell ranges ->
+// The uniform-grid neighbour search (docs/METHOD.md §1; Green 2008): hash -> sort -> cell ranges ->
 // reorder. After build(), the particles are in cell order and a cell's particles are the run
 // [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, and
 // "reorder", which finds the cell ranges and gathers the particles in one pass.
@@ -17,7 +17,7 @@
 
 namespace ranryu::sim {
 
-// Cells of size `cell` covering [min, max]; keys linear (the seed's) or Morton.
+// Cells of size `cell` covering [min, max]; keys linear (the talk's, docs/METHOD.md §1) or Morton.
 struct GridLayout {
     glm::vec3 origin{0.0f};
     float cell = 1.0f;

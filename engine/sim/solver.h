@@ -1,8 +1,8 @@
 #pragma once
-// A pressure solver: the algorithm that advances the fluid's state (sim/fluid.h) by one step. The
-// solvers are siblings over one state, as in SPlisHSPlasH: WCSPH (docs/SPH.md) and DFSPH
-// (docs/DFSPH.md) in sim/solvers/; the turbulence, the surface and the frame loop see only the state
-// and this interface, so a solver is added without touching them.
+// A pressure solver (docs/METHOD.md §2): the algorithm that advances the fluid's state (sim/fluid.h)
+// by one step. The solvers are siblings over one state, as in SPlisHSPlasH: WCSPH (docs/SPH.md) and
+// DFSPH (docs/DFSPH.md) in sim/solvers/; the turbulence, the surface and the frame loop see only the
+// state and this interface, so a solver is added without touching them.
 //
 // A step is, for every solver:
 //

@@ -1,6 +1,6 @@
 #pragma once
 // GPU sort of (uint key, uint value) pairs: the "sort" step of the grid neighbour search
-// (METHOD.md §1: hash -> sort (hash, index) -> cell ranges).
+// (docs/METHOD.md §1: hash -> sort (hash, index) -> cell ranges).
 //
 //   radix    LSD radix sort, 8-bit digits, stable (Satish, Harris & Garland, IPDPS 2009). Per digit:
 //            count_digits -> scan_counts -> scatter_digits (glsl/sim/sort/), passes "sort.count",

@@ -1,5 +1,5 @@
 #pragma once
-// The liquid's level set on a grid, from the particles, on the GPU (METHOD.md §7):
+// The liquid's level set on a grid, from the particles, on the GPU (docs/METHOD.md §7):
 //
 //     φ(x) = V · Σ_i W(|x - x_i|, R) - iso          φ > 0 inside, φ = 0 on the surface
 //
@@ -28,8 +28,8 @@
 //                                        grid's cells, glDispatchComputeIndirect
 // Nothing is read back; compute() allocates and compiles nothing.
 //
-// Sub-particles (turbulence/subparticles.h; METHOD.md §7, "φ from the sub-particles, each with a
-// kernel sized to its level"), when settings.subparticle_levels > 0:
+// Sub-particles (turbulence/subparticles.h; docs/METHOD.md §7: each sub-particle adds a kernel sized
+// to its level), when settings.subparticle_levels > 0:
 //
 //     φ(x) = V·Σ_{parents with E_i = 0} W(|x - x_i|, R) + Σ_children (V/8^E)·W(|x - x_c|, R_E) - iso
 //     R_E = max(R/2^E, 2·h)        (h the φ grid's node spacing; RANRYU_SUBPARTICLE_KERNEL_FLOOR)

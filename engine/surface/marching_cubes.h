@@ -1,6 +1,7 @@
 #pragma once
-// Marching cubes on the GPU (Lorensen & Cline, SIGGRAPH 1987), with the 256-case tables of Paul
-// Bourke's "Polygonising a scalar field" kept in glsl/surface/mc_tables.h for GLSL and C++ alike.
+// Marching cubes on the GPU (docs/METHOD.md §7; Lorensen & Cline, SIGGRAPH 1987), with the 256-case
+// tables of Paul Bourke's "Polygonising a scalar field" kept in glsl/surface/mc_tables.h for GLSL and
+// C++ alike.
 //
 // Input: any φ grid on the GPU, a float buffer and a SurfaceGrid buffer of which only origin and
 // dims are read (the level set writes both; a test may upload them). Output: non-indexed triangles,

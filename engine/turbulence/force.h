@@ -1,5 +1,5 @@
 #pragma once
-// The turbulence force on the SPH particles (METHOD.md §5):
+// The turbulence force on the SPH particles (docs/METHOD.md §5):
 //
 //     f_i = A · (P_i / Δt) · ê_i · y(x_i)
 //

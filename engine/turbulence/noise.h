@@ -1,5 +1,5 @@
 #pragma once
-// Turbulence synthesis (METHOD.md §4): band-limited wavelet noise (Cook & DeRose 2005) as a vector
+// Turbulence synthesis (docs/METHOD.md §4): band-limited wavelet noise (Cook & DeRose 2005) as a vector
 // potential N = (N1, N2, N3), its curl w = ∇×N, and the octave sum
 //
 //     y(x) = Σ_{i=lmin}^{lmax} w(2^i x + o_i) · 2^(−β (i − lmin))
@@ -14,7 +14,7 @@
 //
 // Curl: the exact (analytic) curl of that B-spline, from the derivatives of the B-spline weights
 // (glsl/turbulence/curl_noise.glsl). It is divergence-free as a function; checked with central
-// differences on a grid of spacing h it shows a truncation error of order (k·h)² (METHOD.md §4).
+// differences on a grid of spacing h it shows a truncation error of order (k·h)² (docs/METHOD.md §4).
 //
 // Units: x in metres; one tile cell of octave 0 is 1 m, so octave i has cells of 2^−i m and its band
 // holds wavelengths of about 2·2^−i to 4·2^−i m. The tiles repeat every n·2^−i m. o_i is a fixed

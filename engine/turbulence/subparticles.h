@@ -1,5 +1,5 @@
 #pragma once
-// Sub-particles: the turbulence below the particle scale (METHOD.md §6; docs/SUBPARTICLES.md has the
+// Sub-particles: the turbulence below the particle scale (docs/METHOD.md §6; docs/SUBPARTICLES.md has the
 // whole story). After the SPH substeps of a frame, every particle whose wavelet energy ê_i (m²/s²,
 // wavelet.h) reaches the threshold e_th is drawn and meshed as 8^E smaller particles that carry the
 // finer octaves of the curl noise; the others stay as they are.
@@ -12,9 +12,10 @@
 //     L_i = 0                                                if ê_i < e_th
 //     L_i = min(L_max, 1 + floor(log2(ê_i/e_th) / (2β)))     otherwise
 //
-// i.e. L_i - 1 is the largest k with ê_i·2^(-2βk) >= e_th. METHOD.md's e_crit(L) = ê·2^(-5L/3) is the
-// same rule in the convention where the energy *per octave* falls as k^(-5/3), β = 5/6 (2β = 5/3);
-// here β is the scene's, the one the force's noise uses, so sub-particles continue the same spectrum.
+// i.e. L_i - 1 is the largest k with ê_i·2^(-2βk) >= e_th. The paper's e_crit(L) = ê·2^(-5L/3)
+// (docs/METHOD.md §6) is the same rule in the convention where the energy *per octave* falls as
+// k^(-5/3), β = 5/6 (2β = 5/3); here β is the scene's, the one the force's noise uses, so
+// sub-particles continue the same spectrum.
 // On the GPU L_i is counted as the thresholds ê_i reaches, level_energy[k] = e_th·2^(2βk) (the same
 // rule, exact comparisons: the CPU's count from the same ê is the GPU's to the particle).
 //

@@ -1,11 +1,11 @@
 #pragma once
-// Wavelet analysis of the SPH velocity: where is the flow turbulent (METHOD.md §3). Per fluid
+// Wavelet analysis of the SPH velocity: where is the flow turbulent (docs/METHOD.md §3). Per fluid
 // particle i and scale s, the pass "wavelet" (glsl/turbulence/analyse_velocity.comp) computes
 //
 //     û_i = 1/ψ_sum,i · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²
 //
-// with the 3-D Mexican hat ψ(x) = (3 − |x|²)·e^(−|x|²/2) = −∇²e^(−|x|²/2). The choices METHOD.md §3
-// leaves open:
+// with the 3-D Mexican hat ψ(x) = (3 − |x|²)·e^(−|x|²/2) = −∇²e^(−|x|²/2). The choices the paper
+// leaves open (docs/METHOD.md §3):
 //   - Zero mean: u_j − u_i instead of u_j. Σ_j ψ_ij is not 0 on irregular samples (nor on any sample
 //     once ψ is truncated: ∫_{|x|<R} ψ = 4πR³e^(−R²/2), 3.77 for R = 3, a third of the peak of ψ̂),
 //     so Σ_j u_j ψ_ij would report a uniform flow as energy ∝ |u|². With u_j − u_i every term of a

@@ -1,5 +1,6 @@
 // The per-frame view block, the Phong model every raster pass shades with, and the environment
-// (floor checker, procedural sky) that the surface's Fresnel mode reflects and refracts.
+// (floor checker, procedural sky) that the surface's Fresnel mode reflects and refracts
+// (docs/METHOD.md §8).
 #include "../shared/bindings.h"
 #include "../render/shading.h"
 

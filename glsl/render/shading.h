@@ -15,8 +15,9 @@
 // attenuation exp(-sigma * path) of the refracted light. Set once when the scene is set.
 #define RANRYU_LOC_ABSORPTION 8
 
-// Particles drawn by sub-particle level (impostor.vert/.frag built with RANRYU_BY_LEVEL; renderer.h):
-// the parents' levels word (uint, per instance; turbulence/subparticles.h) and the draw's source.
+// Particles drawn by sub-particle level (impostor.vert and impostor.frag built with RANRYU_BY_LEVEL;
+// renderer.h): the parents' levels word (uint, per instance; turbulence/subparticles.h) and the draw's
+// source.
 #define RANRYU_ATTR_LEVEL 2
 #define RANRYU_LOC_IMPOSTOR_CHILDREN 9   // uint uniform: 0 parents (levels word), 1 sub-particles (level in position.w)
 // Base colours (linear rgb) of level 0 (a particle not split) to 3; a level-E sphere has radius r/2^E.

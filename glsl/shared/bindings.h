@@ -73,12 +73,12 @@ RANRYU_STRUCT(FrameParams) {
 }
 RANRYU_STRUCT_END(FrameParams, 320)
 
-// The uniform grid of the neighbour search (METHOD.md §1): cells of size h cover the domain.
+// The uniform grid of the neighbour search (docs/METHOD.md §1): cells of size h cover the domain.
 RANRYU_STRUCT(GridParams) {
     vec4 origin;        // xyz: lower corner of cell (0,0,0) (m); w: cell size (m) = kernel support h
     uvec4 dims;         // xyz: cells per axis; w: number of keys (cells, or the Morton code range)
     uint count;         // particles to hash
-    uint morton;        // 1: Morton (Z-order) keys; 0: linear keys i + j*nx + k*nx*ny (the seed's)
+    uint morton;        // 1: Morton (Z-order) keys; 0: linear keys i + j*nx + k*nx*ny (the talk's)
     uint key_max;       // largest key any particle can get
     uint pad0;
 }
@@ -213,8 +213,8 @@ RANRYU_STRUCT_END(LayoutProbe, 112)
 #define RANRYU_LOC_SURFACE_CAPACITY 4    // uvec4 uniform: x vertices, y active cells, z cells (MC buffer capacities)
 #define RANRYU_LOC_SURFACE_GROUP 5       // uvec4 uniform: workgroup size of the pass whose indirect arguments this pass writes
 
-// Level set constants (METHOD.md §7): φ(x) = volume · Σ_i W(|x - x_i|, kernel_radius) - iso, with W the
-// cubic spline of glsl/sim/kernel.glsl. engine/surface/level_set.h explains the defaults.
+// Level set constants (docs/METHOD.md §7): φ(x) = volume · Σ_i W(|x - x_i|, kernel_radius) - iso, with W
+// the cubic spline of glsl/sim/kernel.glsl. engine/surface/level_set.h explains the defaults.
 RANRYU_STRUCT(SurfaceParams) {
     uvec4 max_dims;        // xyz: most nodes per axis (the grid coarsens to fit); w: unused
     float node_spacing;    // finest node spacing (m)
@@ -233,7 +233,7 @@ RANRYU_STRUCT_END(SurfaceParams, 48)
 RANRYU_STRUCT(SurfaceGrid) {
     vec4 origin;         // xyz: node (0,0,0) (m); w: node spacing (m)
     uvec4 dims;          // xyz: nodes per axis (0 when there is nothing to mesh); w: nodes in all
-    uvec4 bounds_min;    // xyz: the particles' lower corner as order-preserving bits (see surface/bounds.glsl)
+    uvec4 bounds_min;    // xyz: the particles' lower corner as order-preserving bits (surface/ordered_float.glsl)
     uvec4 bounds_max;    // xyz: upper corner, likewise
     uvec4 dispatch;      // xyz: glDispatchComputeIndirect groups of the level-set pass; w: 1 if coarsened to fit max_dims
 }
@@ -258,12 +258,12 @@ RANRYU_STRUCT(MeshVertex) {
 RANRYU_STRUCT_END(MeshVertex, 32)
 // ---- end surface
 
-// ---- turbulence (engine/turbulence/, glsl/turbulence/): METHOD.md §3, §4 ----
+// ---- turbulence (engine/turbulence/, glsl/turbulence/): docs/METHOD.md §3, §4 ----
 // Wavelet analysis (engine/turbulence/wavelet.h, glsl/turbulence/analyse_velocity.comp), storage
 // blocks WaveletEnergy (vec4[particles]: xyz û_i, w ê_i = ½|û_i|², in the analysed cell order) and
 // WaveletConstants (WaveletParams, read-only).
 
-// The wavelet pass's constants (METHOD.md §3), written by WaveletAnalysis::analyse().
+// The wavelet pass's constants (docs/METHOD.md §3), written by WaveletAnalysis::analyse().
 RANRYU_STRUCT(WaveletParams) {
     float scale;            // s (m): ψ is evaluated at (x_i - x_j)/s
     float truncation;       // R: neighbours with |x_i - x_j|/s < R are summed; R·s <= the grid's cell

@@ -1,6 +1,6 @@
-// Cells and keys of the uniform neighbour grid (METHOD.md §1). Needs grid (GridParams) in scope.
+// Cells and keys of the uniform neighbour grid (docs/METHOD.md §1). Needs grid (GridParams) in scope.
 //
-// Linear keys are the seed's i + j*nx + k*nx*ny. Morton keys interleave the bits of (i, j, k)
+// Linear keys are the talk's i + j*nx + k*nx*ny. Morton keys interleave the bits of (i, j, k)
 // (bit b of i goes to bit 3b): cells close in space get close keys, so the sorted particles of
 // neighbouring cells sit closer in memory. Either way every cell has one key, and a key's particles
 // are the run [cell_start[key], cell_end[key]) of the sorted arrays.

@@ -1,5 +1,5 @@
 #version 430
-// Integrates every particle over one substep (METHOD.md §0, the seed's opening example) with the
+// Integrates every particle over one substep (docs/METHOD.md §0, the talk's opening example) with the
 // semi-implicit (symplectic) Euler step
 //     u(t+dt) = u(t) + dt·a,        x(t+dt) = x(t) + dt·u(t+dt),
 // which is exact for constant velocity and first-order accurate for u = a·t: it leads the analytic

@@ -1,5 +1,5 @@
 #version 430
-// "level-set" (METHOD.md §7): φ at every node of the grid that place_grid laid out,
+// "level-set" (docs/METHOD.md §7): φ at every node of the grid that place_grid laid out,
 //     φ(x) = V · Σ_i W(|x - x_i|, R) - iso,
 // W the cubic spline of glsl/sim/kernel.glsl with support R, V = dx^3 (so V·ΣW ≈ 1 inside liquid at
 // rest; engine/surface/level_set.h gives the choice of R and iso).

@@ -1,5 +1,5 @@
 #version 430
-// "subparticles.splat" (METHOD.md §7; engine/surface/level_set.h): the sub-particles' share of φ.
+// "subparticles.splat" (docs/METHOD.md §7; engine/surface/level_set.h): the sub-particles' share of φ.
 // One invocation per sub-particle (glDispatchComputeIndirect with SubparticleState.dispatch, the
 // spawn pass's arguments: the same local size, C++ checks). A level-E sub-particle at x_c adds
 //     (V/8^E) · W(|x - x_c|, R_E),   R_E = max(R·2^-E, RANRYU_SUBPARTICLE_KERNEL_FLOOR · h)

@@ -1,6 +1,6 @@
 #version 430
-// Wavelet analysis of the velocity at every fluid particle (METHOD.md §3; engine/turbulence/wavelet.h
-// states the choices and their reasons):
+// Wavelet analysis of the velocity at every fluid particle (docs/METHOD.md §3;
+// engine/turbulence/wavelet.h states the choices and their reasons):
 //
 //     û_i = 1/ψ_sum,i · Σ_j (u_j − u_i) · ψ((x_i − x_j)/s),     ê_i = ½|û_i|²   (m/s, m²/s²)
 //     ψ(x) = (3 − |x|²)·e^(−|x|²/2)          (3-D Mexican hat, −∇² of e^(−|x|²/2), zero mean)

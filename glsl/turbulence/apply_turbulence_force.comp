@@ -1,5 +1,5 @@
 #version 430
-// The turbulence force (METHOD.md §5; engine/turbulence/force.h states the choices):
+// The turbulence force (docs/METHOD.md §5; engine/turbulence/force.h states the choices):
 //     f_i = A (P_i/dt) ê_i y_c,i,   P_i = m_i·dt   =>   a_i += A ê_i y_c,i
 // A (1/m) the amplitude, ê_i (m²/s²) the wavelet energy of the current cell order
 // (analyse_velocity.comp), y_c,i the curl-noise octave sum carried with particle i

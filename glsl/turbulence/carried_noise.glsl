@@ -1,4 +1,4 @@
-// The noise carried with the fluid (METHOD.md §4, temporal coherence; engine/turbulence/noise.h has
+// The noise carried with the fluid (docs/METHOD.md §4, temporal coherence; engine/turbulence/noise.h has
 // the CPU reference). Each particle keeps, per phase p = 0, 1, the position s_p where it was when the
 // phase's current epoch began, and samples the octave sum there:
 //

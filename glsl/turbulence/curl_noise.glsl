@@ -1,4 +1,4 @@
-// Curl of wavelet noise (METHOD.md §4; engine/turbulence/noise.h has the construction and units).
+// Curl of wavelet noise (docs/METHOD.md §4; engine/turbulence/noise.h has the construction and units).
 // N = (N1, N2, N3): three tiles of Cook & DeRose wavelet noise, each a quadratic B-spline with the
 // tile's values as coefficients (C¹). w = ∇×N is the analytic curl of that spline: the gradients come
 // from the derivatives of the B-spline weights, so w is exactly divergence-free as a function.

@@ -1,5 +1,5 @@
 #version 430
-// Samples the turbulence field y (METHOD.md §4, glsl/turbulence/curl_noise.glsl) on a regular grid:
+// Samples the turbulence field y (docs/METHOD.md §4, glsl/turbulence/curl_noise.glsl) on a regular grid:
 // point (i, j, k) at origin + spacing·(i, j, k) goes to field[((i·ny + j)·nz + k)·3 + c], the C order
 // of an array of shape (nx, ny, nz, 3). Pass "noise.sample" (engine/turbulence/noise.cpp).
 #include "../shared/bindings.h"

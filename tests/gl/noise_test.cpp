@@ -4,7 +4,8 @@
 //   - divergence: the analytic curl checked with central differences on the sampling grid. For a
 //     Fourier mode the central difference reads k as sin(kh)/h, so div_h w ≈ −Σ_c k_c³h²/6·ŵ_c and
 //     |div_h| / |∇_h w| ≲ (k_max h)²/6 with k_max the top octave's tile Nyquist, π/(tile cell): the
-//     O((k·h)²) of METHOD.md §4. Checked at 8 samples per top-octave tile cell: bound (π/8)²/6 = 0.0257.
+//     O((k·h)²) of docs/METHOD.md §4. Checked at 8 samples per top-octave tile cell: bound
+//     (π/8)²/6 = 0.0257.
 //     The quadratic B-spline makes N only C¹, so w is C⁰ with kinks at the knots; a central difference
 //     across a kink errs by O(1) of the slope jump at a fraction O(h/cell) of the points, a part of the
 //     rms ratio that falls only like (h/cell)^½. Measured (seed 3, octaves 0..2, 48³): 0.079, 0.028,

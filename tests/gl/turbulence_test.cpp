@@ -1,4 +1,4 @@
-// The turbulence force of METHOD.md §5 in the SPH substep (engine/turbulence/force.h,
+// The turbulence force of docs/METHOD.md §5 in the SPH substep (engine/turbulence/force.h,
 // glsl/turbulence/apply_turbulence_force.comp). Reading: P_i = m_i·dt, so the pass adds
 //     a_i += A · ê_i · y_c,i        (A in 1/m, ê in m²/s², y_c dimensionless)
 // with y_c,i the noise carried with particle i (glsl/turbulence/carried_noise.glsl), and the noise

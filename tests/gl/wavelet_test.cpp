@@ -1,7 +1,7 @@
-// The wavelet analysis of METHOD.md §3 (engine/turbulence/wavelet.h, glsl/turbulence/analyse_velocity.comp)
-// against the double-precision brute-force reference (tests/reference/wavelet_reference.h) and the
-// continuum response of the Mexican hat, on jittered lattices uploaded into a sim::Sph with
-// upload_state() and sorted with rebuild_grid().
+// The wavelet analysis of docs/METHOD.md §3 (engine/turbulence/wavelet.h,
+// glsl/turbulence/analyse_velocity.comp) against the double-precision brute-force reference
+// (tests/reference/wavelet_reference.h) and the continuum response of the Mexican hat, on jittered
+// lattices uploaded into a sim::Sph with upload_state() and sorted with rebuild_grid().
 //
 // The particles. A 31x8x8 lattice of pitch p = h/3 (h the SPH support, 2 dx, the grid's cell),
 // jittered by up to ±0.1 p per axis, analysed at s = h/3 = p with truncation at R = 3: |x|/s < 3,

@@ -1,5 +1,5 @@
 #pragma once
-// CPU reference of the wavelet analysis (METHOD.md §3, engine/turbulence/wavelet.h): in double
+// CPU reference of the wavelet analysis (docs/METHOD.md §3, engine/turbulence/wavelet.h): in double
 // precision, brute force over all pairs (no grid), for reading, not speed.
 //
 //     û_i = 1/ψ_sum,i · Σ_{j: |x_i − x_j| < R s} (u_j − u_i) · ψ((x_i − x_j)/s),   ê_i = ½|û_i|²

@@ -1,5 +1,5 @@
 #version 430
-// Grid hash (METHOD.md §1 step 1): key[i] = the key of particle i's cell, value[i] = i.
+// Grid hash (docs/METHOD.md §1 step 1): key[i] = the key of particle i's cell, value[i] = i.
 #include "../../shared/bindings.h"
 
 layout(local_size_x = 256) in;

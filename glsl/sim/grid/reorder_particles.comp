@@ -1,5 +1,5 @@
 #version 430
-// Cell ranges and reorder (METHOD.md §1 step 3), one invocation per sorted index i:
+// Cell ranges and reorder (docs/METHOD.md §1 step 3), one invocation per sorted index i:
 //   - from the keys sorted ascending, the run of each key:
 //         cell_start[k] = first i with key[i] = k,   cell_end[k] = last such i + 1.
 //     Cells with no particle keep what they held: the 0, 0 they were cleared to (NeighbourGrid::build

@@ -1,5 +1,5 @@
 #version 430
-// "subparticles.classify", step 1 of 3: the raw level of every particle (METHOD.md §6;
+// "subparticles.classify", step 1 of 3: the raw level of every particle (docs/METHOD.md §6;
 // engine/turbulence/subparticles.h gives the rule and its reasoning).
 //   in   energy[i].w = ê_i (m²/s²), the wavelet energy of the fluid's cell order; sub.level_energy
 //   out  level[i] = L_i = the number of k in [0, levels) with ê_i >= level_energy[k]
