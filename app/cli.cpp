@@ -15,14 +15,14 @@ namespace {
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
-                "--records", "--shader-dir", "--gl-debug"}},
+                "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
-                 "--shading", "--shader-dir", "--gl-debug"}},
+                 "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
-    {"validate", {"--scene", "--spacing", "--solver", "--json", "--shader-dir", "--gl-debug"}},
+    {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quiet"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -140,6 +140,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
+        else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
             if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
@@ -167,11 +168,16 @@ commands:
   validate  run a validation case (dam-break, hydrostatic) against its reference
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
-  --version   print the version
+  --version   print the version and the commit it was built from
   --help      this text
 
+record, profile and validate show their progress on stderr (--quiet: none): a line rewritten in
+place on a terminal, else a plain line every 10 s (RANRYU_PROGRESS_SECONDS sets the interval).
+Ctrl-C (SIGINT) or SIGTERM stops a run after the frame in progress; a second one ends it at once.
+
 exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output folder),
-            3 the simulation went unstable (reported with the step and the cause)
+            3 the simulation went unstable (reported with the step and the cause),
+            130 stopped by SIGINT or SIGTERM (record: the frames so far and run.json are written)
 )";
 }
 
@@ -194,7 +200,9 @@ std::string command_help(const std::string& cmd) {
 )";
     if (cmd == "record")
         return "usage: ranryu record [options]\n\nRender a scene offscreen and write frame_00000.png, ... and run.json (scene, size,\n"
-               "frames, simulated time per frame, per-pass GPU timings) into --out, then print the timing table.\n\n" +
+               "frames, simulated time per frame, per-pass GPU timings) into --out, then print the timing table.\n"
+               "Ctrl-C (or SIGTERM) stops it after the frame in progress: every frame so far is written, and\n"
+               "run.json says \"interrupted\": true and the frame it stopped at (exit code 130).\n\n" +
                common +
                R"(  --frames N          frames to record (default 120)
   --out DIR           output folder (default out/SCENE); created if missing
@@ -204,6 +212,7 @@ std::string command_help(const std::string& cmd) {
                       shading of an SPH scene)
   --records FILE      also write the SPH simulation's record of every frame as CSV (time, steps,
                       dt, speeds, density, solver iterations and errors, the guard's counts)
+  --quiet             no progress line on stderr
 )";
     if (cmd == "profile")
         return "usage: ranryu profile [options]\n\nRun a scene headless for N frames and print, per GPU pass: calls per frame,\n"
@@ -213,6 +222,7 @@ std::string command_help(const std::string& cmd) {
   --json FILE         also write the report as JSON (device, driver, date, scene, particles, passes)
   --csv FILE          also write it as CSV, one row per pass
   --records FILE      also write the SPH simulation's record of every frame as CSV (warm-up included)
+  --quiet             no progress line on stderr
 )";
     if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
     if (cmd == "validate")
@@ -227,6 +237,7 @@ Run a case headless and print the simulation next to its reference, with the err
   --spacing DX        particle spacing in metres (default: the scene's)
   --solver NAME       dfsph | wcsph (default: the scene's)
   --json FILE         also write the series and errors as JSON
+  --quiet             no progress line on stderr
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";

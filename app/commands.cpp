@@ -12,6 +12,8 @@
 #include "core/error.h"
 #include "frame/loop.h"
 #include "frame/pipeline.h"
+#include "frame/progress.h"
+#include "frame/stop.h"
 #include "gl/context.h"
 #include "profile/report.h"
 #include "record/mesh_export.h"
@@ -91,6 +93,17 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
 
 scene::Scene load_scene(const Options& o) { return with_options(scene::load(o.scene), o); }
 
+frame::Progress make_progress(const Options& o, const std::string& label) {
+    double interval = 10.0;
+    if (const char* env = std::getenv("RANRYU_PROGRESS_SECONDS")) {
+        char* end = nullptr;
+        interval = std::strtod(env, &end);
+        if (!*env || *end || !(interval >= 0.0 && interval <= 86400.0))
+            throw InputError(std::string("RANRYU_PROGRESS_SECONDS=") + env + ": expected seconds in [0, 86400]");
+    }
+    return frame::Progress(label, frame::Progress::mode_for(stderr, o.quiet), stderr, interval);
+}
+
 scene::Scene with_options(scene::Scene s, const Options& o) {
     if (o.spacing) s = scene::with_spacing(s, *o.spacing, "--spacing");
     if (!o.solver.empty()) {
@@ -148,6 +161,7 @@ int record(const Options& o) {
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(120);
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
+    frame::Progress progress = make_progress(o, "ranryu record");
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
@@ -182,18 +196,29 @@ int record(const Options& o) {
         recorder->capture(p.target());
         if (meshes) meshes->capture(p.mesh()->vertices(), p.mesh()->state());
     };
-    hooks.after = [&](frame::Pipeline&) { validate(); };
+    hooks.after = [&](frame::Pipeline& p) {
+        validate();
+        progress.update(p);
+    };
+    progress.expect(std::uint64_t(frames));
     log.start_clock();
-    frame::run_frames(pipeline, std::uint64_t(frames), hooks);
+    const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
+    const bool interrupted = ran < std::uint64_t(frames) && frame::stop_requested();   // cut short by a signal
+    progress.finish();
+    // Stopped or not, every frame captured is written (or, after an instability, dropped) first.
     pipeline.drain();
     log.stop_clock();
     validate();
     recorder->finish();
     if (meshes) meshes->finish();
 
-    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, 0), log.summary());
+    const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, int(ran), 0), log.summary());
     nlohmann::json run = profile::to_json(report);
     run["scene_origin"] = scene.origin;
+    run["frames_requested"] = frames;
+    // A run stopped by SIGINT or SIGTERM: the frames before `interrupted_at_frame` ran.
+    run["interrupted"] = interrupted;
+    run["interrupted_at_frame"] = interrupted ? nlohmann::json(ran) : nlohmann::json(nullptr);
     run["frames_written"] = recorder->frames_written();
     run["frame_pattern"] = "frame_%05d.png";
     run["simulated_seconds"] = pipeline.simulated_time();
@@ -216,6 +241,7 @@ int record(const Options& o) {
                 size.x, size.y, out.string().c_str());
     std::printf("%s", profile::table(report).c_str());
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    if (interrupted) throw frame::interrupted(ran, std::uint64_t(frames));
     return 0;
 }
 
@@ -223,25 +249,36 @@ int profile_cmd(const Options& o) {
     const scene::Scene scene = load_scene(o);
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(300);
+    frame::Progress progress = make_progress(o, "ranryu profile");
+    progress.expect(std::uint64_t(o.warmup) + std::uint64_t(frames));
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, std::uint64_t(o.warmup), o.records);
-    frame::run_frames(pipeline, std::uint64_t(o.warmup));
-    pipeline.drain();
-    if (const auto& bad = pipeline.instability()) {
+    // Stopped by an instability or cut short by a signal: the records so far, and no report.
+    auto check_stopped = [&](bool cut_short) {
+        const auto& bad = pipeline.instability();
+        if (!bad && !cut_short) return;
+        progress.finish();
         log.write_records(o.records);
-        throw sim::UnstableError(*bad);
-    }
+        if (bad) throw sim::UnstableError(*bad);
+        throw frame::interrupted(pipeline.frames(), std::uint64_t(o.warmup) + std::uint64_t(frames));
+    };
+    bool cut_short = frame::run_frames(pipeline, std::uint64_t(o.warmup), progress.hooks()) < std::uint64_t(o.warmup) &&
+                     frame::stop_requested();
+    pipeline.drain();
+    check_stopped(cut_short);
     pipeline.timer().reset_samples();
     if (turbulence::Subparticles* sub = pipeline.subparticles()) sub->count_from(pipeline.frames());
     log.start_clock();
-    frame::run_frames(pipeline, std::uint64_t(frames));
+    cut_short = frame::run_frames(pipeline, std::uint64_t(frames), progress.hooks()) < std::uint64_t(frames) &&
+                frame::stop_requested();
+    progress.finish();
     pipeline.drain();
     log.stop_clock();
     pipeline.poll();
+    check_stopped(cut_short);
     log.write_records(o.records);
-    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "frame/progress.h"
 #include "gl/context.h"
 #include "scene/scene.h"
 #include "shader/source.h"
@@ -21,4 +22,7 @@ shader::FileSource shader_source(const Options& o);
 std::unique_ptr<gl::HeadlessContext> headless(const Options& o);
 scene::Scene load_scene(const Options& o);
 scene::Scene with_options(scene::Scene s, const Options& o);   // --spacing, --solver
+// The progress line on stderr (frame/progress.h) labelled `label`: none with --quiet; on a log, a
+// line every 10 s or every RANRYU_PROGRESS_SECONDS (InputError when that is not a number of seconds).
+frame::Progress make_progress(const Options& o, const std::string& label);
 }  // namespace ranryu::app

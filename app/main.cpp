@@ -1,5 +1,5 @@
 // ranryu: run | record | profile | scenes | validate | export-field. Errors end here: one line on stderr, and the exit code
-// of their kind (0 ok, 1 failure, 2 bad input, 3 unstable simulation).
+// of their kind (0 ok, 1 failure, 2 bad input, 3 unstable simulation, 130 stopped by SIGINT or SIGTERM).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -7,15 +7,19 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "version.h"
 #include "core/error.h"
+#include "frame/stop.h"
 
 int main(int argc, char** argv) {
     using namespace ranryu;
     try {
         const app::Options o = app::parse(std::vector<std::string>(argv + 1, argv + argc));
         if (o.command == "help") return std::fputs(app::usage().c_str(), stdout), 0;
-        if (o.command == "version") return std::printf("ranryu %s\n", RANRYU_VERSION), 0;
+        if (o.command == "version") return std::printf("ranryu %s (commit %s)\n", RANRYU_VERSION, app::commit()), 0;
         if (o.help) return std::fputs(app::command_help(o.command).c_str(), stdout), 0;
+        // The headless runs stop at a frame boundary on SIGINT or SIGTERM, and exit 130.
+        if (o.command == "record" || o.command == "profile" || o.command == "validate") frame::stop_on_signals();
         if (o.command == "run") return app::run(o);
         if (o.command == "record") return app::record(o);
         if (o.command == "profile") return app::profile_cmd(o);

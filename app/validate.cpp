@@ -17,6 +17,7 @@ int validate(const Options& o) {
     if (o.case_name != "dam-break" && o.case_name != "hydrostatic")
         throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic)");
     const scene::Scene scene = with_options(scene::load(o.scene_given ? o.scene : o.case_name), o);
+    frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     nlohmann::json j = {{"case", o.case_name},
@@ -28,7 +29,8 @@ int validate(const Options& o) {
                         {"scene_origin", scene.origin},
                         {"boundary_viscosity", scene.sph.boundary_viscosity}};
     if (o.case_name == "dam-break") {
-        const validation::DamBreakResult r = validation::dam_break(scene, shaders);
+        const validation::DamBreakResult r = validation::dam_break(scene, shaders, &progress);
+        progress.finish();
         std::printf("dam-break (Martin & Moyce 1952, n^2 = 2): a = %.3f m, spacing %.4f m (a/dx = %.1f), %zu particles\n", r.a,
                     r.spacing, r.a / r.spacing, r.particles);
         std::printf("%8s %10s %10s %10s\n", "T", "Z exp", "Z sim", "diff");
@@ -49,7 +51,8 @@ int validate(const Options& o) {
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});
     } else {
-        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0);
+        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
+        progress.finish();
         std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s\n", r.height, r.spacing, r.particles);
         std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);

@@ -1,12 +1,13 @@
 #pragma once
 // Errors carry the process exit code the app reports (README: 0 ok, 1 failure, 2 bad input,
-// 3 unstable simulation), so the app has one catch site and one message line per failure.
+// 3 unstable simulation, 130 interrupted by SIGINT or SIGTERM: frame/stop.h), so the app has one
+// catch site and one message line per failure.
 #include <stdexcept>
 #include <string>
 
 namespace ranryu {
 
-enum class Exit : int { ok = 0, failure = 1, bad_input = 2, unstable = 3 };
+enum class Exit : int { ok = 0, failure = 1, bad_input = 2, unstable = 3, interrupted = 130 };
 
 class Error : public std::runtime_error {
 public:

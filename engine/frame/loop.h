@@ -11,8 +11,11 @@
 //     pipeline.poll()               the records that came back (never waits)
 //     hooks.after(pipeline)         what the command does with them
 //
-// The loop ends after `frames` frames (none: until hooks.keep_going says stop), or at the first frame
-// whose record shows an instability: the caller decides what to report (the loop never throws it).
+// The loop ends after `frames` frames (none: until hooks.keep_going says stop), at the first frame
+// whose record shows an instability, or at the frame boundary after SIGINT or SIGTERM once the
+// command has called stop_on_signals() (frame/stop.h): the caller decides what to report (the loop
+// never throws it). A command's progress line is a Progress's update() in hooks.after
+// (frame/progress.h).
 #include <cstdint>
 #include <functional>
 #include <optional>

@@ -120,6 +120,12 @@ double Pipeline::simulated_time() const {
     return double(frames_) * double(ballistic_->params().dt) * substeps_;
 }
 
+std::optional<std::uint32_t> Pipeline::substeps_per_frame() const {
+    if (!sph_) return std::uint32_t(substeps_);
+    const auto& last = sph_->fluid().last_record();
+    return last ? std::optional<std::uint32_t>(last->frame_substeps) : std::nullopt;
+}
+
 void Pipeline::set_camera(const render::Camera& cam) {
     camera_ = cam;
     if (renderer_) renderer_->set_frame(render::frame_params(scene_, camera_, target_.width(), target_.height()));

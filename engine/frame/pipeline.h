@@ -91,6 +91,9 @@ public:
     const turbulence::Subparticles* subparticles() const { return sub_.get(); }
     // Simulated time: the GPU's clock as last read back for SPH (frames late), else frames x frame_dt.
     double simulated_time() const;
+    // Substeps a frame: for SPH those of the frame whose record came back last (nothing before the
+    // first), else the scene's fixed count.
+    std::optional<std::uint32_t> substeps_per_frame() const;
     std::uint64_t frames() const { return frames_; }
 
 private:

@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "frame/loop.h"
 #include "frame/pipeline.h"
+#include "frame/progress.h"
+#include "frame/stop.h"
 #include "sim/simulation.h"
 
 namespace ranryu::validation {
@@ -51,16 +53,18 @@ frame::Pipeline simulation_only(const scene::Scene& scene, const shader::FileSou
     return frame::Pipeline(scene, shaders, view);
 }
 
-// Runs `frames` frames of the shared frame loop and waits for their records. Throws UnstableError.
-void run(frame::Pipeline& pipeline, int frames) {
-    frame::run_frames(pipeline, std::uint64_t(frames));
+// Runs `frames` frames of the shared frame loop and waits for their records. Throws UnstableError,
+// or frame::interrupted() when a signal cut the frames short.
+void run(frame::Pipeline& pipeline, int frames, frame::Progress* progress) {
+    const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), progress ? progress->hooks() : frame::FrameHooks{});
     pipeline.drain();
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
 }
 
 }  // namespace
 
-DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders) {
+DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
     if (scene.model != scene::Model::sph || scene.blocks.empty()) throw InputError("dam-break: the scene must be SPH with one block");
     const scene::Block& column = scene.blocks.front();
     DamBreakResult r;
@@ -83,8 +87,9 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
         r.simulated.emplace_back(double(s.time) * time_scale, (front - r.wall) / r.a);
         r.steps += s.frame_substeps;
     });
+    if (progress) progress->expect(std::uint64_t(frames));
     const auto start = std::chrono::steady_clock::now();
-    run(pipeline, frames);
+    run(pipeline, frames, progress);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     double sum2 = 0.0;
@@ -100,7 +105,8 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     return r;
 }
 
-HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s) {
+HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
+                              frame::Progress* progress) {
     if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("hydrostatic: the scene must be SPH with one block");
     HydrostaticResult r;
     r.height = scene.blocks.front().max.y - scene.tank_min.y;
@@ -109,8 +115,11 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
     fluid.set_record_sink([&](const gpu::StepState& s) { r.steps += s.frame_substeps; });
+    const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
+    const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
+    if (progress) progress->expect(std::uint64_t(settle_frames + average_frames));
     const auto start = std::chrono::steady_clock::now();
-    run(pipeline, int(std::ceil(settle_s / scene.frame_dt)));
+    run(pipeline, settle_frames, progress);
 
     // The column starts uncompressed and rings acoustically (period 4 H / c); a snapshot lands at
     // some phase of that. So the pressure profile is averaged over the next half second, read back
@@ -125,10 +134,9 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         return p.x - scene.tank_min.x > support && scene.tank_max.x - p.x > support && p.z - scene.tank_min.z > support &&
                scene.tank_max.z - p.z > support;
     };
-    const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     std::vector<glm::vec4> x, v, d;
     for (int f = 0; f < average_frames; ++f) {
-        run(pipeline, 1);
+        run(pipeline, 1, progress);
         x = fluid.positions().read<glm::vec4>(fluid.count());
         d = fluid.densities().read<glm::vec4>(fluid.count());
         for (std::size_t i = 0; i < x.size(); ++i) {

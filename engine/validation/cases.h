@@ -9,7 +9,14 @@
 #include "scene/scene.h"
 #include "shader/source.h"
 
+namespace ranryu::frame {
+class Progress;
+}
+
 namespace ranryu::validation {
+
+// Each case runs the shared frame loop; with a `progress`, it sets the run's length and shows its
+// line. Throws sim::UnstableError, or frame::interrupted() when SIGINT or SIGTERM stopped the run.
 
 // Martin & Moyce (1952), n^2 = 2: surge front Z = z/a against T = t sqrt(2g/a).
 struct DamBreakResult {
@@ -22,7 +29,7 @@ struct DamBreakResult {
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
 };
-DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders);
+DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
 
 // A tank at rest after `settle_s` seconds: pressure in layers one spacing thick, averaged over the
 // next half second, against rho0 g (H - z); and the spurious velocity at the end.
@@ -40,6 +47,7 @@ struct HydrostaticResult {
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
 };
-HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s);
+HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
+                              frame::Progress* progress = nullptr);
 
 }  // namespace ranryu::validation

@@ -10,13 +10,62 @@ using namespace ranryu::test;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 
-TEST_CASE("ranryu --version prints the version", "[cli][info]") {
+TEST_CASE("ranryu --version prints the version and the commit it was built from", "[cli][info]") {
     TempDir tmp;
     const Result r = run_ranryu(tmp.path(), {"--version"});
     INFO(r.describe());
     CHECK(r.exit_code == 0);
     CHECK(r.err.empty());
-    CHECK(std::regex_match(r.out, std::regex(R"(ranryu \d+\.\d+\.\d+\n)")));
+    std::smatch m;
+    REQUIRE(std::regex_match(r.out, m, std::regex(R"(ranryu \d+\.\d+\.\d+ \(commit ([0-9a-f]{40}(-dirty)?|unknown)\)\n)")));
+    // Built from this checkout: a commit of its history (HEAD may have moved on since the build).
+    if (fs::exists(source_dir() / ".git") && on_path("git")) {
+        const std::string hash = m[1].str().substr(0, 40);
+        const Result git = run({"git", "-C", source_dir().string(), "cat-file", "-e", hash + "^{commit}"});
+        INFO(git.describe());
+        CHECK(git.exit_code == 0);
+    }
+}
+
+TEST_CASE("ranryu --version: the commit is \"unknown\" when built outside a git checkout", "[cli][info]") {
+    // cmake/Commit.cmake, which the build runs, on a tarball's tree: no .git, or inside another checkout.
+    TempDir tmp;
+    const fs::path tarball = tmp / "ranryu-0.1.0";
+    fs::create_directories(tarball);
+    auto commit_of = [&](const fs::path& source, const std::string& git) {
+        const fs::path out = tmp / "commit.cpp";
+        const Result r = run({RANRYU_CMAKE, "-DSOURCE_DIR=" + source.string(), "-DOUTPUT=" + out.string(), "-DGIT=" + git, "-P",
+                              (source_dir() / "cmake" / "Commit.cmake").string()});
+        INFO(r.describe());
+        REQUIRE(r.exit_code == 0);
+        std::smatch m;
+        const std::string text = read_file(out);
+        REQUIRE(std::regex_search(text, m, std::regex(R"re(return "([^"]*)";)re")));
+        return m[1].str();
+    };
+    CHECK(commit_of(tarball, "") == "unknown");   // no git at all
+    if (!on_path("git")) return;
+    CHECK(commit_of(tarball, "git") == "unknown");
+    // Unpacked inside a checkout of something else: that checkout's commit is not ours.
+    const std::vector<std::string> git = {"git", "-C", tmp.path().string(), "-c", "user.name=t", "-c", "user.email=t@example.com",
+                                        "-c", "commit.gpgsign=false"};
+    auto git_run = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), git.begin(), git.end());
+        const Result r = run(args);
+        INFO(r.describe());
+        REQUIRE(r.exit_code == 0);
+        return r.out;
+    };
+    git_run({"init", "-q"});
+    write_file(tmp / "file.txt", "x\n");
+    git_run({"add", "file.txt"});
+    git_run({"commit", "-q", "-m", "other"});
+    CHECK(commit_of(tarball, "git") == "unknown");
+    // The top of a checkout: its commit, and "-dirty" once a tracked file changes.
+    const std::string head = git_run({"rev-parse", "HEAD"}).substr(0, 40);
+    CHECK(commit_of(tmp.path(), "git") == head);
+    write_file(tmp / "file.txt", "y\n");
+    CHECK(commit_of(tmp.path(), "git") == head + "-dirty");
 }
 
 TEST_CASE("ranryu --help lists every command and the exit codes", "[cli][info]") {
@@ -37,8 +86,8 @@ TEST_CASE("ranryu COMMAND --help mentions each option the command takes", "[cli]
     const std::vector<std::string> common = {"--scene", "--size", "--shader-dir", "--gl-debug"};
     const std::vector<std::pair<std::string, std::vector<std::string>>> commands = {
         {"run", {"--frames", "--screenshot"}},
-        {"record", {"--frames", "--out", "--force"}},
-        {"profile", {"--frames", "--warmup", "--json", "--csv"}},
+        {"record", {"--frames", "--out", "--force", "--quiet"}},
+        {"profile", {"--frames", "--warmup", "--json", "--csv", "--quiet"}},
         {"scenes", {}},
     };
     for (const auto& [cmd, own] : commands) {

@@ -36,7 +36,7 @@ TEST_CASE("ranryu run under Xvfb saves a --screenshot that is not blank", "[cli]
     const std::string shot = tmp.str("shot.png");
     const Result r = run({"xvfb-run", "-a", "-s", "-screen 0 640x480x24", kBin, "run", "--frames", "5", "--size", "64x48",
                           "--screenshot", shot},
-                         {.cwd = tmp.path(), .timeout = std::chrono::seconds(60), .unset_env = {}});
+                         {.cwd = tmp.path(), .timeout = std::chrono::seconds(60), .unset_env = {}, .set_env = {}});
     INFO(r.describe());
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("wrote " + shot));
@@ -66,7 +66,7 @@ TEST_CASE("ranryu run --screenshot onto an existing file is refused without touc
     const auto mtime = fs::last_write_time(shot);
 
     // No display at all: the refusal must come before any window is opened.
-    const RunOptions no_display{.cwd = tmp.path(), .timeout = std::chrono::seconds(60), .unset_env = {"DISPLAY", "WAYLAND_DISPLAY"}};
+    const RunOptions no_display{.cwd = tmp.path(), .timeout = std::chrono::seconds(60), .unset_env = {"DISPLAY", "WAYLAND_DISPLAY"}, .set_env = {}};
     const Result r = run_ranryu(tmp.path(), {"run", "--frames", "5", "--size", "64x48", "--screenshot", shot}, no_display);
     INFO(r.describe());
     CHECK(r.exit_code == 2);

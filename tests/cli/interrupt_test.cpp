@@ -1,0 +1,147 @@
+// SIGINT and SIGTERM stop a run at a frame boundary (engine/frame/stop.h): exit code 130 with one
+// line naming the signal; record writes every frame it ran, each a whole PNG, and run.json saying it
+// was interrupted and at which frame.
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "image.h"
+#include "run_helper.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::vector<std::string> pngs_in(const fs::path& dir) {
+    std::vector<std::string> names;
+    if (!fs::is_directory(dir)) return names;
+    for (const std::string& name : list_dir(dir))
+        if (name.ends_with(".png")) names.push_back(name);
+    return names;
+}
+
+// Polls until `done` holds or `limit` passes; says whether it held.
+template <class F>
+bool wait_until(F done, std::chrono::seconds limit = std::chrono::seconds(60)) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (!done()) {
+        if (std::chrono::steady_clock::now() > end) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+}
+
+// A PNG that ends with its IEND chunk (length 0, "IEND", its CRC) and decodes at the size asked.
+void check_whole_png(const fs::path& file, int width, int height) {
+    INFO(file.string());
+    const std::string bytes = read_file(file);
+    static const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    REQUIRE(bytes.size() > iend.size());
+    CHECK(bytes.compare(bytes.size() - iend.size(), iend.size(), iend) == 0);
+    const Image img = load_png(file);
+    INFO(img.error);
+    REQUIRE(img.ok());
+    CHECK(img.width == width);
+    CHECK(img.height == height);
+}
+
+// Starts `record` of a million frames of `scene`, signals it once a few frames are on disk, and
+// checks what it leaves.
+void check_interrupted_record(const std::string& scene, const std::vector<std::string>& extra, int signal, const std::string& name) {
+    TempDir tmp;
+    const fs::path out = tmp / "out";
+    const std::uint64_t asked = 1'000'000;
+    std::vector<std::string> args = {"record", "--scene", scene_file(scene).string(), "--size", "64x48",
+                                     "--frames", std::to_string(asked), "--out", out.string(), "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    Child child = start_ranryu(tmp.path(), args);
+    const bool started = wait_until([&] { return pngs_in(out).size() >= 3; });
+    kill(child.pid, signal);
+    const Result r = wait(child);
+    INFO(r.describe());
+    REQUIRE(started);
+
+    CHECK(r.exit_code == 130);
+    REQUIRE(r.err_lines().size() == 1);
+    CHECK(std::regex_search(r.err, std::regex("^ranryu: interrupted by " + name + " after \\d+ of 1000000 frames\n$")));
+    CHECK_THAT(r.out, Contains("wrote ") && Contains(" and run.json to "));
+
+    const nlohmann::json run = nlohmann::json::parse(read_file(out / "run.json"));
+    INFO(run.dump(2));
+    CHECK(run["interrupted"] == true);
+    REQUIRE(run["interrupted_at_frame"].is_number_unsigned());
+    const auto at = run["interrupted_at_frame"].get<std::uint64_t>();
+    CHECK(at >= 3);
+    CHECK(at < asked);
+    CHECK(run["frames"] == at);
+    CHECK(run["frames_requested"] == asked);
+    CHECK(run["frames_written"] == at);
+    CHECK_FALSE(run.contains("instability"));
+    CHECK_THAT(r.err, Contains("after " + std::to_string(at) + " of"));
+
+    // Exactly frames 0 .. at-1, each whole, and nothing half-written (.tmp) beside them.
+    std::vector<std::string> want;
+    for (std::uint64_t f = 0; f < at; ++f) {
+        char file[32];
+        std::snprintf(file, sizeof file, "frame_%05llu.png", static_cast<unsigned long long>(f));
+        want.push_back(file);
+    }
+    want.push_back("run.json");
+    CHECK(list_dir(out) == want);
+    for (const std::string& png : pngs_in(out)) check_whole_png(out / png, 64, 48);
+}
+
+}  // namespace
+
+TEST_CASE("interrupt: SIGINT stops record at a frame boundary with every frame written and run.json saying so",
+          "[cli][interrupt]") {
+    check_interrupted_record("small.json", {}, SIGINT, "SIGINT");
+}
+
+TEST_CASE("interrupt: SIGTERM stops an SPH record, whose frames wait for their records, the same way", "[cli][interrupt]") {
+    // The gated path: frames captured but not yet validated when the signal comes are written too.
+    check_interrupted_record("jet-at-box.json", {"--shading", "particles"}, SIGTERM, "SIGTERM");
+}
+
+TEST_CASE("interrupt: a record that is not interrupted says so in run.json", "[cli][interrupt]") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--frames", "2", "--out", "out"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json run = nlohmann::json::parse(read_file(tmp / "out" / "run.json"));
+    CHECK(run["interrupted"] == false);
+    CHECK(run["interrupted_at_frame"].is_null());
+    CHECK(run["frames_requested"] == 2);
+}
+
+TEST_CASE("interrupt: SIGINT stops profile and validate with exit code 130 and one line", "[cli][interrupt]") {
+    TempDir tmp;
+    // The progress on stderr, every frame, shows the run is in its frame loop (handlers installed).
+    RunOptions opt;
+    opt.set_env = {{"RANRYU_PROGRESS_SECONDS", "0"}};
+    const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
+        {"profile", {"profile", "--scene", scene_file("small.json").string(), "--warmup", "0", "--frames", "1000000",
+                     "--json", "profile.json"}},
+        {"validate dam-break", {"validate", "dam-break", "--spacing", "0.02", "--json", "front.json"}},
+    };
+    for (const auto& [label, args] : runs) {
+        Child child = start_ranryu(tmp.path(), args, opt);
+        const bool started = wait_until([&] { return child.err_so_far().find("ranryu " + label + ": frame 3/") != std::string::npos; });
+        kill(child.pid, SIGINT);
+        const Result r = wait(child);
+        INFO(r.describe());
+        REQUIRE(started);
+        CHECK(r.exit_code == 130);
+        const auto lines = r.err_lines();
+        REQUIRE(!lines.empty());
+        CHECK(std::regex_match(lines.back(), std::regex("ranryu: interrupted by SIGINT after \\d+( of \\d+)? frames")));
+        for (std::size_t i = 0; i + 1 < lines.size(); ++i) CHECK_THAT(lines[i], Contains("ranryu " + label + ": frame "));
+        // No report of a run cut short.
+        CHECK_FALSE(fs::exists(tmp / "profile.json"));
+        CHECK_FALSE(fs::exists(tmp / "front.json"));
+    }
+}
