@@ -4,7 +4,7 @@
 #     scripts/gpu/check-scenes.sh "dfsph wcsph" own|250k|1M [seconds]
 # own: each scene's own spacing; 250k and 1M: the spacing that gives about that many particles,
 # (fluid volume / N)^(1/3) with the volumes below. Particles drawn as points (the surface passes do
-# not touch the simulation). Each run's output goes to $OUT (or ./bench-out); a table is printed last:
+# not touch the simulation). RUN_TIMEOUT bounds each run (580 s). Each run's output goes to $OUT (or ./bench-out); a table is printed last:
 # scene, solver, particles, frames, exit code (3: the guard fired, with its finding), substeps a frame.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -30,7 +30,7 @@ for scene in dam-break drop turbulent-jet hydrostatic falling-block; do
     if [ "$scene" = falling-block ]; then [ "$s" != "${solvers%% *}" ] && continue; solver=(); fi
     name="scene-$scene-$s-$scale"
     start=$(date +%s.%N)
-    timeout 580 $B profile --scene "$scene" "${solver[@]}" "${spacing[@]}" --shading particles --size 640x360 \
+    timeout "${RUN_TIMEOUT:-580}" $B profile --scene "$scene" "${solver[@]}" "${spacing[@]}" --shading particles --size 640x360 \
       --frames "$frames" --warmup 0 --json "$out/$name.json" > "$out/$name.txt" 2>&1
     rc=$?
     wall=$(python3 -c "import time; print(f'{time.time() - $start:.0f}')")
