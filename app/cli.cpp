@@ -20,9 +20,11 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                  "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
+    {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--shard", "--list", "--quiet",
+               "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quiet"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quick", "--list", "--quiet"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -42,6 +44,19 @@ float parse_float(const std::string& option, const std::string& text, float lo, 
     return v;
 }
 
+// "a,b,c" into its items; an empty item is a mistake.
+std::vector<std::string> split_list(const std::string& option, const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        out.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (out.back().empty()) throw InputError(option + " " + text + ": expected a comma-separated list with no empty item");
+        if (comma == std::string::npos) return out;
+        start = comma + 1;
+    }
+}
+
 }  // namespace
 
 Options parse(const std::vector<std::string>& args) {
@@ -57,7 +72,7 @@ Options parse(const std::vector<std::string>& args) {
         return o;
     }
     if (!kAccepts.count(first))
-        throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes, validate, export-field)");
+        throw InputError("unknown command \"" + first + "\" (commands: run, record, profile, scenes, validate, sweep, export-field)");
     o.command = first;
     const auto& accepts = kAccepts.at(first);
     for (std::size_t i = 1; i < args.size(); ++i) {
@@ -141,6 +156,34 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
         else if (opt == "--quiet") o.quiet = true;
+        else if (opt == "--quick") o.quick = true;
+        else if (opt == "--list") o.list = true;
+        else if (opt == "--cases" || opt == "--solvers") {
+            std::vector<std::string>& names = opt == "--cases" ? o.cases : o.solvers;
+            const std::set<std::string> known = opt == "--cases" ? std::set<std::string>{"dam-break", "hydrostatic"}
+                                                                 : std::set<std::string>{"dfsph", "wcsph"};
+            names = split_list(opt, value);
+            for (const std::string& n : names)
+                if (!known.count(n))
+                    throw InputError(opt + " " + value + ": unknown " + (opt == "--cases" ? "case \"" : "solver \"") + n + "\" (" +
+                                     (opt == "--cases" ? "dam-break, hydrostatic" : "dfsph, wcsph") + ")");
+        } else if (opt == "--spacings" || opt == "--factors") {
+            std::vector<float>& numbers = opt == "--spacings" ? o.spacings : o.factors;
+            numbers.clear();
+            for (const std::string& n : split_list(opt, value))
+                numbers.push_back(opt == "--spacings" ? parse_float(opt, n, 1e-4f, 1.0f, "spacings in metres in [0.0001, 1], comma-separated")
+                                                      : parse_float(opt, n, 0.01f, 20.0f, "time-step factors in [0.01, 20], comma-separated"));
+        } else if (opt == "--shard") {
+            const auto slash = value.find('/');
+            try {
+                if (slash == std::string::npos) throw InputError("");
+                o.shard_index = parse_int(opt, value.substr(0, slash), 1, 1'000'000);
+                o.shard_count = parse_int(opt, value.substr(slash + 1), 1, 1'000'000);
+            } catch (const InputError&) {
+                throw InputError("--shard " + value + ": expected I/N, whole numbers with 1 <= I <= N");
+            }
+            if (o.shard_index > o.shard_count) throw InputError("--shard " + value + ": expected I/N with 1 <= I <= N");
+        }
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
             if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
@@ -150,6 +193,7 @@ Options parse(const std::vector<std::string>& args) {
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic)");
+    if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
     if (o.command == "export-field" && o.out.empty() && !o.help)
         throw InputError("--out: export-field needs --out FILE.npy");
     return o;
@@ -166,6 +210,7 @@ commands:
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
   validate  run a validation case (dam-break, hydrostatic) against its reference
+  sweep     run the validation cases over solver x spacing x time-step factor: accuracy against cost
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
   --version   print the version and the commit it was built from
@@ -237,6 +282,33 @@ Run a case headless and print the simulation next to its reference, with the err
   --spacing DX        particle spacing in metres (default: the scene's)
   --solver NAME       dfsph | wcsph (default: the scene's)
   --json FILE         also write the series and errors as JSON
+  --quiet             no progress line on stderr
+  --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
+  --gl-debug          debug context; print the driver's KHR_debug messages
+)";
+    if (cmd == "sweep")
+        return R"(usage: ranryu sweep --out DIR [options]
+
+Run the validation cases headless over case x solver x spacing x time-step factor and record, one
+row a run, the accuracy (the case's error against its reference, the mean and max density
+deviation, the energy drift) and the cost (GPU ms per simulated second, wall seconds), or the guard's
+verdict when the run went unstable (frame, time, cause), or "energy gain" when it ran to the end
+having made more than 1 % of its energy. The rows go to sweep.json and sweep.csv in DIR after each
+run; a second invocation with the same DIR skips the rows already there (docs/SWEEP.md).
+Charts: scripts/sweep-charts.py DIR --out CHARTS (accuracy against cost, and the stability map).
+
+  --out DIR           the sweep's folder (made if missing)
+  --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and
+                      0.025 m, factors 1 and 10 (wcsph at 10 goes unstable): a first look in a minute
+  --cases LIST        dam-break,hydrostatic (default both)
+  --solvers LIST      dfsph,wcsph (default both)
+  --spacings LIST     spacings in metres (default: each case's own spacing and half of it)
+  --factors LIST      time-step factors: each multiplies every bound on the step, the Courant number
+                      sph.cfl, the force condition's sph.force_factor and the largest step
+                      sph.max_time_step (docs/SPH.md (7), docs/DFSPH.md (D8)); default 0.5,1,1.5,2
+  --shard I/N         run only rows k with k mod N = I - 1 (k counts from 0 in the order --list
+                      prints): one shard a job of a Slurm array or GNU parallel, each with its own --out
+  --list              print the rows (and which are done) without running any
   --quiet             no progress line on stderr
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages

@@ -36,6 +36,12 @@ struct Options {
     int lmin = 2, lmax = 4;       // --octaves LMIN:LMAX
     float beta = 1.0f / 3.0f;     // --beta B: octave falloff 2^(-B(i-lmin)); 1/3: E(k) ~ k^(-5/3)
     std::uint32_t seed = 1;       // --seed S: the noise tiles' std::mt19937 seed
+    // sweep (app/sweep.cpp): the grid of runs, empty for the defaults; --out is its folder.
+    bool quick = false;                    // --quick: the small preset
+    std::vector<std::string> cases, solvers;
+    std::vector<float> spacings, factors;
+    int shard_index = 1, shard_count = 1;  // --shard I/N: rows k with k mod N = I - 1
+    bool list = false;                     // --list: print the rows, run none
 };
 
 Options parse(const std::vector<std::string>& args);

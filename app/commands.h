@@ -14,6 +14,7 @@ int record(const Options& o);
 int profile_cmd(const Options& o);
 int scenes(const Options& o);
 int validate(const Options& o);
+int sweep(const Options& o);
 int export_field(const Options& o);
 
 // Shared by the commands: the shader files (embedded, or --shader-dir), a headless context that

@@ -1,4 +1,4 @@
-// ranryu: run | record | profile | scenes | validate | export-field. Errors end here: one line on stderr, and the exit code
+// ranryu: run | record | profile | scenes | validate | sweep | export-field. Errors end here: one line on stderr, and the exit code
 // of their kind (0 ok, 1 failure, 2 bad input, 3 unstable simulation, 130 stopped by SIGINT or SIGTERM).
 #include <cstdio>
 #include <exception>
@@ -19,12 +19,13 @@ int main(int argc, char** argv) {
         if (o.command == "version") return std::printf("ranryu %s (commit %s)\n", RANRYU_VERSION, app::commit()), 0;
         if (o.help) return std::fputs(app::command_help(o.command).c_str(), stdout), 0;
         // The headless runs stop at a frame boundary on SIGINT or SIGTERM, and exit 130.
-        if (o.command == "record" || o.command == "profile" || o.command == "validate") frame::stop_on_signals();
+        if (o.command == "record" || o.command == "profile" || o.command == "validate" || o.command == "sweep") frame::stop_on_signals();
         if (o.command == "run") return app::run(o);
         if (o.command == "record") return app::record(o);
         if (o.command == "profile") return app::profile_cmd(o);
         if (o.command == "scenes") return app::scenes(o);
         if (o.command == "validate") return app::validate(o);
+        if (o.command == "sweep") return app::sweep(o);
         if (o.command == "export-field") return app::export_field(o);
         return 1;
     } catch (const Error& e) {

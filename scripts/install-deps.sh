@@ -6,7 +6,7 @@ set -euo pipefail
 pkgs=(g++ cmake ninja-build pkg-config
       libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
       libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev
-      xvfb xauth)
+      xvfb xauth python3-matplotlib)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

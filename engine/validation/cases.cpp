@@ -62,6 +62,47 @@ void run(frame::Pipeline& pipeline, int frames, frame::Progress* progress) {
     if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
 }
 
+// E of RunStats over the fluid's particles, read back (a validation run, not the frame path).
+double energy(const sim::Fluid& fluid, const scene::Scene& scene) {
+    const std::vector<glm::vec4> x = fluid.positions().read<glm::vec4>(fluid.count());
+    const std::vector<glm::vec4> v = fluid.velocities().read<glm::vec4>(fluid.count());
+    const double g = glm::length(scene.gravity);
+    double e = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) e += 0.5 * double(glm::dot(glm::vec3(v[i]), glm::vec3(v[i]))) + g * (double(x[i].y) - scene.tank_min.y);
+    return e;
+}
+
+// RunStats around one case's frames: begin() before the first, record() from the case's record
+// sink, end() after the last frame has been drained.
+class StatsTally {
+public:
+    StatsTally(const scene::Scene& scene, frame::Pipeline& pipeline) : scene_(scene), pipeline_(pipeline) {
+        stats_.energy_start = energy(pipeline.simulation()->fluid(), scene);
+    }
+    void record(const gpu::StepState& s) {
+        stats_.max_density_deviation = std::max(stats_.max_density_deviation, double(bits_to_float(s.frame_max_density)) - 1.0);
+        stats_.simulated_seconds = double(s.time);
+    }
+    RunStats end() {
+        const sim::Fluid& fluid = pipeline_.simulation()->fluid();
+        const std::vector<glm::vec4> d = fluid.densities().read<glm::vec4>(fluid.count());
+        double excess = 0.0;
+        for (const glm::vec4& di : d) excess += std::max(double(di.x) / scene_.sph.rest_density - 1.0, 0.0);
+        stats_.mean_density_deviation = excess / double(std::max<std::size_t>(d.size(), 1));
+        stats_.energy_end = energy(fluid, scene_);
+        stats_.energy_drift = stats_.energy_start > 0.0 ? (stats_.energy_end - stats_.energy_start) / stats_.energy_start : 0.0;
+        pipeline_.timer().drain();
+        for (double ms : pipeline_.timer().frame_ms()) stats_.gpu_ms += ms;
+        stats_.gpu_ms_per_simulated_second = stats_.simulated_seconds > 0.0 ? stats_.gpu_ms / stats_.simulated_seconds : 0.0;
+        return stats_;
+    }
+
+private:
+    const scene::Scene& scene_;
+    frame::Pipeline& pipeline_;
+    RunStats stats_;
+};
+
 }  // namespace
 
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
@@ -82,7 +123,9 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     r.particles = fluid.count();
     const float origin_x = fluid.params().domain_min.x;
     r.simulated.emplace_back(0.0, 1.0);   // the column's edge at t = 0
+    StatsTally tally(scene, pipeline);
     fluid.set_record_sink([&](const gpu::StepState& s) {
+        tally.record(s);
         const double front = double(origin_x) + bits_to_float(s.front);
         r.simulated.emplace_back(double(s.time) * time_scale, (front - r.wall) / r.a);
         r.steps += s.frame_substeps;
@@ -91,6 +134,7 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     const auto start = std::chrono::steady_clock::now();
     run(pipeline, frames, progress);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.stats = tally.end();
 
     double sum2 = 0.0;
     for (const auto& [t, z] : data) {
@@ -114,7 +158,11 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     frame::Pipeline pipeline = simulation_only(scene, shaders);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
-    fluid.set_record_sink([&](const gpu::StepState& s) { r.steps += s.frame_substeps; });
+    StatsTally tally(scene, pipeline);
+    fluid.set_record_sink([&](const gpu::StepState& s) {
+        tally.record(s);
+        r.steps += s.frame_substeps;
+    });
     const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
     const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     if (progress) progress->expect(std::uint64_t(settle_frames + average_frames));
@@ -148,6 +196,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     }
     v = fluid.velocities().read<glm::vec4>(fluid.count());
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.stats = tally.end();
     double v2 = 0.0;
     for (const glm::vec4& u : v) {
         const double speed = glm::length(glm::vec3(u));

@@ -18,6 +18,19 @@ namespace ranryu::validation {
 // Each case runs the shared frame loop; with a `progress`, it sets the run's length and shows its
 // line. Throws sim::UnstableError, or frame::interrupted() when SIGINT or SIGTERM stopped the run.
 
+// What every case measures besides its own error, for the speed/accuracy sweep (ranryu sweep): the
+// density's deviation, the energy's drift and the run's cost.
+struct RunStats {
+    double max_density_deviation = 0.0;    // max over frames and particles of rho/rho0 - 1 (the guard's records)
+    double mean_density_deviation = 0.0;   // mean over particles of max(rho/rho0 - 1, 0) at the end: the compression
+    // E = sum of |v|^2/2 + |g| (y - floor) per unit mass, at the start and the end (J/kg); the drift
+    // (E_end - E_start)/E_start: negative where the flow dissipates, positive where energy is made.
+    double energy_start = 0.0, energy_end = 0.0, energy_drift = 0.0;
+    double simulated_seconds = 0.0;
+    double gpu_ms = 0.0;                   // the frames' GPU spans, summed
+    double gpu_ms_per_simulated_second = 0.0;
+};
+
 // Martin & Moyce (1952), n^2 = 2: surge front Z = z/a against T = t sqrt(2g/a).
 struct DamBreakResult {
     double a = 0.0, wall = 0.0, spacing = 0.0;
@@ -28,6 +41,7 @@ struct DamBreakResult {
     double rms_error = 0.0, max_error = 0.0;            // in Z
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
+    RunStats stats;
 };
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
 
@@ -46,6 +60,7 @@ struct HydrostaticResult {
     double max_speed = 0.0, rms_speed = 0.0;
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
+    RunStats stats;
 };
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress = nullptr);

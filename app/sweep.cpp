@@ -1,0 +1,213 @@
+// `ranryu sweep`: the validation cases (engine/validation/cases.h) over case x solver x spacing x
+// time-step factor, one row a run, for the speed/accuracy chart and the stability map
+// (scripts/sweep-charts.py). Rows are written after every run and a second invocation skips the
+// rows its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "core/error.h"
+#include "frame/stop.h"
+#include "gl/context.h"
+#include "profile/report.h"
+#include "sim/guard.h"
+#include "validation/cases.h"
+
+namespace ranryu::app {
+namespace {
+
+constexpr double kEnergyGain = 0.01;   // see run_row()
+
+struct Row {
+    std::string case_name, solver;
+    float spacing = 0.0f, factor = 1.0f;
+    std::string key() const {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%s/%s/%.6g/%.6g", case_name.c_str(), solver.c_str(), spacing, factor);
+        return buf;
+    }
+};
+
+// The grid in the order --list prints and --shard counts: case, solver, spacing, factor.
+std::vector<Row> grid(const Options& o) {
+    std::vector<std::string> cases = o.cases, solvers = o.solvers;
+    std::vector<float> spacings = o.spacings, factors = o.factors;
+    if (o.quick) {
+        if (cases.empty()) cases = {"dam-break", "hydrostatic"};
+        if (spacings.empty()) spacings = {0.04f, 0.025f};
+        if (factors.empty()) factors = {1.0f, 10.0f};   // WCSPH at 10 leaves the tank within a frame
+    }
+    if (cases.empty()) cases = {"dam-break", "hydrostatic"};
+    if (solvers.empty()) solvers = {"dfsph", "wcsph"};
+    if (factors.empty()) factors = {0.5f, 1.0f, 1.5f, 2.0f};
+    std::vector<Row> rows;
+    for (const std::string& c : cases) {
+        std::vector<float> dx = spacings;
+        if (dx.empty()) {
+            const float own = scene::load(c).spacing;
+            dx = {own, 0.5f * own};
+        }
+        for (const std::string& s : solvers)
+            for (float d : dx)
+                for (float f : factors) rows.push_back({c, s, d, f});
+    }
+    return rows;
+}
+
+// The rows a folder already holds (none when it has no sweep.json); a file that is not a sweep's is
+// bad input, and is left as it is.
+nlohmann::json read_rows(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) return nlohmann::json::array();
+    std::ifstream in(file);
+    nlohmann::json j;
+    try {
+        in >> j;
+    } catch (const std::exception& e) {
+        throw InputError(file.string() + ": not a sweep's rows (" + e.what() + "); move it away or choose another --out");
+    }
+    if (!j.is_object() || !j.contains("rows") || !j["rows"].is_array())
+        throw InputError(file.string() + ": not a sweep's rows (no \"rows\" array); move it away or choose another --out");
+    for (const auto& r : j["rows"])
+        if (!r.is_object() || !r.contains("key") || !r["key"].is_string())
+            throw InputError(file.string() + ": a row without its \"key\"; move it away or choose another --out");
+    return j["rows"];
+}
+
+// The CSV's columns, in order; a field a row lacks is left empty.
+const std::vector<std::string> kColumns = {"key", "case", "solver", "spacing", "factor", "particles", "status", "error", "error_max",
+                                           "error_name", "mean_density_deviation", "max_density_deviation", "energy_drift",
+                                           "gpu_ms_per_simulated_second", "simulated_seconds", "wall_seconds", "steps",
+                                           "failure_frame", "failure_time", "failure_cause", "failure_message", "device"};
+
+std::string csv_field(const nlohmann::json& v) {
+    if (v.is_null()) return "";
+    std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+// Both files, each through a temporary and a rename: an interrupted write leaves the last whole one.
+void write_rows(const std::filesystem::path& dir, const nlohmann::json& rows) {
+    profile::write_text_file((dir / "sweep.json.tmp").string(), nlohmann::json{{"rows", rows}}.dump(1) + "\n", "--out " + dir.string());
+    std::ostringstream csv;
+    for (std::size_t k = 0; k < kColumns.size(); ++k) csv << (k ? "," : "") << kColumns[k];
+    csv << "\n";
+    for (const auto& r : rows) {
+        for (std::size_t k = 0; k < kColumns.size(); ++k) csv << (k ? "," : "") << csv_field(r.value(kColumns[k], nlohmann::json()));
+        csv << "\n";
+    }
+    profile::write_text_file((dir / "sweep.csv.tmp").string(), csv.str(), "--out " + dir.string());
+    std::filesystem::rename(dir / "sweep.json.tmp", dir / "sweep.json");
+    std::filesystem::rename(dir / "sweep.csv.tmp", dir / "sweep.csv");
+}
+
+template <class Result>
+void put_stats(nlohmann::json& j, const Result& r) {
+    j.update({{"particles", r.particles},
+              {"mean_density_deviation", r.stats.mean_density_deviation},
+              {"max_density_deviation", r.stats.max_density_deviation},
+              {"energy_drift", r.stats.energy_drift},
+              {"gpu_ms_per_simulated_second", r.stats.gpu_ms_per_simulated_second},
+              {"simulated_seconds", r.stats.simulated_seconds},
+              {"wall_seconds", r.seconds},
+              {"steps", r.steps}});
+}
+
+// One run: its row, stable or not. Bad input and interrupts propagate.
+nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSource& shaders, const std::string& device) {
+    scene::Scene scene = scene::with_spacing(scene::load(row.case_name), row.spacing, "--spacings");
+    scene.sph.solver = scene::parse_solver(row.solver, "--solvers");
+    scene.sph.cfl *= row.factor;             // every bound on the step scales (the frame's length stays one)
+    scene.sph.force_factor *= row.factor;
+    scene.sph.max_time_step *= row.factor;
+    nlohmann::json j = {{"key", row.key()}, {"case", row.case_name}, {"solver", row.solver}, {"spacing", row.spacing},
+                        {"factor", row.factor}, {"cfl", scene.sph.cfl}, {"force_factor", scene.sph.force_factor}, {"max_time_step", scene.sph.max_time_step}, {"device", device}, {"date", profile::utc_now_iso8601()}};
+    frame::Progress progress = make_progress(o, "ranryu sweep " + row.key());
+    try {
+        if (row.case_name == "dam-break") {
+            const validation::DamBreakResult r = validation::dam_break(scene, shaders, &progress);
+            put_stats(j, r);
+            j.update({{"error", r.rms_error}, {"error_max", r.max_error}, {"error_name", "surge front rms error in Z (Martin & Moyce 1952)"}});
+        } else {
+            const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
+            put_stats(j, r);
+            j.update({{"error", r.max_error}, {"error_max", r.floor_error},
+                      {"error_name", "interior pressure error / rho0 g H (floor layer's as error_max)"}});
+        }
+        progress.finish();
+        j["status"] = "stable";
+        // A closed tank under gravity only loses energy (viscosity, impacts): a run that made more
+        // than kEnergyGain of its start went unstable though no guard bound fired.
+        if (j["energy_drift"].get<double>() > kEnergyGain) {
+            char msg[200];
+            std::snprintf(msg, sizeof msg, "energy gain: the fluid's energy grew by %.1f %% over %.2f s (bound %.0f %%)",
+                          100.0 * j["energy_drift"].get<double>(), j["simulated_seconds"].get<double>(), 100.0 * kEnergyGain);
+            j.update({{"status", "unstable"}, {"failure_frame", nullptr}, {"failure_time", j["simulated_seconds"]},
+                      {"failure_cause", "energy gain"}, {"failure_message", msg}});
+        }
+    } catch (const sim::UnstableError& e) {
+        progress.finish();
+        j.update({{"status", "unstable"},
+                  {"particles", scene.particle_count()},
+                  {"failure_frame", e.finding.frame},
+                  {"failure_time", e.finding.time},
+                  {"failure_cause", e.finding.criterion},
+                  {"failure_message", e.finding.message()}});
+    }
+    return j;
+}
+
+}  // namespace
+
+int sweep(const Options& o) {
+    const std::vector<Row> rows = grid(o);
+    const std::filesystem::path dir = o.out.empty() ? std::filesystem::path() : std::filesystem::path(o.out);
+    nlohmann::json done = dir.empty() ? nlohmann::json::array() : read_rows(dir / "sweep.json");
+    std::set<std::string> finished;
+    for (const auto& r : done) finished.insert(r["key"].get<std::string>());
+    std::vector<std::size_t> mine;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+        if (int(k % std::size_t(o.shard_count)) == o.shard_index - 1) mine.push_back(k);
+    if (o.list) {
+        for (std::size_t k : mine) std::printf("%zu %s%s\n", k, rows[k].key().c_str(), finished.count(rows[k].key()) ? " (done)" : "");
+        return 0;
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) throw InputError("--out " + o.out + ": cannot make the folder (" + ec.message() + ")");
+    const shader::FileSource shaders = shader_source(o);
+    auto ctx = headless(o);
+    const std::string device = ctx->info().renderer + " | " + ctx->info().version;
+    std::size_t ran = 0, skipped = 0, unstable = 0, n = 0;
+    for (std::size_t k : mine) {
+        ++n;
+        if (finished.count(rows[k].key())) {
+            ++skipped;
+            continue;
+        }
+        const nlohmann::json row = run_row(rows[k], o, shaders, device);
+        done.push_back(row);
+        write_rows(dir, done);
+        ++ran;
+        const bool stable = row["status"] == "stable";
+        if (!stable) ++unstable;
+        std::printf("sweep [%zu/%zu] %s: %s\n", n, mine.size(), rows[k].key().c_str(),
+                    stable ? ("error " + std::to_string(row["error"].get<double>()) + ", " +
+                              std::to_string(row["gpu_ms_per_simulated_second"].get<double>()) + " GPU ms per simulated s")
+                                 .c_str()
+                           : row["failure_message"].get<std::string>().c_str());
+        std::fflush(stdout);
+    }
+    std::printf("sweep: %zu run (%zu unstable), %zu already done, rows in %s\n", ran, unstable, skipped, (dir / "sweep.json").c_str());
+    return 0;
+}
+
+}  // namespace ranryu::app

@@ -1,0 +1,177 @@
+// ranryu sweep (app/sweep.cpp) and its charts (scripts/sweep-charts.py): a tiny sweep's rows, a
+// deliberately unstable setting recorded with its cause while the sweep goes on, resuming, shards,
+// bad input, and the charts' files with their labels.
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "run_helper.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// 2 solvers x 2 spacings x 2 factors on the dam break; WCSPH at a time-step factor of 10 leaves the
+// tank within its first frame at 0.025 m (the sound-speed condition broken tenfold).
+const std::vector<std::string> kTiny = {"sweep", "--cases", "dam-break", "--solvers", "dfsph,wcsph", "--spacings", "0.04,0.025",
+                                        "--factors", "1,10", "--quiet"};
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);)
+        if (!l.empty()) out.push_back(l);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("sweep: a tiny sweep writes a row a run with every field, records the unstable one with its cause, and resumes",
+          "[sweep]") {
+    TempDir dir;
+    const fs::path out = dir.path() / "sw";
+    RunOptions slow;
+    slow.timeout = std::chrono::seconds(400);
+    const Result r = run_ranryu(dir.path(), with(kTiny, {"--out", out.string()}), slow);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("8 run ("));
+    CHECK_THAT(r.out, Contains("0 already done"));
+
+    const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+    REQUIRE(j["rows"].size() == 8);
+    std::set<std::string> keys;
+    for (const auto& row : j["rows"]) {
+        INFO(row.dump());
+        keys.insert(row["key"].get<std::string>());
+        for (const char* f : {"case", "solver", "spacing", "factor", "cfl", "status", "device", "date"}) CHECK(row.contains(f));
+        CHECK(row["cfl"].get<double>() == Approx(0.4 * row["factor"].get<double>()).epsilon(1e-5));
+        if (row["status"] == "unstable" && row["failure_cause"] == "energy gain") {
+            // Ran to the end making energy: the sweep's own criterion (app/sweep.cpp), not the guard's.
+            CHECK(row["key"].get<std::string>().ends_with("/10"));
+            CHECK(row["energy_drift"].get<double>() > 0.01);
+            CHECK(row["failure_frame"].is_null());
+            CHECK_THAT(row["failure_message"].get<std::string>(), Contains("energy grew"));
+        } else if (row["key"] == "dam-break/wcsph/0.025/10") {
+            CHECK(row["status"] == "unstable");
+            CHECK(row["failure_frame"].get<int>() >= 0);
+            CHECK(row["failure_time"].get<double>() > 0.0);
+            CHECK_THAT(row["failure_cause"].get<std::string>(), Contains("left the domain"));
+            CHECK_THAT(row["failure_message"].get<std::string>(), Contains("unstable at frame"));
+            CHECK_FALSE(row.contains("error"));
+        } else {
+            CHECK(row["status"] == "stable");
+            // The front's error in Z is a few spacings at most (a/dx = 5 and 8); the rest are
+            // physical: compression of at most the guard's bound, energy that the flow loses.
+            CHECK(row["error"].get<double>() >= 0.0);
+            CHECK(row["error"].get<double>() < 2.0);
+            CHECK(row["error_max"].get<double>() >= row["error"].get<double>());
+            CHECK(row["particles"].get<int>() > 0);
+            CHECK(row["steps"].get<int>() > 0);
+            CHECK(row["simulated_seconds"].get<double>() > 0.3);
+            CHECK(row["wall_seconds"].get<double>() > 0.0);
+            CHECK(row["gpu_ms_per_simulated_second"].get<double>() >= 0.0);
+            CHECK(row["max_density_deviation"].get<double>() >= 0.0);
+            CHECK(row["max_density_deviation"].get<double>() < 0.5);
+            CHECK(row["mean_density_deviation"].get<double>() >= 0.0);
+            CHECK(row["mean_density_deviation"].get<double>() <= row["max_density_deviation"].get<double>());
+            CHECK(row["energy_drift"].get<double>() < 0.0);   // the dam break only loses energy
+            CHECK(row["energy_drift"].get<double>() > -1.0);
+        }
+    }
+    CHECK(keys.size() == 8);
+    // WCSPH takes more steps than DFSPH on the same settings.
+    auto steps = [&](const std::string& key) {
+        for (const auto& row : j["rows"])
+            if (row["key"] == key) return row["steps"].get<int>();
+        return -1;
+    };
+    CHECK(steps("dam-break/wcsph/0.025/1") > 3 * steps("dam-break/dfsph/0.025/1"));
+
+    const std::vector<std::string> csv = lines(read_file(out / "sweep.csv"));
+    REQUIRE(csv.size() == 9);
+    CHECK_THAT(csv[0], Contains("key,case,solver,spacing,factor"));
+    CHECK_THAT(csv[0], Contains("gpu_ms_per_simulated_second"));
+
+    // A second invocation finds every row done and runs none; the files keep their rows.
+    const Result again = run_ranryu(dir.path(), with(kTiny, {"--out", out.string()}), slow);
+    INFO(again.out << again.err);
+    REQUIRE(again.exit_code == 0);
+    CHECK_THAT(again.out, Contains("0 run (0 unstable), 8 already done"));
+    // Every factor-1 run is sound.
+    for (const auto& row : j["rows"])
+        if (row["factor"].get<double>() == 1.0) CHECK(row["status"] == "stable");
+    CHECK(nlohmann::json::parse(read_file(out / "sweep.json"))["rows"].size() == 8);
+
+    SECTION("the charts: PNG and SVG, with the axes' and legends' labels as text") {
+        const fs::path charts = dir.path() / "charts";
+        const Result c = run({"/usr/bin/python3", (source_dir() / "scripts" / "sweep-charts.py").string(), (out / "sweep.json").string(),
+                              "--out", charts.string()});
+        INFO(c.out << c.err);
+        REQUIRE(c.exit_code == 0);
+        for (const char* f : {"accuracy-vs-cost.png", "accuracy-vs-cost.svg", "stability-map.png", "stability-map.svg"}) {
+            INFO(f);
+            REQUIRE(fs::exists(charts / f));
+            CHECK(fs::file_size(charts / f) > 5000);
+        }
+        CHECK(read_file(charts / "accuracy-vs-cost.png").substr(1, 3) == "PNG");
+        const std::string acc = read_file(charts / "accuracy-vs-cost.svg"), map = read_file(charts / "stability-map.svg");
+        for (const char* label : {"cost: GPU ms per simulated second", "surge front rms error in Z", "dfsph Pareto front",
+                                  "wcsph Pareto front", "dam-break: accuracy against cost"})
+            CHECK_THAT(acc, Contains(label));
+        for (const char* label : {"time-step factor", "particle spacing (m)", "stability: dam-break, dfsph", "stability: dam-break, wcsph",
+                                  "escaped", "stable"})
+            CHECK_THAT(map, Contains(label));
+    }
+}
+
+TEST_CASE("sweep: --shard I/N partitions the rows exactly, and --list runs nothing", "[sweep]") {
+    TempDir dir;
+    const std::vector<std::string> all = lines(run_ranryu(dir.path(), {"sweep", "--quick", "--list"}).out);
+    REQUIRE(all.size() == 16);
+    std::multiset<std::string> union_;
+    for (int i = 1; i <= 3; ++i) {
+        const Result r = run_ranryu(dir.path(), {"sweep", "--quick", "--list", "--shard", std::to_string(i) + "/3"});
+        REQUIRE(r.exit_code == 0);
+        for (const std::string& l : lines(r.out)) {
+            const int k = std::stoi(l.substr(0, l.find(' ')));
+            CHECK(k % 3 == i - 1);
+            union_.insert(l);
+        }
+    }
+    CHECK(union_ == std::multiset<std::string>(all.begin(), all.end()));
+    CHECK(fs::is_empty(dir.path()));
+}
+
+TEST_CASE("sweep: bad input is refused with one line naming it, and a foreign sweep.json is left alone", "[sweep]") {
+    TempDir dir;
+    for (const auto& args : std::vector<std::vector<std::string>>{{"sweep", "--quick"},
+                                                                 {"sweep", "--quick", "--list", "--shard", "3/2"},
+                                                                 {"sweep", "--quick", "--list", "--shard", "x"},
+                                                                 {"sweep", "--quick", "--list", "--factors", "0"},
+                                                                 {"sweep", "--quick", "--list", "--factors", "1,,2"},
+                                                                 {"sweep", "--quick", "--list", "--cases", "tsunami"},
+                                                                 {"sweep", "--quick", "--list", "--solvers", "sph"}}) {
+        const Result r = run_ranryu(dir.path(), args);
+        INFO(r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(lines(r.err).size() == 1);
+    }
+    const fs::path out = dir.path() / "other";
+    fs::create_directories(out);
+    write_file(out / "sweep.json", "{\"not\": \"a sweep\"}");
+    const Result r = run_ranryu(dir.path(), {"sweep", "--quick", "--out", out.string()});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains((out / "sweep.json").string()));
+    CHECK(read_file(out / "sweep.json") == "{\"not\": \"a sweep\"}");
+    CHECK_FALSE(fs::exists(out / "sweep.csv"));
+}
