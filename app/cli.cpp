@@ -160,13 +160,13 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--list") o.list = true;
         else if (opt == "--cases" || opt == "--solvers") {
             std::vector<std::string>& names = opt == "--cases" ? o.cases : o.solvers;
-            const std::set<std::string> known = opt == "--cases" ? std::set<std::string>{"dam-break", "hydrostatic"}
+            const std::set<std::string> known = opt == "--cases" ? std::set<std::string>{"dam-break", "hydrostatic", "standing-wave"}
                                                                  : std::set<std::string>{"dfsph", "wcsph"};
             names = split_list(opt, value);
             for (const std::string& n : names)
                 if (!known.count(n))
                     throw InputError(opt + " " + value + ": unknown " + (opt == "--cases" ? "case \"" : "solver \"") + n + "\" (" +
-                                     (opt == "--cases" ? "dam-break, hydrostatic" : "dfsph, wcsph") + ")");
+                                     (opt == "--cases" ? "dam-break, hydrostatic, standing-wave" : "dfsph, wcsph") + ")");
         } else if (opt == "--spacings" || opt == "--factors") {
             std::vector<float>& numbers = opt == "--spacings" ? o.spacings : o.factors;
             numbers.clear();
@@ -192,7 +192,7 @@ Options parse(const std::vector<std::string>& args) {
         }
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
-        throw InputError("validate: name a case (dam-break, hydrostatic)");
+        throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave)");
     if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
     if (o.command == "export-field" && o.out.empty() && !o.help)
         throw InputError("--out: export-field needs --out FILE.npy");
@@ -209,7 +209,7 @@ commands:
   record    render a scene headless to frame_00000.png, ... and run.json
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
-  validate  run a validation case (dam-break, hydrostatic) against its reference
+  validate  run a validation case (dam-break, hydrostatic, standing-wave) against its reference
   sweep     run the validation cases over solver x spacing x time-step factor: accuracy against cost
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
@@ -276,6 +276,7 @@ std::string command_help(const std::string& cmd) {
 Run a case headless and print the simulation next to its reference, with the error.
   dam-break     surge front Z = z/a against T = t sqrt(2g/a), next to Martin & Moyce (1952)
   hydrostatic   pressure against depth next to rho0 g (H - z), and the spurious velocity
+  standing-wave the first sloshing mode's period against linear theory, and its decay
 
   --scene FILE        the case's scene from a file instead of the bundled one of its name (to vary
                       its settings, e.g. "sph": {"boundary_viscosity": 1e-3} for no-slip walls)
@@ -300,7 +301,7 @@ Charts: scripts/sweep-charts.py DIR --out CHARTS (accuracy against cost, and the
   --out DIR           the sweep's folder (made if missing)
   --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and
                       0.025 m, factors 1 and 10 (wcsph at 10 goes unstable): a first look in a minute
-  --cases LIST        dam-break,hydrostatic (default both)
+  --cases LIST        dam-break,hydrostatic,standing-wave (default all three)
   --solvers LIST      dfsph,wcsph (default both)
   --spacings LIST     spacings in metres (default: each case's own spacing and half of it)
   --factors LIST      time-step factors: each multiplies every bound on the step, the Courant number

@@ -43,14 +43,14 @@ std::vector<Row> grid(const Options& o) {
         if (spacings.empty()) spacings = {0.04f, 0.025f};
         if (factors.empty()) factors = {1.0f, 10.0f};   // WCSPH at 10 leaves the tank within a frame
     }
-    if (cases.empty()) cases = {"dam-break", "hydrostatic"};
+    if (cases.empty()) cases = {"dam-break", "hydrostatic", "standing-wave"};
     if (solvers.empty()) solvers = {"dfsph", "wcsph"};
     if (factors.empty()) factors = {0.5f, 1.0f, 1.5f, 2.0f};
     std::vector<Row> rows;
     for (const std::string& c : cases) {
         std::vector<float> dx = spacings;
         if (dx.empty()) {
-            const float own = scene::load(c).spacing;
+            const float own = validation::case_scene(c).spacing;
             dx = {own, 0.5f * own};
         }
         for (const std::string& s : solvers)
@@ -123,7 +123,7 @@ void put_stats(nlohmann::json& j, const Result& r) {
 
 // One run: its row, stable or not. Bad input and interrupts propagate.
 nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSource& shaders, const std::string& device) {
-    scene::Scene scene = scene::with_spacing(scene::load(row.case_name), row.spacing, "--spacings");
+    scene::Scene scene = scene::with_spacing(validation::case_scene(row.case_name), row.spacing, "--spacings");
     scene.sph.solver = scene::parse_solver(row.solver, "--solvers");
     scene.sph.cfl *= row.factor;             // every bound on the step scales (the frame's length stays one)
     scene.sph.force_factor *= row.factor;
@@ -136,6 +136,11 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
             const validation::DamBreakResult r = validation::dam_break(scene, shaders, &progress);
             put_stats(j, r);
             j.update({{"error", r.rms_error}, {"error_max", r.max_error}, {"error_name", "surge front rms error in Z (Martin & Moyce 1952)"}});
+        } else if (row.case_name == "standing-wave") {
+            const validation::StandingWaveResult r = validation::standing_wave(scene, shaders, &progress);
+            put_stats(j, r);
+            j.update({{"error", r.period_error}, {"error_max", r.period_error},
+                      {"error_name", "standing wave's period error |T - T_linear| / T_linear"}, {"decay_rate", r.decay_rate}});
         } else {
             const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
             put_stats(j, r);

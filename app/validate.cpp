@@ -14,9 +14,9 @@
 namespace ranryu::app {
 
 int validate(const Options& o) {
-    if (o.case_name != "dam-break" && o.case_name != "hydrostatic")
-        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic)");
-    const scene::Scene scene = with_options(scene::load(o.scene_given ? o.scene : o.case_name), o);
+    if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave")
+        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic, standing-wave)");
+    const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
@@ -50,6 +50,22 @@ int validate(const Options& o) {
                   {"max_error", r.max_error},
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});
+    } else if (o.case_name == "standing-wave") {
+        const validation::StandingWaveResult r = validation::standing_wave(scene, shaders, &progress);
+        progress.finish();
+        std::printf("standing-wave: L = %.3f m, H = %.3f m, A = %.4f m, spacing %.4f m, %zu particles\n", r.length, r.depth, r.amplitude,
+                    r.spacing, r.particles);
+        std::printf("period: %.4f s simulated (over %d half periods), %.4f s linear theory: error %.4f\n", r.period, r.half_periods,
+                    r.period_theory, r.period_error);
+        std::printf("decay of the mode: %.4f /s simulated, %.4f /s the bulk's 2 nu k^2 (walls add more)\n", r.decay_rate, r.decay_theory);
+        std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
+                    static_cast<unsigned long long>(r.steps), r.seconds);
+        nlohmann::json series = nlohmann::json::array();
+        for (const auto& [t, m] : r.moment) series.push_back({{"t", t}, {"moment", m}});
+        j.update({{"length", r.length}, {"depth", r.depth}, {"amplitude", r.amplitude}, {"particles", r.particles},
+                  {"period", r.period}, {"period_theory", r.period_theory}, {"period_error", r.period_error},
+                  {"half_periods", r.half_periods}, {"decay_rate", r.decay_rate}, {"decay_theory", r.decay_theory},
+                  {"moment", series}, {"steps", r.steps}, {"wall_seconds", r.seconds}});
     } else {
         const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
         progress.finish();

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <sstream>
 
 #include "core/error.h"
@@ -228,6 +229,100 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
             r.core_floor_error = std::abs(core - l.reference) / r.reference_scale;
         }
     }
+    return r;
+}
+
+scene::Scene standing_wave_scene() {
+    return scene::parse(R"({
+        "name": "standing-wave",
+        "description": "Validation: the first sloshing mode of a 0.4 m tank, 0.1 m deep (docs/VALIDATION.md).",
+        "model": "sph",
+        "tank": { "min": [0.0, 0.0, 0.0], "max": [0.4, 0.3, 0.04] },
+        "gravity": [0.0, -9.81, 0.0],
+        "time": { "frame_dt": 0.016666667 },
+        "particles": { "spacing": 0.01, "blocks": [ { "min": [0.0, 0.0, 0.0], "max": [0.4, 0.1, 0.04] } ] },
+        "sph": { "rest_density": 1000, "viscosity": 1e-4 }
+    })", "the standing-wave case");
+}
+
+scene::Scene case_scene(const std::string& name) {
+    if (name == "standing-wave") return standing_wave_scene();
+    if (name == "dam-break" || name == "hydrostatic") return scene::load(name);
+    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave)");
+}
+
+StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
+    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("standing-wave: the scene must be SPH with one block");
+    StandingWaveResult r;
+    const scene::Block& water = scene.blocks.front();
+    r.length = scene.tank_max.x - scene.tank_min.x;
+    r.depth = water.max.y - scene.tank_min.y;
+    r.amplitude = 0.1 * r.depth;
+    r.spacing = scene.spacing;
+    r.wavenumber = std::numbers::pi / r.length;
+    const double g = glm::length(scene.gravity), k = r.wavenumber;
+    r.period_theory = 2.0 * std::numbers::pi / std::sqrt(g * k * std::tanh(k * r.depth));
+    r.decay_theory = 2.0 * scene.sph.viscosity * k * k;
+    frame::Pipeline pipeline = simulation_only(scene, shaders);
+    sim::Fluid& fluid = pipeline.simulation()->fluid();
+    r.particles = fluid.count();
+    // The surface raised by A cos(k x): each particle's height above the floor stretched by
+    // 1 + (A/H) cos(k x), in the initial order (the warm start's order too).
+    std::vector<glm::vec4> x = fluid.positions().read<glm::vec4>(fluid.count());
+    for (glm::vec4& p : x) {
+        const double c = std::cos(k * (double(p.x) - scene.tank_min.x));
+        p.y = float(scene.tank_min.y + (double(p.y) - scene.tank_min.y) * (1.0 + r.amplitude / r.depth * c));
+    }
+    fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
+    StatsTally tally(scene, pipeline);
+    fluid.set_record_sink([&](const gpu::StepState& s) {
+        tally.record(s);
+        r.steps += s.frame_substeps;
+    });
+    auto moment = [&](double t) {
+        const std::vector<glm::vec4> p = fluid.positions().read<glm::vec4>(fluid.count());
+        double m = 0.0;
+        for (const glm::vec4& q : p) m += (double(q.y) - scene.tank_min.y) * std::cos(k * (double(q.x) - scene.tank_min.x));
+        r.moment.emplace_back(t, m / double(std::max<std::size_t>(p.size(), 1)));
+    };
+    const int frames = int(std::ceil(3.0 * r.period_theory / scene.frame_dt));
+    if (progress) progress->expect(std::uint64_t(frames));
+    const auto start = std::chrono::steady_clock::now();
+    moment(0.0);
+    for (int f = 0; f < frames; ++f) {
+        run(pipeline, 1, progress);
+        moment(double(f + 1) * scene.frame_dt);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.stats = tally.end();
+
+    // The mean crossings (linear between frames) over the run, after the first quarter period:
+    // consecutive ones are half a period apart.
+    double mean = 0.0;
+    for (const auto& [t, m] : r.moment) mean += m;
+    mean /= double(r.moment.size());
+    std::vector<double> crossings;
+    for (std::size_t i = 1; i < r.moment.size(); ++i) {
+        const double a = r.moment[i - 1].second - mean, b = r.moment[i].second - mean;
+        if ((a < 0.0) != (b < 0.0) && r.moment[i].first > 0.25 * r.period_theory) {
+            const double w = a / (a - b);
+            crossings.push_back(r.moment[i - 1].first + w * (r.moment[i].first - r.moment[i - 1].first));
+        }
+    }
+    if (crossings.size() < 2) throw Error("standing-wave: the surface did not oscillate (fewer than two mean crossings)");
+    r.half_periods = int(crossings.size()) - 1;
+    r.period = 2.0 * (crossings.back() - crossings.front()) / double(r.half_periods);
+    r.period_error = std::abs(r.period - r.period_theory) / r.period_theory;
+    // Decay: the largest |m - mean| of the first and of the last half period between crossings.
+    auto swing = [&](double from, double to) {
+        double s = 0.0;
+        for (const auto& [t, m] : r.moment)
+            if (t >= from && t <= to) s = std::max(s, std::abs(m - mean));
+        return s;
+    };
+    const double first = swing(crossings[0], crossings[1]), last = swing(crossings[crossings.size() - 2], crossings.back());
+    const double span = 0.5 * (crossings.back() + crossings[crossings.size() - 2]) - 0.5 * (crossings[0] + crossings[1]);
+    r.decay_rate = first > 0.0 && last > 0.0 && span > 0.0 ? std::log(first / last) / span : 0.0;
     return r;
 }
 

@@ -65,4 +65,28 @@ struct HydrostaticResult {
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress = nullptr);
 
+// A standing wave (docs/VALIDATION.md "Standing wave"): water of depth H in a tank of length L, its
+// surface raised to H + A cos(k x), k = pi/L, released at rest. Linear theory: the first mode's period
+// T = 2 pi / sqrt(g k tanh(k H)), and viscosity damps its amplitude as exp(-2 nu k^2 t) in the bulk
+// (the walls' boundary layers add more). The mode's amplitude is read as the fluid's first cosine
+// moment m(t) = (1/N) sum_i y_i cos(k x_i) (read back once a frame: a validation run, not the frame
+// path); its period from the times m crosses its mean, its decay from the ratio of its swings.
+// `scene()` builds the case's scene (tank 0.4 x 0.3 x 0.04 m, H = 0.1 m, A = 0.01 m, spacing 0.01 m).
+struct StandingWaveResult {
+    double length = 0.0, depth = 0.0, amplitude = 0.0, wavenumber = 0.0, spacing = 0.0;
+    std::size_t particles = 0;
+    std::vector<std::pair<double, double>> moment;   // (t, m(t)) a frame
+    double period_theory = 0.0, period = 0.0, period_error = 0.0;   // s, s, |T - T_theory| / T_theory
+    double decay_rate = 0.0, decay_theory = 0.0;     // 1/s: measured, and the bulk's 2 nu k^2
+    int half_periods = 0;                            // mean crossings the period was measured over
+    std::uint64_t steps = 0;
+    double seconds = 0.0;
+    RunStats stats;
+};
+scene::Scene standing_wave_scene();
+
+// A case's own scene: the bundled one of its name, or standing_wave_scene(). InputError for another name.
+scene::Scene case_scene(const std::string& name);
+StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
+
 }  // namespace ranryu::validation
