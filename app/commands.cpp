@@ -283,6 +283,13 @@ int profile_cmd(const Options& o) {
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());
     nlohmann::json extra = profile::to_json(report);
+    // What the scene does not run, and why (issue 12: a scene models no more than it needs).
+    nlohmann::json skipped = nlohmann::json::array();
+    for (const frame::SkippedStage& st : pipeline.skipped_stages()) {
+        std::printf("not run: %s, since %s\n", st.passes.c_str(), st.why.c_str());
+        skipped.push_back({{"passes", st.passes}, {"why", st.why}});
+    }
+    extra["not_run"] = skipped;
     if (const surface::MarchingCubes* mc = pipeline.mesh()) {
         // After the run, not in the frame path: the last frame's mesh size, read once.
         const gpu::MeshState m = mc->state().read<gpu::MeshState>(1)[0];

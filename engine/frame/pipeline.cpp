@@ -50,6 +50,24 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     if (renderer_) renderer_->set_frame(render::frame_params(scene_, camera_, view.width, view.height));
 }
 
+std::vector<SkippedStage> Pipeline::skipped_stages() const {
+    std::vector<SkippedStage> out;
+    if (!sph_) {
+        out.push_back({"hash, sort.*, reorder, the pressure solver's passes", "the scene uses the ballistic model, no SPH"});
+    } else {
+        if (scene_.sph.solver == scene::Solver::dfsph) out.push_back({"density, forces, integrate: WCSPH's", "the solver is dfsph"});
+        else out.push_back({"dfsph.*", "the solver is wcsph"});
+        if (scene_.sph.sort == "radix") out.push_back({"sort.bitonic_local, sort.bitonic_global", "sph.sort is radix"});
+        else out.push_back({"sort.count, sort.scan, sort.scatter", "sph.sort is bitonic"});
+        if (!sph_->turbulence()) out.push_back({"wavelet, turbulence-force", "turbulence.amplitude is 0"});
+        if (!sub_) out.push_back({"subparticles.*", sph_->turbulence() ? "turbulence.subparticles is off" : "turbulence is off"});
+        if (!level_set_) out.push_back({"surface.bounds, level-set, mc.*, draw-surface", renderer_ ? "the shading draws particles" : "nothing is drawn"});
+    }
+    if (!renderer_) out.push_back({"clear, draw-*", "nothing is drawn: a validation run"});
+    else if (level_set_) out.push_back({"draw-particles", std::string("the shading draws the surface: ") + render::shading_name(shading_)});
+    return out;
+}
+
 void Pipeline::simulate() {
     if (!sph_) {
         for (int s = 0; s < substeps_; ++s) ballistic_->integrate();

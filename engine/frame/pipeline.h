@@ -42,6 +42,13 @@ struct View {
     bool draw = true;
 };
 
+// A stage of the frame that a scene or view leaves out, with why: a scene models no more than it
+// needs, and `profile` says what it did not run (the passes named as the timer names them).
+struct SkippedStage {
+    std::string passes;   // e.g. "wavelet, turbulence-force"
+    std::string why;      // e.g. "turbulence.amplitude is 0"
+};
+
 class Pipeline {
 public:
     // Builds every program (start-up) and allocates the particle state and the view's target. A
@@ -74,6 +81,7 @@ public:
 
     const scene::Scene& scene() const { return scene_; }
     profile::GpuTimer& timer() { return timer_; }
+    std::vector<SkippedStage> skipped_stages() const;
     const gl::RenderTarget& target() const { return target_; }
     std::size_t particle_count() const;
     const gl::Buffer& positions() const;

@@ -241,3 +241,27 @@ TEST_CASE("ranryu profile --json and --csv write the same passes with device, dr
     }
     CHECK(csv_passes == json_passes);
 }
+
+TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in its text and JSON", "[cli][profile]") {
+    TempDir tmp;
+    // The dam break with DFSPH, no turbulence, drawn as particles: the WCSPH passes, the turbulence's,
+    // the sub-particles' and the surface's are not run, and the table has none of them.
+    const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.04", "--shading", "particles",
+                                             "--size", "64x48", "--frames", "2", "--warmup", "1", "--json", "p.json", "--quiet"});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    for (const char* line : {"not run: density, forces, integrate: WCSPH's, since the solver is dfsph",
+                             "not run: wavelet, turbulence-force, since turbulence.amplitude is 0",
+                             "not run: subparticles.*, since turbulence is off",
+                             "not run: surface.bounds, level-set, mc.*, draw-surface, since the shading draws particles"})
+        CHECK_THAT(r.out, Contains(line));
+    CHECK_THAT(r.out, !Contains("not run: dfsph"));
+    const auto j = nlohmann::json::parse(read_file(tmp.path() / "p.json"));
+    REQUIRE(j["not_run"].is_array());
+    std::set<std::string> listed, timed;
+    for (const auto& s : j["not_run"]) listed.insert(s["passes"].get<std::string>());
+    CHECK(listed.count("wavelet, turbulence-force"));
+    for (const auto& p : j["passes"]) timed.insert(p["name"].get<std::string>());
+    for (const char* absent : {"wavelet", "turbulence-force", "level-set", "mc.emit", "draw-surface", "forces"}) CHECK_FALSE(timed.count(absent));
+    CHECK(timed.count("dfsph.density"));
+}
