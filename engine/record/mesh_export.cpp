@@ -11,14 +11,7 @@
 namespace ranryu::record {
 
 namespace {
-// GL 4.3 (no direct state access): copies and maps go through the copy binding points.
-void copy(const gl::Buffer& from, const gl::Buffer& to, std::size_t bytes) {
-    glBindBuffer(GL_COPY_READ_BUFFER, from.id());
-    glBindBuffer(GL_COPY_WRITE_BUFFER, to.id());
-    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(bytes));
-    glBindBuffer(GL_COPY_READ_BUFFER, 0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-}
+// GL 4.3 (no direct state access): maps go through the copy binding points.
 // Copies the first `bytes` of `from` into dst; false if the buffer could not be mapped.
 bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
     glBindBuffer(GL_COPY_READ_BUFFER, from.id());
@@ -68,8 +61,8 @@ void MeshExporter::capture(const gl::Buffer& vertices, const gl::Buffer& state) 
         auto pass = timer_.scope(pass_);
         // The mesh passes end with their own barriers; copies read buffer data after them in order.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        copy(state, s.data.state, sizeof(gpu::MeshState));
-        copy(vertices, s.data.vertices, s.data.vertices.size());
+        gl::copy_buffer(state, s.data.state, sizeof(gpu::MeshState));
+        gl::copy_buffer(vertices, s.data.vertices, s.data.vertices.size());
     }
     ring_.submit(captured_++, retire_slot);
 }
