@@ -1,6 +1,7 @@
 #include "record/recorder.h"
 
 #include <algorithm>
+#include <exception>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -18,14 +19,15 @@ namespace {
 bool is_run_file(const fs::path& p) {
     const std::string name = p.filename().string();
     if (name == "run.json") return true;
-    return name.starts_with("frame_") && (name.ends_with(".png") || name.ends_with(".ply"));
+    if (name.starts_with("frame_")) return name.ends_with(".png") || name.ends_with(".ply");
+    return name.starts_with("particles_") && (name.ends_with(".ply") || name.ends_with(".vtp"));
 }
 
 }  // namespace
 
-std::string frame_name(std::uint64_t index, const char* extension) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "frame_%05llu.%s", static_cast<unsigned long long>(index), extension);
+std::string frame_name(std::uint64_t index, const char* extension, const char* prefix) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s_%05llu.%s", prefix, static_cast<unsigned long long>(index), extension);
     return buf;
 }
 
@@ -52,7 +54,7 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
     if (earlier.empty()) return 0;
     if (!force)
         throw InputError(what + ": already holds an earlier run (" + std::to_string(earlier.size()) +
-                         " files: frame_*.png/.ply, run.json); pass --force to replace it, or choose another folder");
+                         " files: frame_*.png/.ply, particles_*.ply/.vtp, run.json); pass --force to replace it, or choose another folder");
     for (const fs::path& p : earlier) {
         fs::remove(p, ec);
         if (ec) throw InputError(what + ": cannot remove " + p.filename().string() + " (" + ec.message() + ")");
@@ -61,9 +63,9 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
 }
 
 Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
-                   std::function<void()> pump, int ring, int writers)
+                   std::function<void()> pump, int ring, int writers, FrameSinks sinks)
     : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
-      ring_(std::size_t(std::max(ring, 1))) {
+      ring_(std::size_t(std::max(ring, 1))), sinks_(std::move(sinks)) {
     const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
     for (std::size_t i = 0; i < ring_.size(); ++i)
         ring_.slots()[i].data = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
@@ -74,7 +76,17 @@ Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height
     for (auto& b : buffers_) b.resize(bytes);
     writer_ = std::make_unique<GatedWriter>(
         buffers_.size(), writers, gated,
-        [this](std::uint64_t frame, std::size_t b) { write_png(dir_ / frame_name(frame), width_, height_, buffers_[b].data()); },
+        [this](std::uint64_t frame, std::size_t b) {
+            // Every frame a writer takes reaches the video, PNG failed or not: the next one waits for it.
+            std::exception_ptr png_failed;
+            if (sinks_.png) try {
+                    write_png(dir_ / frame_name(frame), width_, height_, buffers_[b].data());
+                } catch (...) {
+                    png_failed = std::current_exception();
+                }
+            if (sinks_.video) sinks_.video->write(frame, buffers_[b].data());
+            if (png_failed) std::rethrow_exception(png_failed);
+        },
         std::move(pump));
 }
 
@@ -118,6 +130,7 @@ void Recorder::retire(Slot& s) {
     }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     if (!src) {
+        if (sinks_.video) sinks_.video->abandon(s.tag);
         writer_->fail("cannot map the readback buffer of frame " + std::to_string(s.tag));
         writer_->release(buffer);
         return;
@@ -132,7 +145,21 @@ void Recorder::finish() {
     if (finished_) return;
     finished_ = true;
     ring_.drain([this](Slot& s) { retire(s); });
-    writer_->finish();
+    // The PNGs' failure first, if any; the video is closed (and ffmpeg waited for) either way.
+    std::exception_ptr failed;
+    try {
+        writer_->finish();
+    } catch (...) {
+        failed = std::current_exception();
+    }
+    if (sinks_.video) {
+        try {
+            sinks_.video->finish();
+        } catch (...) {
+            if (!failed) failed = std::current_exception();
+        }
+    }
+    if (failed) std::rethrow_exception(failed);
 }
 
 std::uint64_t Recorder::frames_written() const { return writer_->written(); }
