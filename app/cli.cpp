@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "record/particle_files.h"
 
 namespace ranryu::app {
 namespace {
@@ -15,14 +16,14 @@ namespace {
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
-                "--records", "--quiet", "--shader-dir", "--gl-debug"}},
+                "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quiet"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quiet"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -140,6 +141,11 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
+        else if (opt == "--export-particles") {
+            record::parse_particle_format(value, opt);   // checked here, before any work
+            o.export_particles = value;
+        } else if (opt == "--video") o.video = value;
+        else if (opt == "--no-png") o.no_png = true;
         else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
@@ -210,6 +216,14 @@ std::string command_help(const std::string& cmd) {
   --export-mesh       also write the surface of each frame as frame_00000.ply, ... (binary PLY:
                       marching cubes' triangles with normals, 3 vertices each; needs a surface
                       shading of an SPH scene)
+  --export-particles FORMAT
+                      also write each frame's particles as particles_00000.FORMAT, ...: ply (binary
+                      PLY point cloud: Blender, Houdini) or vtp (VTK PolyData: ParaView), with
+                      position, velocity, density, pressure and, with sub-particles, level and energy
+  --video FILE        also make a video of the frames with ffmpeg (which must be installed): .mp4
+                      (H.264), .webm (VP9) or .gif, at the scene's frame rate; an existing FILE is
+                      refused unless --force
+  --no-png            write no frame_*.png (with --video: only the video)
   --records FILE      also write the SPH simulation's record of every frame as CSV (time, steps,
                       dt, speeds, density, solver iterations and errors, the guard's counts)
   --quiet             no progress line on stderr
