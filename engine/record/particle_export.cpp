@@ -1,7 +1,5 @@
 #include "record/particle_export.h"
 
-#include <algorithm>
-#include <cstdio>
 
 #include "core/error.h"
 #include "frame/pipeline.h"
@@ -36,19 +34,20 @@ ParticleExporter::ParticleExporter(profile::GpuTimer& timer, std::filesystem::pa
                                    std::size_t count, const ParticleBuffers& shape, bool gated,
                                    std::function<void()> pump, int ring)
     : timer_(timer), pass_(timer.pass("particle-readback")), dir_(std::move(dir)), format_(format), count_(count),
-      density_(shape.densities), level_(shape.levels), energy_(shape.energies), ring_(std::size_t(std::max(ring, 1))) {
+      density_(shape.densities), level_(shape.levels), energy_(shape.energies),
+      queue_("ParticleExporter", ring, 1, gated, [this](std::uint64_t, std::size_t b) { write(b); }, std::move(pump),
+             [this](Slot& s) { retire(s); }) {
     const bool present[kArrays] = {true, true, density_, level_, energy_};
-    for (std::size_t i = 0; i < ring_.size(); ++i) {
-        Arrays& a = ring_.slots()[i].data;
+    for (std::size_t i = 0; i < queue_.slots().size(); ++i) {
+        Arrays& a = queue_.slots()[i].data;
         gl::Buffer* copies[kArrays] = {&a.positions, &a.velocities, &a.densities, &a.levels, &a.energies};
         for (int k = 0; k < kArrays; ++k)
             if (present[k])
                 *copies[k] = gl::Buffer(count_ * bytes_per_particle(k), GL_STREAM_READ, nullptr,
                                         std::string("particle-readback.") + kNames[k] + "." + std::to_string(i));
     }
-    // One writer, and as many CPU frames as record::MeshExporter keeps (its reasons), each allocated
-    // here once: the frame path allocates nothing.
-    buffers_.resize(1 + ring_.size() + (gated ? 8 : 0));
+    // The CPU frames, each allocated here once: the frame path allocates nothing.
+    buffers_.resize(queue_.buffers());
     for (Frame& f : buffers_) {
         f.positions.resize(count_);
         f.velocities.resize(count_);
@@ -56,28 +55,18 @@ ParticleExporter::ParticleExporter(profile::GpuTimer& timer, std::filesystem::pa
         if (level_) f.levels.resize(count_);
         if (energy_) f.energies.resize(count_);
     }
-    writer_ = std::make_unique<GatedWriter>(
-        buffers_.size(), 1, gated, [this](std::uint64_t, std::size_t b) { write(b); }, std::move(pump));
 }
 
-ParticleExporter::~ParticleExporter() {
-    try {
-        finish();
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "ranryu: %s\n", e.what());
-    }
-}
+ParticleExporter::~ParticleExporter() { finish_or_report([this] { finish(); }); }
 
 void ParticleExporter::capture(const ParticleBuffers& b) {
-    if (finished_) throw Error("ParticleExporter::capture after finish");
     const bool present[kArrays] = {true, true, density_, level_, energy_};
     for (int k = 0; k < kArrays; ++k) {
         const gl::Buffer* src = source(b, k);
         if ((src != nullptr) != present[k] || (src && src->size() < count_ * bytes_per_particle(k)))
             throw Error(std::string("ParticleExporter: the ") + kNames[k] + " buffer is not the one the exporter was made for");
     }
-    auto retire_slot = [this](Slot& o) { retire(o); };
-    Slot& s = ring_.acquire(retire_slot);
+    Slot& s = queue_.acquire();
     {
         auto pass = timer_.scope(pass_);
         // The simulation's passes wrote these as storage buffers: make those writes visible to the copies.
@@ -87,11 +76,11 @@ void ParticleExporter::capture(const ParticleBuffers& b) {
         for (int k = 0; k < kArrays; ++k)
             if (present[k]) gl::copy_buffer(*source(b, k), *copies[k], copies[k]->size());
     }
-    ring_.submit(captured_++, retire_slot);
+    queue_.submit();
 }
 
 void ParticleExporter::retire(Slot& s) {
-    const std::size_t buffer = writer_->acquire();
+    const std::size_t buffer = queue_.writer().acquire();
     Frame& f = buffers_[buffer];
     f.frame = s.tag;
     // The fence has signalled: these reads do not wait.
@@ -101,7 +90,7 @@ void ParticleExporter::retire(Slot& s) {
         {&s.data.energies, f.energies.data()}};
     for (const auto& [copy, dst] : copies)
         if (*copy) copy->read_bytes(dst, copy->size());
-    writer_->submit(s.tag, buffer);
+    queue_.writer().submit(s.tag, buffer);
 }
 
 // On the writer thread (the only one, so scratch_ needs no lock).
@@ -111,15 +100,9 @@ void ParticleExporter::write(std::size_t buffer) {
     write_particles(format_, dir_ / frame_name(f.frame, extension(format_), "particles"), frame, scratch_);
 }
 
-void ParticleExporter::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
-void ParticleExporter::discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
-
-void ParticleExporter::finish() {
-    if (finished_) return;
-    finished_ = true;
-    ring_.drain([this](Slot& s) { retire(s); });
-    writer_->finish();
-}
+void ParticleExporter::validate_through(std::uint64_t frame) { queue_.validate_through(frame); }
+void ParticleExporter::discard_from(std::uint64_t frame) { queue_.discard_from(frame); }
+void ParticleExporter::finish() { queue_.finish(); }
 
 std::vector<std::string> ParticleExporter::fields() const { return particle_fields(density_, level_, energy_); }
 

@@ -18,11 +18,10 @@
 
 #include <glm/glm.hpp>
 
-#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
-#include "record/gated_writer.h"
 #include "record/particle_files.h"
+#include "record/readback_queue.h"
 
 namespace ranryu::frame { class Pipeline; }
 
@@ -58,8 +57,8 @@ public:
     // if a file failed to write.
     void finish();
 
-    std::uint64_t frames_captured() const { return captured_; }
-    std::uint64_t frames_written() const { return writer_->written(); }
+    std::uint64_t frames_captured() const { return queue_.captured(); }
+    std::uint64_t frames_written() const { return queue_.writer().written(); }
     std::vector<std::string> fields() const;   // particle_fields() of this exporter
 
 private:
@@ -71,7 +70,7 @@ private:
         std::vector<glm::vec4> positions, velocities, densities, energies;
         std::vector<std::uint32_t> levels;
     };
-    using Slot = gl::FenceRing<Arrays>::Slot;   // tag: the frame
+    using Slot = ReadbackQueue<Arrays>::Slot;   // tag: the frame
     void retire(Slot& s);
     void write(std::size_t buffer);   // the writer thread's job: one file
 
@@ -81,12 +80,9 @@ private:
     ParticleFormat format_;
     std::size_t count_;
     bool density_, level_, energy_;
-    gl::FenceRing<Arrays> ring_;
-    std::uint64_t captured_ = 0;
     std::vector<Frame> buffers_;   // preallocated CPU frames, named by the writer's indices
     std::vector<char> scratch_;    // the writer thread's file bytes, reused
-    std::unique_ptr<GatedWriter> writer_;
-    bool finished_ = false;
+    ReadbackQueue<Arrays> queue_;  // last: its threads stop before the frames they write go
 };
 
 }  // namespace ranryu::record

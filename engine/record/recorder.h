@@ -18,10 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
-#include "record/gated_writer.h"
+#include "record/readback_queue.h"
 #include "record/video.h"
 
 namespace ranryu::record {
@@ -62,23 +61,22 @@ public:
     // the video. Throws ranryu::Error if any file failed to write or ffmpeg failed.
     void finish();
 
-    std::uint64_t frames_captured() const { return captured_; }
+    std::uint64_t frames_captured() const { return queue_.captured(); }
     std::uint64_t frames_written() const;   // frames written to every sink
     const VideoEncoder* video() const { return sinks_.video.get(); }
 
 private:
-    using Slot = gl::FenceRing<gl::Buffer>::Slot;   // data: the pixel-buffer object; tag: the frame
+    using Slot = ReadbackQueue<gl::Buffer>::Slot;   // data: the pixel-buffer object; tag: the frame
     void retire(Slot& s);   // fence signalled (or waited): copy out and queue for encoding
+    void write(std::uint64_t frame, std::size_t buffer);   // a writer thread's job: the PNG, then the video
 
     profile::GpuTimer& timer_;
     profile::PassId pass_;
     std::filesystem::path dir_;
     int width_, height_;
-    gl::FenceRing<gl::Buffer> ring_;
-    std::uint64_t captured_ = 0;
     std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames, named by the writer's indices
     FrameSinks sinks_;
-    std::unique_ptr<GatedWriter> writer_;
+    ReadbackQueue<gl::Buffer> queue_;   // last: its threads stop before the frames and sinks they use go
     bool finished_ = false;
 };
 
