@@ -7,7 +7,8 @@
 // CODEC by FILE's extension: .mp4 H.264 (libx264, yuv420p, CRF 18), .webm VP9 (libvpx-vp9, yuv420p,
 // CRF 32), both padded to even sizes as yuv420p needs (an odd size gains a black row or column), and
 // .gif with a palette made for the whole clip (palettegen/paletteuse: ffmpeg holds every frame
-// until the end, so keep GIFs short and small). FPS is the scene's frame rate, 1/frame_dt. The frames
+// until the end, so keep GIFs short and small; GIF delays are whole hundredths of a second, so a
+// 60 fps scene plays at 50). FPS is the scene's frame rate, 1/frame_dt. The frames
 // arrive top row first, as the PNGs are written (record::Recorder flips GL's bottom-up rows).
 //
 // ffmpeg runs in its own process group, so a Ctrl-C at the terminal reaches only ranryu, which
