@@ -168,7 +168,7 @@ usage: ranryu COMMAND [options]      (ranryu COMMAND --help for its options)
 
 commands:
   run       watch a scene in a window
-  record    render a scene headless to frame_00000.png, ... and run.json
+  record    render a scene headless to frame_00000.png, ... and run.json (and a video, particle files)
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
   validate  run a validation case (dam-break, hydrostatic) against its reference
