@@ -250,11 +250,11 @@ int record(const Options& o) {
     if (particles)
         // In the GPU's order: each frame's neighbour-sort (cell) order, not the scene's (record/particle_files.h).
         run["particle_files"] = {{"format", o.export_particles},
-                            {"pattern", std::string("particles_%05d.") + record::extension(*particle_format)},
-                            {"count", pipeline.particle_count()},
-                            {"fields", particles->fields()},
-                            {"order", "gpu-cell-order"},
-                            {"frames_written", particles->frames_written()}};
+                                 {"pattern", std::string("particles_%05d.") + record::extension(*particle_format)},
+                                 {"count", pipeline.particle_count()},
+                                 {"fields", particles->fields()},
+                                 {"order", "gpu-cell-order"},
+                                 {"frames_written", particles->frames_written()}};
     run["simulated_seconds"] = pipeline.simulated_time();
     run["shading"] = render::shading_name(pipeline.shading());
     if (meshes) {
