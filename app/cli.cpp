@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "record/particle_files.h"
 
 namespace ranryu::app {
 namespace {
@@ -15,7 +16,7 @@ namespace {
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
-                "--records", "--quiet", "--shader-dir", "--gl-debug"}},
+                "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {}},
@@ -24,7 +25,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quick", "--list", "--quiet"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -155,6 +156,11 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
+        else if (opt == "--export-particles") {
+            record::parse_particle_format(value, opt);   // checked here, before any work
+            o.export_particles = value;
+        } else if (opt == "--video") o.video = value;
+        else if (opt == "--no-png") o.no_png = true;
         else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--quick") o.quick = true;
         else if (opt == "--list") o.list = true;
@@ -206,7 +212,7 @@ usage: ranryu COMMAND [options]      (ranryu COMMAND --help for its options)
 
 commands:
   run       watch a scene in a window
-  record    render a scene headless to frame_00000.png, ... and run.json
+  record    render a scene headless to frame_00000.png, ... and run.json (and a video, particle files)
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes
   validate  run a validation case (dam-break, hydrostatic, standing-wave) against its reference
@@ -255,6 +261,14 @@ std::string command_help(const std::string& cmd) {
   --export-mesh       also write the surface of each frame as frame_00000.ply, ... (binary PLY:
                       marching cubes' triangles with normals, 3 vertices each; needs a surface
                       shading of an SPH scene)
+  --export-particles FORMAT
+                      also write each frame's particles as particles_00000.FORMAT, ...: ply (binary
+                      PLY point cloud: Blender, Houdini) or vtp (VTK PolyData: ParaView), with
+                      position, velocity, density, pressure and, with sub-particles, level and energy
+  --video FILE        also make a video of the frames with ffmpeg (which must be installed): .mp4
+                      (H.264), .webm (VP9) or .gif, at the scene's frame rate; an existing FILE is
+                      refused unless --force
+  --no-png            write no frame_*.png (with --video: only the video)
   --records FILE      also write the SPH simulation's record of every frame as CSV (time, steps,
                       dt, speeds, density, solver iterations and errors, the guard's counts)
   --quiet             no progress line on stderr

@@ -29,6 +29,9 @@ struct Options {
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
     std::string shading;          // run/record/profile: phong | gouraud | fresnel | particles; empty: the scene's default
     bool export_mesh = false;     // record: frame_NNNNN.ply of the surface beside each PNG
+    std::string export_particles; // record: ply | vtp: particles_NNNNN.EXT of the particles each frame
+    std::string video;            // record: FILE.mp4|.webm|.gif made by ffmpeg from the frames
+    bool no_png = false;          // record: no frame_NNNNN.png (with --video: the video only)
     bool quiet = false;           // record/profile/validate: no progress line on stderr
     // export-field (app/export_field.cpp): the turbulence field y of docs/METHOD.md §4 on an N³ grid.
     int field_size = 64;          // --size N: grid points per axis

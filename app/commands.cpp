@@ -17,8 +17,10 @@
 #include "gl/context.h"
 #include "profile/report.h"
 #include "record/mesh_export.h"
+#include "record/particle_export.h"
 #include "record/png.h"
 #include "record/recorder.h"
+#include "record/video.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
@@ -165,7 +167,15 @@ int record(const Options& o) {
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
-    // Check the folder before any GPU work, so bad input costs nothing and loses nothing.
+    if (o.no_png && o.video.empty() && o.export_particles.empty() && !o.export_mesh)
+        throw InputError("--no-png: nothing would be recorded; add --video, --export-particles or --export-mesh");
+    std::optional<record::ParticleFormat> particle_format;
+    if (!o.export_particles.empty()) particle_format = record::parse_particle_format(o.export_particles, "--export-particles");
+    // Check the video (its type, ffmpeg, an earlier file) and the folder before any GPU work, so bad
+    // input costs nothing and loses nothing: nothing is created before the checks have passed.
+    std::optional<record::VideoPlan> video;
+    if (!o.video.empty()) video = record::VideoPlan::check(o.video, o.force);
+    if (video) video->prepare();
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
 
@@ -174,27 +184,38 @@ int record(const Options& o) {
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, 0, o.records);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
-    std::unique_ptr<record::Recorder> recorder;
+    const bool gated = scene.model == scene::Model::sph;
+    std::unique_ptr<record::Recorder> recorder;     // PNGs and the video (null with --no-png and no --video)
     std::unique_ptr<record::MeshExporter> meshes;   // --export-mesh: frame_NNNNN.ply, gated the same way
+    std::unique_ptr<record::ParticleExporter> particles;   // --export-particles: particles_NNNNN.EXT, likewise
     auto validate = [&] {
         if (const auto sound = pipeline.poll()) {
-            recorder->validate_through(*sound);
+            if (recorder) recorder->validate_through(*sound);
             if (meshes) meshes->validate_through(*sound);
+            if (particles) particles->validate_through(*sound);
         }
         if (const auto& bad = pipeline.instability()) {
-            recorder->discard_from(bad->frame);
+            if (recorder) recorder->discard_from(bad->frame);
             if (meshes) meshes->discard_from(bad->frame);
+            if (particles) particles->discard_from(bad->frame);
         }
     };
-    recorder = std::make_unique<record::Recorder>(pipeline.timer(), out, size.x, size.y,
-                                                  scene.model == scene::Model::sph, validate);
+    if (!o.no_png || video) {
+        record::FrameSinks sinks{!o.no_png, nullptr};
+        if (video) sinks.video = std::make_unique<record::VideoEncoder>(*video, size.x, size.y, scene.frame_dt);
+        recorder = std::make_unique<record::Recorder>(pipeline.timer(), out, size.x, size.y, gated, validate, 3, 0,
+                                                      std::move(sinks));
+    }
     if (o.export_mesh)
-        meshes = std::make_unique<record::MeshExporter>(pipeline.timer(), out, pipeline.mesh()->max_vertices(),
-                                                        scene.model == scene::Model::sph, validate);
+        meshes = std::make_unique<record::MeshExporter>(pipeline.timer(), out, pipeline.mesh()->max_vertices(), gated, validate);
+    if (particle_format)
+        particles = std::make_unique<record::ParticleExporter>(pipeline.timer(), out, *particle_format, pipeline.particle_count(),
+                                                               record::particle_buffers(pipeline), gated, validate);
     frame::FrameHooks hooks;
     hooks.after_draw = [&](frame::Pipeline& p) {
-        recorder->capture(p.target());
+        if (recorder) recorder->capture(p.target());
         if (meshes) meshes->capture(p.mesh()->vertices(), p.mesh()->state());
+        if (particles) particles->capture(record::particle_buffers(p));
     };
     hooks.after = [&](frame::Pipeline& p) {
         validate();
@@ -209,8 +230,9 @@ int record(const Options& o) {
     pipeline.drain();
     log.stop_clock();
     validate();
-    recorder->finish();
+    if (recorder) recorder->finish();   // and closes the video: ffmpeg finishes the file
     if (meshes) meshes->finish();
+    if (particles) particles->finish();
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, int(ran), 0), log.summary());
     nlohmann::json run = profile::to_json(report);
@@ -219,8 +241,20 @@ int record(const Options& o) {
     // A run stopped by SIGINT or SIGTERM: the frames before `interrupted_at_frame` ran.
     run["interrupted"] = interrupted;
     run["interrupted_at_frame"] = interrupted ? nlohmann::json(ran) : nlohmann::json(nullptr);
-    run["frames_written"] = recorder->frames_written();
-    run["frame_pattern"] = "frame_%05d.png";
+    const std::uint64_t pngs = recorder && !o.no_png ? recorder->frames_written() : 0;
+    run["frames_written"] = pngs;
+    run["frame_pattern"] = o.no_png ? nlohmann::json(nullptr) : nlohmann::json("frame_%05d.png");
+    if (video)
+        run["video"] = {{"file", video->file.string()}, {"codec", video->codec()}, {"frame_rate", record::frame_rate(scene.frame_dt)},
+                        {"frames", recorder->video()->frames_written()}};
+    if (particles)
+        // In the GPU's order: each frame's neighbour-sort (cell) order, not the scene's (record/particle_files.h).
+        run["particle_files"] = {{"format", o.export_particles},
+                                 {"pattern", std::string("particles_%05d.") + record::extension(*particle_format)},
+                                 {"count", pipeline.particle_count()},
+                                 {"fields", particles->fields()},
+                                 {"order", "gpu-cell-order"},
+                                 {"frames_written", particles->frames_written()}};
     run["simulated_seconds"] = pipeline.simulated_time();
     run["shading"] = render::shading_name(pipeline.shading());
     if (meshes) {
@@ -237,8 +271,15 @@ int record(const Options& o) {
                               {"value", bad->value}, {"limit", bad->limit}};
     profile::write_text_file(out / "run.json", run.dump(2) + "\n", "run.json in --out " + out.string());
     log.write_records(o.records);
-    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(recorder->frames_written()),
-                size.x, size.y, out.string().c_str());
+    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(pngs), size.x, size.y,
+                out.string().c_str());
+    if (video)
+        std::printf("wrote the video %s (%llu frames, %s, %s fps)\n", video->file.string().c_str(),
+                    static_cast<unsigned long long>(recorder->video()->frames_written()), video->codec(),
+                    record::frame_rate(scene.frame_dt).c_str());
+    if (particles)
+        std::printf("wrote the particles of %llu frames as particles_*.%s\n",
+                    static_cast<unsigned long long>(particles->frames_written()), record::extension(*particle_format));
     std::printf("%s", profile::table(report).c_str());
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     if (interrupted) throw frame::interrupted(ran, std::uint64_t(frames));

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ranryu needs to build, run headless (Mesa llvmpipe when there is
-# no GPU) and test (Xvfb for the window test). Only missing packages are installed; through sudo
+# no GPU) and test (Xvfb for the window test; ffmpeg and ffprobe for the video tests). ffmpeg is a
+# runtime option for users: only `ranryu record --video` runs it, and says so when it is missing. Only missing packages are installed; through sudo
 # when not run as root.
 set -euo pipefail
 pkgs=(g++ cmake ninja-build pkg-config
       libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
       libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev
-      xvfb xauth python3-matplotlib)
+      xvfb xauth ffmpeg python3-matplotlib)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -7,4 +7,4 @@ scripts/install-deps.sh
 cmake -S . -B build/test -G Ninja -DCMAKE_BUILD_TYPE=Debug >/dev/null
 cmake --build build/test
 cd build/test
-RANRYU_REQUIRE_XVFB=1 ctest --output-on-failure -j "$(nproc)" "$@"
+RANRYU_REQUIRE_XVFB=1 RANRYU_REQUIRE_FFMPEG=1 ctest --output-on-failure -j "$(nproc)" "$@"

@@ -1,7 +1,7 @@
 #pragma once
 // A ring of slots, each filled by GPU commands and fenced, handed back in the order they were
 // filled once their fences signal: the mechanism under every asynchronous readback here
-// (gl::AsyncReadback, record::Recorder, record::MeshExporter).
+// (gl::AsyncReadback, and record::ReadbackQueue under the recorder and the exporters).
 //
 //     Slot& s = ring.acquire(retire);   // the next slot; if still in flight, waits and retires it
 //     ... queue the GPU commands that fill s.data ...

@@ -42,6 +42,14 @@ void Buffer::read_bytes(void* dst, std::size_t bytes, std::size_t offset) const 
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
 }
 
+void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset) {
+    glBindBuffer(GL_COPY_READ_BUFFER, from.id());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, to.id());
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(from_offset), 0, GLsizeiptr(bytes));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
 Texture2D::Texture2D(GLenum internal_format, int width, int height, std::string_view name)
     : width_(width), height_(height) {
     GLuint id = 0;

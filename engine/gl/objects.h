@@ -93,6 +93,11 @@ private:
     std::size_t size_ = 0;
 };
 
+// Queues a GPU-side copy of `bytes` from `from` at `from_offset` to the start of `to`
+// (glCopyBufferSubData through the copy binding points: GL 4.3 has no direct state access). Issues no
+// barrier: a caller that copies what a shader wrote calls glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first.
+void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset = 0);
+
 // An immutable-storage 2D texture (glTexStorage2D).
 class Texture2D {
 public:

@@ -16,11 +16,7 @@ void AsyncReadback::copy(const Buffer& src, std::size_t offset, std::uint64_t ta
     auto retire = [this](FenceRing<Buffer>::Slot& s) { hand_over(s); };
     const Buffer& dst = ring_.acquire(retire).data;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBuffer(GL_COPY_READ_BUFFER, src.id());
-    glBindBuffer(GL_COPY_WRITE_BUFFER, dst.id());
-    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(offset), 0, GLsizeiptr(bytes_));
-    glBindBuffer(GL_COPY_READ_BUFFER, 0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    copy_buffer(src, dst, bytes_, offset);
     ring_.submit(tag, retire);
 }
 

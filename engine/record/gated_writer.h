@@ -7,7 +7,8 @@
 // an instability reaches disk. Buffers are the caller's own preallocated storage, named here by
 // index. acquire() waits while every buffer is queued (the writers, or the records that validate
 // frames, are behind), calling `pump` meanwhile so that the caller can collect those records
-// instead of deadlocking. Used by record::Recorder (PNG) and record::MeshExporter (PLY).
+// instead of deadlocking. Used through record::ReadbackQueue by record::Recorder (PNG, video),
+// record::MeshExporter (PLY) and record::ParticleExporter (PLY, VTP).
 #include <condition_variable>
 #include <cstdint>
 #include <deque>

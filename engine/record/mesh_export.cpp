@@ -11,14 +11,7 @@
 namespace ranryu::record {
 
 namespace {
-// GL 4.3 (no direct state access): copies and maps go through the copy binding points.
-void copy(const gl::Buffer& from, const gl::Buffer& to, std::size_t bytes) {
-    glBindBuffer(GL_COPY_READ_BUFFER, from.id());
-    glBindBuffer(GL_COPY_WRITE_BUFFER, to.id());
-    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(bytes));
-    glBindBuffer(GL_COPY_READ_BUFFER, 0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-}
+// GL 4.3 (no direct state access): maps go through the copy binding points.
 // Copies the first `bytes` of `from` into dst; false if the buffer could not be mapped.
 bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
     glBindBuffer(GL_COPY_READ_BUFFER, from.id());
@@ -36,46 +29,35 @@ bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
 MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                            std::function<void()> pump, int ring)
     : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),
-      ring_(std::size_t(std::max(ring, 1))) {
-    for (std::size_t i = 0; i < ring_.size(); ++i) {
-        Copies& c = ring_.slots()[i].data;
+      queue_("MeshExporter", ring, 1, gated, [this](std::uint64_t, std::size_t b) { write(b); }, std::move(pump),
+             [this](Slot& s) { retire(s); }) {
+    for (std::size_t i = 0; i < queue_.slots().size(); ++i) {
+        Copies& c = queue_.slots()[i].data;
         c.vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
                                 "mesh-readback.vertices." + std::to_string(i));
         c.state = gl::Buffer(sizeof(gpu::MeshState), GL_STREAM_READ, nullptr, "mesh-readback.state." + std::to_string(i));
     }
-    // One writer: a buffer it writes from, the ring's worth retiring, and the frames a gated run holds
-    // until their records arrive (a few frames late), as record::Recorder sizes its frames.
-    buffers_.resize(1 + ring_.size() + (gated ? 8 : 0));
+    buffers_.resize(queue_.buffers());   // their storage grows to the largest mesh, then stays
     records_.resize(buffers_.size());
-    writer_ = std::make_unique<GatedWriter>(
-        buffers_.size(), 1, gated, [this](std::uint64_t, std::size_t b) { write(b); }, std::move(pump));
 }
 
-MeshExporter::~MeshExporter() {
-    try {
-        finish();
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "ranryu: %s\n", e.what());
-    }
-}
+MeshExporter::~MeshExporter() { finish_or_report([this] { finish(); }); }
 
 void MeshExporter::capture(const gl::Buffer& vertices, const gl::Buffer& state) {
-    if (finished_) throw Error("MeshExporter::capture after finish");
     if (vertices.size() < max_vertices_ * sizeof(gpu::MeshVertex)) throw Error("MeshExporter: vertex buffer smaller than its capacity");
-    auto retire_slot = [this](Slot& o) { retire(o); };
-    Slot& s = ring_.acquire(retire_slot);
+    Slot& s = queue_.acquire();
     {
         auto pass = timer_.scope(pass_);
         // The mesh passes end with their own barriers; copies read buffer data after them in order.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        copy(state, s.data.state, sizeof(gpu::MeshState));
-        copy(vertices, s.data.vertices, s.data.vertices.size());
+        gl::copy_buffer(state, s.data.state, sizeof(gpu::MeshState));
+        gl::copy_buffer(vertices, s.data.vertices, s.data.vertices.size());
     }
-    ring_.submit(captured_++, retire_slot);
+    queue_.submit();
 }
 
 void MeshExporter::retire(Slot& s) {
-    const std::size_t buffer = writer_->acquire();
+    const std::size_t buffer = queue_.writer().acquire();
     gpu::MeshState state{};
     bool ok = read_mapped(s.data.state, &state, sizeof state);
     records_[buffer] = MeshRecord{s.tag, std::min<std::uint32_t>(state.draw.x, std::uint32_t(max_vertices_)),
@@ -84,11 +66,11 @@ void MeshExporter::retire(Slot& s) {
     dst.resize(records_[buffer].vertices);   // reuses the storage once it has grown to the largest mesh
     if (ok && !dst.empty()) ok = read_mapped(s.data.vertices, dst.data(), dst.size() * sizeof(gpu::MeshVertex));
     if (!ok) {
-        writer_->fail("cannot map the mesh readback buffers of frame " + std::to_string(s.tag));
-        writer_->release(buffer);
+        queue_.writer().fail("cannot map the mesh readback buffers of frame " + std::to_string(s.tag));
+        queue_.writer().release(buffer);
         return;
     }
-    writer_->submit(s.tag, buffer);
+    queue_.writer().submit(s.tag, buffer);
 }
 
 // On the writer thread (the only one, so the scratch arrays need no lock).
@@ -108,15 +90,9 @@ void MeshExporter::write(std::size_t buffer) {
     written_.push_back(records_[buffer]);
 }
 
-void MeshExporter::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
-void MeshExporter::discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
-
-void MeshExporter::finish() {
-    if (finished_) return;
-    finished_ = true;
-    ring_.drain([this](Slot& s) { retire(s); });
-    writer_->finish();
-}
+void MeshExporter::validate_through(std::uint64_t frame) { queue_.validate_through(frame); }
+void MeshExporter::discard_from(std::uint64_t frame) { queue_.discard_from(frame); }
+void MeshExporter::finish() { queue_.finish(); }
 
 std::vector<MeshRecord> MeshExporter::written() const {
     std::lock_guard lock(written_mutex_);

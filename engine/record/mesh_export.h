@@ -23,10 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
-#include "record/gated_writer.h"
+#include "record/readback_queue.h"
 #include "shared/bindings.h"
 
 namespace ranryu::record {
@@ -57,7 +56,7 @@ public:
     // if a file failed to write.
     void finish();
 
-    std::uint64_t frames_captured() const { return captured_; }
+    std::uint64_t frames_captured() const { return queue_.captured(); }
     // The frames written so far, in frame order.
     std::vector<MeshRecord> written() const;
 
@@ -65,7 +64,7 @@ private:
     struct Copies {
         gl::Buffer vertices, state;
     };
-    using Slot = gl::FenceRing<Copies>::Slot;   // tag: the frame
+    using Slot = ReadbackQueue<Copies>::Slot;   // tag: the frame
     void retire(Slot& s);
     void write(std::size_t buffer);   // the writer thread's job: one PLY
 
@@ -73,16 +72,13 @@ private:
     profile::PassId pass_;
     std::filesystem::path dir_;
     std::size_t max_vertices_;
-    gl::FenceRing<Copies> ring_;
-    std::uint64_t captured_ = 0;
     std::vector<std::vector<gpu::MeshVertex>> buffers_;   // reused; storage grows to the largest mesh
     std::vector<MeshRecord> records_;                     // what each buffer holds
     std::vector<glm::vec3> positions_, normals_;          // the writer thread's scratch
     std::vector<glm::uvec3> triangles_;
-    std::unique_ptr<GatedWriter> writer_;
     mutable std::mutex written_mutex_;
     std::vector<MeshRecord> written_;
-    bool finished_ = false;
+    ReadbackQueue<Copies> queue_;   // last: its threads stop before the frames they write go
 };
 
 }  // namespace ranryu::record

@@ -1,6 +1,7 @@
 #include "record/recorder.h"
 
 #include <algorithm>
+#include <exception>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -18,14 +19,15 @@ namespace {
 bool is_run_file(const fs::path& p) {
     const std::string name = p.filename().string();
     if (name == "run.json") return true;
-    return name.starts_with("frame_") && (name.ends_with(".png") || name.ends_with(".ply"));
+    if (name.starts_with("frame_")) return name.ends_with(".png") || name.ends_with(".ply");
+    return name.starts_with("particles_") && (name.ends_with(".ply") || name.ends_with(".vtp"));
 }
 
 }  // namespace
 
-std::string frame_name(std::uint64_t index, const char* extension) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "frame_%05llu.%s", static_cast<unsigned long long>(index), extension);
+std::string frame_name(std::uint64_t index, const char* extension, const char* prefix) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s_%05llu.%s", prefix, static_cast<unsigned long long>(index), extension);
     return buf;
 }
 
@@ -52,7 +54,7 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
     if (earlier.empty()) return 0;
     if (!force)
         throw InputError(what + ": already holds an earlier run (" + std::to_string(earlier.size()) +
-                         " files: frame_*.png/.ply, run.json); pass --force to replace it, or choose another folder");
+                         " files: frame_*.png/.ply, particles_*.ply/.vtp, run.json); pass --force to replace it, or choose another folder");
     for (const fs::path& p : earlier) {
         fs::remove(p, ec);
         if (ec) throw InputError(what + ": cannot remove " + p.filename().string() + " (" + ec.message() + ")");
@@ -61,36 +63,36 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
 }
 
 Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
-                   std::function<void()> pump, int ring, int writers)
+                   std::function<void()> pump, int ring, int writers, FrameSinks sinks)
     : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
-      ring_(std::size_t(std::max(ring, 1))) {
+      sinks_(std::move(sinks)),
+      queue_("Recorder", ring, writers > 0 ? writers : std::max(1, int(std::thread::hardware_concurrency()) - 1), gated,
+             [this](std::uint64_t frame, std::size_t b) { write(frame, b); }, std::move(pump), [this](Slot& s) { retire(s); }) {
     const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
-    for (std::size_t i = 0; i < ring_.size(); ++i)
-        ring_.slots()[i].data = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
-    if (writers <= 0) writers = std::max(1, int(std::thread::hardware_concurrency()) - 1);
-    // Enough CPU frames that every writer can be busy while the ring retires more, plus the frames a
-    // gated recorder holds until their records arrive (those arrive a few frames late).
-    buffers_.resize(std::size_t(writers) + ring_.size() + (gated ? 8 : 0));
+    for (std::size_t i = 0; i < queue_.slots().size(); ++i)
+        queue_.slots()[i].data = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
+    buffers_.resize(queue_.buffers());
     for (auto& b : buffers_) b.resize(bytes);
-    writer_ = std::make_unique<GatedWriter>(
-        buffers_.size(), writers, gated,
-        [this](std::uint64_t frame, std::size_t b) { write_png(dir_ / frame_name(frame), width_, height_, buffers_[b].data()); },
-        std::move(pump));
 }
 
-Recorder::~Recorder() {
-    try {
-        finish();
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "ranryu: %s\n", e.what());
-    }
+Recorder::~Recorder() { finish_or_report([this] { finish(); }); }
+
+// On a writer thread.
+void Recorder::write(std::uint64_t frame, std::size_t b) {
+    // Every frame a writer takes reaches the video, PNG failed or not: the next one waits for it.
+    std::exception_ptr png_failed;
+    if (sinks_.png) try {
+            write_png(dir_ / frame_name(frame), width_, height_, buffers_[b].data());
+        } catch (...) {
+            png_failed = std::current_exception();
+        }
+    if (sinks_.video) sinks_.video->write(frame, buffers_[b].data());
+    if (png_failed) std::rethrow_exception(png_failed);
 }
 
 void Recorder::capture(const gl::RenderTarget& target) {
-    if (finished_) throw Error("Recorder::capture after finish");
     if (target.width() != width_ || target.height() != height_) throw Error("Recorder: target size changed");
-    auto retire_slot = [this](Slot& o) { retire(o); };
-    Slot& s = ring_.acquire(retire_slot);
+    Slot& s = queue_.acquire();
     {
         auto pass = timer_.scope(pass_);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer());
@@ -101,11 +103,11 @@ void Recorder::capture(const gl::RenderTarget& target) {
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     }
-    ring_.submit(captured_++, retire_slot);   // and hands over whatever the GPU has finished
+    queue_.submit();   // and hands over whatever the GPU has finished
 }
 
 void Recorder::retire(Slot& s) {
-    const std::size_t buffer = writer_->acquire();
+    const std::size_t buffer = queue_.writer().acquire();
     glBindBuffer(GL_PIXEL_PACK_BUFFER, s.data.id());
     const auto* src = static_cast<const std::uint8_t*>(
         glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(s.data.size()), GL_MAP_READ_BIT));
@@ -118,23 +120,37 @@ void Recorder::retire(Slot& s) {
     }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     if (!src) {
-        writer_->fail("cannot map the readback buffer of frame " + std::to_string(s.tag));
-        writer_->release(buffer);
+        if (sinks_.video) sinks_.video->abandon(s.tag);
+        queue_.writer().fail("cannot map the readback buffer of frame " + std::to_string(s.tag));
+        queue_.writer().release(buffer);
         return;
     }
-    writer_->submit(s.tag, buffer);
+    queue_.writer().submit(s.tag, buffer);
 }
 
-void Recorder::validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
-void Recorder::discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
+void Recorder::validate_through(std::uint64_t frame) { queue_.validate_through(frame); }
+void Recorder::discard_from(std::uint64_t frame) { queue_.discard_from(frame); }
 
 void Recorder::finish() {
     if (finished_) return;
     finished_ = true;
-    ring_.drain([this](Slot& s) { retire(s); });
-    writer_->finish();
+    // The PNGs' failure first, if any; the video is closed (and ffmpeg waited for) either way.
+    std::exception_ptr failed;
+    try {
+        queue_.finish();
+    } catch (...) {
+        failed = std::current_exception();
+    }
+    if (sinks_.video) {
+        try {
+            sinks_.video->finish();
+        } catch (...) {
+            if (!failed) failed = std::current_exception();
+        }
+    }
+    if (failed) std::rethrow_exception(failed);
 }
 
-std::uint64_t Recorder::frames_written() const { return writer_->written(); }
+std::uint64_t Recorder::frames_written() const { return queue_.writer().written(); }
 
 }  // namespace ranryu::record

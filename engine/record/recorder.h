@@ -1,10 +1,11 @@
 #pragma once
-// Recording frames to PNG without stalling the GPU pipeline.
+// Recording frames to PNG (and, through ffmpeg, to a video: record/video.h) without stalling the GPU
+// pipeline.
 //
 // capture() queues an asynchronous glReadPixels into the next pixel-buffer object of a ring and
 // fences it; a later capture() finds the fence signalled, copies the pixels out (flipping rows) into
 // a preallocated CPU buffer and hands it to writer threads, which encode the PNG off the render
-// thread. The render thread waits only when the whole ring is still in flight (GPU behind) or every
+// thread and hand the frame to the video's ffmpeg in frame order. The render thread waits only when the whole ring is still in flight (GPU behind) or every
 // CPU buffer is queued for encoding (encoders behind): back-pressure, never a per-frame stall.
 //
 // A frame is written only once the caller says it is sound (validate_through), so that nothing drawn
@@ -17,20 +18,27 @@
 #include <string>
 #include <vector>
 
-#include "gl/fence_ring.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
-#include "record/gated_writer.h"
+#include "record/readback_queue.h"
+#include "record/video.h"
 
 namespace ranryu::record {
 
+// Where a Recorder's frames go: PNG files in its folder (frame_00000.png, ...) and/or a video.
+struct FrameSinks {
+    bool png = true;
+    std::unique_ptr<VideoEncoder> video;   // finished by Recorder::finish()
+};
+
 // Makes `dir` ready for a new run: creates it if missing and checks that it can be written. If it
-// holds an earlier run (frame_*.png, frame_*.ply or run.json) it refuses with ranryu::InputError,
-// unless `force`, which removes that earlier run first. Returns the number of files removed.
+// holds an earlier run (frame_*.png, frame_*.ply, particles_*.ply, particles_*.vtp or run.json) it
+// refuses with ranryu::InputError, unless `force`, which removes that earlier run first. Returns the
+// number of files removed.
 std::size_t prepare_output(const std::filesystem::path& dir, bool force);
 
-// "frame_00042.png"
-std::string frame_name(std::uint64_t index, const char* extension = "png");
+// "frame_00042.png", "particles_00042.vtp"
+std::string frame_name(std::uint64_t index, const char* extension = "png", const char* prefix = "frame");
 
 class Recorder {
 public:
@@ -38,7 +46,7 @@ public:
     // `pump` is called while the render thread waits for a free CPU buffer, so that the caller can
     // collect the records that validate frames (which frees buffers) instead of deadlocking.
     Recorder(profile::GpuTimer& timer, std::filesystem::path dir, int width, int height, bool gated,
-             std::function<void()> pump = {}, int ring = 3, int writers = 0);
+             std::function<void()> pump = {}, int ring = 3, int writers = 0, FrameSinks sinks = {});
     ~Recorder();
     Recorder(const Recorder&) = delete;
     Recorder& operator=(const Recorder&) = delete;
@@ -49,25 +57,26 @@ public:
     void validate_through(std::uint64_t frame);
     // Frames from `frame` on are never written (they show an unstable simulation).
     void discard_from(std::uint64_t frame);
-    // Waits for every queued readback and PNG of validated frames and drops the rest. Throws
-    // ranryu::Error if any file failed to write.
+    // Waits for every queued readback and PNG of validated frames and drops the rest, then finishes
+    // the video. Throws ranryu::Error if any file failed to write or ffmpeg failed.
     void finish();
 
-    std::uint64_t frames_captured() const { return captured_; }
-    std::uint64_t frames_written() const;
+    std::uint64_t frames_captured() const { return queue_.captured(); }
+    std::uint64_t frames_written() const;   // frames written to every sink
+    const VideoEncoder* video() const { return sinks_.video.get(); }
 
 private:
-    using Slot = gl::FenceRing<gl::Buffer>::Slot;   // data: the pixel-buffer object; tag: the frame
+    using Slot = ReadbackQueue<gl::Buffer>::Slot;   // data: the pixel-buffer object; tag: the frame
     void retire(Slot& s);   // fence signalled (or waited): copy out and queue for encoding
+    void write(std::uint64_t frame, std::size_t buffer);   // a writer thread's job: the PNG, then the video
 
     profile::GpuTimer& timer_;
     profile::PassId pass_;
     std::filesystem::path dir_;
     int width_, height_;
-    gl::FenceRing<gl::Buffer> ring_;
-    std::uint64_t captured_ = 0;
     std::vector<std::vector<std::uint8_t>> buffers_;   // preallocated frames, named by the writer's indices
-    std::unique_ptr<GatedWriter> writer_;
+    FrameSinks sinks_;
+    ReadbackQueue<gl::Buffer> queue_;   // last: its threads stop before the frames and sinks they use go
     bool finished_ = false;
 };
 

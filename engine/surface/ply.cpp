@@ -1,14 +1,12 @@
 #include "surface/ply.h"
 
-#include <cerrno>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "core/error.h"
+#include "core/whole_file.h"
 
 namespace ranryu::surface {
 namespace {
@@ -54,28 +52,7 @@ void write_ply(const std::filesystem::path& path, std::span<const glm::vec3> pos
         }
     }
 
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw Error(where + std::strerror(errno));
-        f.write(header.data(), std::streamsize(header.size()));
-        f.write(body.data(), std::streamsize(body.size()));
-        f.close();
-        if (!f) {
-            const std::string why = std::strerror(errno);
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            throw Error(where + why);
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw Error(where + ec.message());
-    }
+    write_whole_file(path, {header, std::string_view(body.data(), body.size())}, where);
 }
 
 void write_ply(const std::filesystem::path& path, const IndexedMesh& mesh) {

@@ -1,0 +1,140 @@
+// ranryu record --export-particles ply|vtp (engine/record/particle_export.h): one file per frame,
+// particles_00000.EXT, read back by the tests' own reader of the PLY and VTK specifications
+// (tests/support/particle_reader.h): the count and fields run.json names, a well-nested VTP with
+// NumberOfPoints and its arrays. That the values are the GPU's is tests/gl/particle_export_test.cpp's.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "run_helper.h"
+#include "support/particle_reader.h"
+
+using namespace ranryu::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// The bundled turbulent jet at 320 particles (turbulence and sub-particles on), drawn as particles.
+Result record_jet(const TempDir& tmp, const std::string& format, int frames, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {"record", "--scene", "turbulent-jet", "--spacing", "0.04", "--size", "64x48",
+                                     "--shading", "particles", "--frames", std::to_string(frames), "--out", "out",
+                                     "--export-particles", format, "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_ranryu(tmp.path(), args);
+}
+
+std::string particle_file(int i, const std::string& ext) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "particles_%05d.%s", i, ext.c_str());
+    return buf;
+}
+
+void check_sane(const PointCloud& pc) {
+    for (std::size_t i = 0; i < pc.count; ++i) {
+        INFO("particle " << i);
+        for (const char* axis : {"x", "y", "z"}) CHECK(std::isfinite(pc.values.at(axis)[i]));
+        // Inside the jet's tank (1.2 x 0.5 x 0.2 m, closed), with a density near water's.
+        CHECK(pc.values.at("x")[i] >= 0.0);
+        CHECK(pc.values.at("x")[i] <= 1.2);
+        CHECK(pc.values.at("y")[i] >= 0.0);
+        CHECK(pc.values.at("y")[i] <= 0.5);
+        CHECK(pc.values.at("density")[i] > 100.0);
+        CHECK(pc.values.at("density")[i] < 1500.0);
+        CHECK(pc.values.at("level")[i] >= 0.0);
+        CHECK(pc.values.at("energy")[i] >= 0.0);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("ranryu record --export-particles writes a PLY or VTP per frame that a reader of the format reads",
+          "[cli][record][particles]") {
+    TempDir tmp;
+    const int frames = 3;
+    for (const std::string format : {"ply", "vtp"}) {
+        INFO("format " << format);
+        const Result r = record_jet(tmp, format, frames, {"--force"});
+        INFO(r.describe());
+        REQUIRE(r.exit_code == 0);
+        CHECK_THAT(r.out, Contains("wrote the particles of 3 frames as particles_*." + format));
+        const nlohmann::json run = nlohmann::json::parse(read_file(tmp / "out" / "run.json"));
+        INFO(run.dump(2));
+        const nlohmann::json& p = run.at("particle_files");
+        CHECK(p["format"] == format);
+        CHECK(p["pattern"] == "particles_%05d." + format);
+        CHECK(p["frames_written"] == frames);
+        CHECK(p["order"] == "gpu-cell-order");
+        CHECK(p["count"] == run["particles"]);   // the run's particle count
+        const auto fields = p["fields"].get<std::vector<std::string>>();
+        CHECK(fields == std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "density", "pressure", "level", "energy"});
+        for (int i = 0; i < frames; ++i) {
+            const fs::path file = tmp / "out" / particle_file(i, format);
+            INFO(file.string());
+            REQUIRE(fs::exists(file));
+            const PointCloud pc = format == "ply" ? read_ply(file) : read_vtp(file);
+            CHECK(pc.count == p["count"].get<std::size_t>());
+            CHECK(pc.count == 320);
+            std::vector<std::string> names = pc.names, want = fields;
+            std::sort(names.begin(), names.end());
+            std::sort(want.begin(), want.end());
+            CHECK(names == want);
+            check_sane(pc);
+            if (format == "vtp") {
+                // The XML: VTKFile > PolyData > Piece > PointData, Points, Verts, then the data.
+                CHECK(pc.elements.front() == "VTKFile");
+                for (const char* e : {"PolyData", "Piece", "PointData", "Points", "Verts", "DataArray"})
+                    CHECK(std::find(pc.elements.begin(), pc.elements.end(), e) != pc.elements.end());
+                CHECK(pc.piece.at("NumberOfPoints") == "320");
+                CHECK(pc.connectivity.size() == 320);
+            }
+        }
+        CHECK(!fs::exists(tmp / "out" / particle_file(frames, format)));
+    }
+}
+
+TEST_CASE("ranryu record --export-particles of a ballistic scene writes positions and velocities only",
+          "[cli][record][particles]") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--frames", "2",
+                                             "--out", "out", "--export-particles", "ply", "--quiet"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    const PointCloud pc = read_ply(tmp / "out" / "particles_00001.ply");
+    CHECK(pc.count == 144);
+    CHECK(pc.names == std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz"});
+}
+
+TEST_CASE("ranryu record --export-particles: an unknown format is exit 2 naming it; an earlier run's files are "
+          "refused without --force", "[cli][record][particles]") {
+    TempDir tmp;
+    const Result bad = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--out", "out",
+                                               "--export-particles", "xyz"});
+    INFO(bad.describe());
+    CHECK(bad.exit_code == 2);
+    REQUIRE(bad.err_lines().size() == 1);
+    CHECK_THAT(bad.err, Contains("--export-particles xyz") && Contains("ply") && Contains("vtp"));
+    CHECK(list_dir(tmp.path()).empty());
+    // --no-png with nothing else to write would record nothing.
+    const Result nothing = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--out", "out", "--no-png"});
+    INFO(nothing.describe());
+    CHECK(nothing.exit_code == 2);
+    CHECK_THAT(nothing.err, Contains("--no-png"));
+    CHECK(list_dir(tmp.path()).empty());
+
+    const std::vector<std::string> args = {"record", "--scene", scene_file("small.json").string(), "--frames", "2",
+                                           "--out", "out", "--export-particles", "vtp", "--no-png", "--quiet"};
+    REQUIRE(run_ranryu(tmp.path(), args).exit_code == 0);
+    CHECK(list_dir(tmp / "out") == std::vector<std::string>{"particles_00000.vtp", "particles_00001.vtp", "run.json"});
+    const Result again = run_ranryu(tmp.path(), args);
+    INFO(again.describe());
+    CHECK(again.exit_code == 2);
+    CHECK_THAT(again.err, Contains("--force"));
+    std::vector<std::string> forced = args;
+    forced.push_back("--force");
+    const Result f = run_ranryu(tmp.path(), forced);
+    INFO(f.describe());
+    CHECK(f.exit_code == 0);
+    CHECK_THAT(f.out, Contains("removed 3 files"));
+}
