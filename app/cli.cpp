@@ -18,11 +18,11 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                 "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
-    {"scenes", {}},
+    {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quiet"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--quiet", "--schema", "--markdown"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -141,6 +141,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
         else if (opt == "--quiet") o.quiet = true;
+        else if (opt == "--schema") o.schema = true;
+        else if (opt == "--markdown") o.markdown = true;
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
             if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
@@ -150,6 +152,7 @@ Options parse(const std::vector<std::string>& args) {
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic)");
+    if (o.schema && o.markdown) throw InputError("--schema, --markdown: give one of them");
     if (o.command == "export-field" && o.out.empty() && !o.help)
         throw InputError("--out: export-field needs --out FILE.npy");
     return o;
@@ -164,7 +167,7 @@ commands:
   run       watch a scene in a window
   record    render a scene headless to frame_00000.png, ... and run.json
   profile   run a scene headless and print per-pass GPU timings
-  scenes    list the bundled scenes
+  scenes    list the bundled scenes (--schema, --markdown: the scene keys' schema or reference)
   validate  run a validation case (dam-break, hydrostatic) against its reference
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
@@ -224,7 +227,14 @@ std::string command_help(const std::string& cmd) {
   --records FILE      also write the SPH simulation's record of every frame as CSV (warm-up included)
   --quiet             no progress line on stderr
 )";
-    if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
+    if (cmd == "scenes")
+        return R"(usage: ranryu scenes [--schema | --markdown]
+
+List the bundled scenes with their descriptions.
+
+  --schema            print instead the JSON Schema of scene files (media/scenes/scene.schema.json)
+  --markdown          print instead the reference of every scene key (docs/SCENES.md)
+)";
     if (cmd == "validate")
         return R"(usage: ranryu validate CASE [options]
 

@@ -19,6 +19,7 @@
 #include "record/mesh_export.h"
 #include "record/png.h"
 #include "record/recorder.h"
+#include "scene/keys.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
@@ -114,7 +115,9 @@ scene::Scene with_options(scene::Scene s, const Options& o) {
     return s;
 }
 
-int scenes(const Options&) {
+int scenes(const Options& o) {
+    if (o.schema) return std::fputs(scene::json_schema().c_str(), stdout), 0;
+    if (o.markdown) return std::fputs(scene::markdown().c_str(), stdout), 0;
     for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
     return 0;
 }

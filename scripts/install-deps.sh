@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ranryu needs to build, run headless (Mesa llvmpipe when there is
-# no GPU) and test (Xvfb for the window test). Only missing packages are installed; through sudo
-# when not run as root.
+# no GPU) and test (Xvfb for the window test, python3-jsonschema for the scene schema's test). Only
+# missing packages are installed; through sudo when not run as root.
 set -euo pipefail
 pkgs=(g++ cmake ninja-build pkg-config
       libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
       libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev
-      xvfb xauth)
+      xvfb xauth python3-jsonschema)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
