@@ -168,11 +168,11 @@ int record(const Options& o) {
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
+    const shader::FileSource shaders = shader_source(o);   // a bad --shader-dir, before the folder is made
     // Check the folder before any GPU work, so bad input costs nothing and loses nothing.
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
 
-    const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, 0, o.records);
