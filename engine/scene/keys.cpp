@@ -114,7 +114,7 @@ std::vector<Key> make_keys() {
         number("sph.force_factor", "", h.force_factor, 0.01, 1.0, "The time step's force factor (docs/SPH.md (7), docs/DFSPH.md (D8))."),
         number("sph.max_time_step", "s", h.max_time_step, 1e-6, 0.1, "The largest step, also at rest (and at most the frame)."),
         number("sph.max_density_error", "", h.max_density_error, 1e-6, 0.1,
-               "DFSPH: the density solve's bound η on the mean density error, a fraction of ρ0 (docs/DFSPH.md (D6))."),
+               "DFSPH: the density solve's bound η on the density error, a fraction of ρ0 (docs/DFSPH.md (D6))."),
         number("sph.max_divergence_error", "", h.max_divergence_error, 1e-6, 0.1,
                "DFSPH: the divergence solve's bound η_v (docs/DFSPH.md (D6))."),
         integer("sph.min_iterations", "", h.min_iterations, 1, 1000, "DFSPH: the density solve's fewest iterations."),
@@ -297,7 +297,7 @@ std::string markdown() {
             md << "\n## " << (g.empty() ? "The top level" : "`" + g + "`") << "\n\n";
             if (!g.empty()) md << find_key(g)->meaning << "\n\n";
             md << "| key | type | unit | default | bounds | meaning |\n| --- | --- | --- | --- | --- | --- |\n";
-            if (k.path == g && k.type == KeyType::object) continue;   // its meaning heads the section
+            if (k.path == g) continue;   // its meaning heads the section
         }
         std::string meaning = k.meaning;
         if (!k.variant.empty()) meaning = "(" + k.variant + ") " + meaning;
