@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DRANRYU_TESTS=OFF >/dev/null
-cmake --build build/release
+cmake --preset release >/dev/null   # build/release: Release, no tests (CMakePresets.json)
+cmake --build --preset release
 if [ $# -eq 0 ]; then set -- --scene dam-break --frames 24 --force; fi
 exec build/release/app/ranryu record "$@"

@@ -3,7 +3,7 @@
 # and runs them through CTest. With no GPU the GL tests run on Mesa's llvmpipe; the window test runs
 # under Xvfb. Then, on a whole run (no arguments; RANRYU_SANITIZE_RUN=0 skips it), the CPU tests, the
 # fuzz corpus and a short headless record again under AddressSanitizer and UBSan (scripts/sanitize.sh).
-# Arguments go to ctest (e.g. -R 'unit: ').
+# Arguments go to ctest (e.g. -R '^unit:').
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
