@@ -19,13 +19,13 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                 "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
-    {"scenes", {}},
+    {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -190,6 +190,8 @@ Options parse(const std::vector<std::string>& args) {
             }
             if (o.shard_index > o.shard_count) throw InputError("--shard " + value + ": expected I/N with 1 <= I <= N");
         }
+        else if (opt == "--schema") o.schema = true;
+        else if (opt == "--markdown") o.markdown = true;
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
             if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
@@ -200,6 +202,7 @@ Options parse(const std::vector<std::string>& args) {
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave)");
     if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
+    if (o.schema && o.markdown) throw InputError("--schema, --markdown: give one of them");
     if (o.command == "export-field" && o.out.empty() && !o.help)
         throw InputError("--out: export-field needs --out FILE.npy");
     return o;
@@ -214,7 +217,7 @@ commands:
   run       watch a scene in a window
   record    render a scene headless to frame_00000.png, ... and run.json (and a video, particle files)
   profile   run a scene headless and print per-pass GPU timings
-  scenes    list the bundled scenes
+  scenes    list the bundled scenes (--schema, --markdown: the scene keys' schema or reference)
   validate  run a validation case (dam-break, hydrostatic, standing-wave) against its reference
   sweep     run the validation cases over solver x spacing x time-step factor: accuracy against cost
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
@@ -283,7 +286,14 @@ std::string command_help(const std::string& cmd) {
   --records FILE      also write the SPH simulation's record of every frame as CSV (warm-up included)
   --quiet             no progress line on stderr
 )";
-    if (cmd == "scenes") return "usage: ranryu scenes\n\nList the bundled scenes with their descriptions.\n";
+    if (cmd == "scenes")
+        return R"(usage: ranryu scenes [--schema | --markdown]
+
+List the bundled scenes with their descriptions.
+
+  --schema            print instead the JSON Schema of scene files (media/scenes/scene.schema.json)
+  --markdown          print instead the reference of every scene key (docs/SCENES.md)
+)";
     if (cmd == "validate")
         return R"(usage: ranryu validate CASE [options]
 

@@ -33,6 +33,8 @@ struct Options {
     std::string video;            // record: FILE.mp4|.webm|.gif made by ffmpeg from the frames
     bool no_png = false;          // record: no frame_NNNNN.png (with --video: the video only)
     bool quiet = false;           // record/profile/validate: no progress line on stderr
+    bool schema = false;          // scenes: print the scene files' JSON Schema instead (docs/SCENES.md)
+    bool markdown = false;        // scenes: print the scene keys' reference, docs/SCENES.md
     // export-field (app/export_field.cpp): the turbulence field y of docs/METHOD.md §4 on an N³ grid.
     int field_size = 64;          // --size N: grid points per axis
     float extent = 1.0f;          // --extent L (m): points at L·(i, j, k)/N

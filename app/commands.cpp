@@ -21,6 +21,7 @@
 #include "record/png.h"
 #include "record/recorder.h"
 #include "record/video.h"
+#include "scene/keys.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
@@ -116,7 +117,9 @@ scene::Scene with_options(scene::Scene s, const Options& o) {
     return s;
 }
 
-int scenes(const Options&) {
+int scenes(const Options& o) {
+    if (o.schema) return std::fputs(scene::json_schema().c_str(), stdout), 0;
+    if (o.markdown) return std::fputs(scene::markdown().c_str(), stdout), 0;
     for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
     return 0;
 }
@@ -167,6 +170,7 @@ int record(const Options& o) {
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
+    const shader::FileSource shaders = shader_source(o);   // a bad --shader-dir, before the folder is made
     if (o.no_png && o.video.empty() && o.export_particles.empty() && !o.export_mesh)
         throw InputError("--no-png: nothing would be recorded; add --video, --export-particles or --export-mesh");
     std::optional<record::ParticleFormat> particle_format;
@@ -179,7 +183,6 @@ int record(const Options& o) {
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
 
-    const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, 0, o.records);

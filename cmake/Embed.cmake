@@ -1,12 +1,16 @@
-# ranryu_embed(TARGET name ROOT dir NAMESPACE ns GLOBS ...): a static library holding every matching
-# file under ROOT as ns::kEmbeddedFiles (see engine/core/embedded.h).
+# ranryu_embed(TARGET name ROOT dir NAMESPACE ns GLOBS ... [EXCLUDE regex]): a static library holding
+# every matching file under ROOT (less those whose path matches EXCLUDE) as ns::kEmbeddedFiles (see
+# engine/core/embedded.h).
 function(ranryu_embed)
-  cmake_parse_arguments(E "" "TARGET;ROOT;NAMESPACE" "GLOBS" ${ARGN})
+  cmake_parse_arguments(E "" "TARGET;ROOT;NAMESPACE;EXCLUDE" "GLOBS" ${ARGN})
   set(_globs "")
   foreach(g IN LISTS E_GLOBS)
     list(APPEND _globs ${E_ROOT}/${g})
   endforeach()
   file(GLOB_RECURSE _files CONFIGURE_DEPENDS RELATIVE ${E_ROOT} ${_globs})
+  if(E_EXCLUDE)
+    list(FILTER _files EXCLUDE REGEX "${E_EXCLUDE}")
+  endif()
   list(SORT _files)
   set(_abs "")
   foreach(f IN LISTS _files)

@@ -7,8 +7,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DRANRYU_TESTS=OFF >/dev/null
-cmake --build build/release
+cmake --preset release >/dev/null   # build/release: Release, no tests (CMakePresets.json)
+cmake --build --preset release
 if [ $# -eq 0 ]; then
   set -- --scene dam-break --frames 24 --force
   if command -v ffmpeg >/dev/null; then set -- "$@" --video out/dam-break.mp4; fi

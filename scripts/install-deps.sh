@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ranryu needs to build, run headless (Mesa llvmpipe when there is
-# no GPU) and test (Xvfb for the window test; ffmpeg and ffprobe for the video tests). ffmpeg is a
-# runtime option for users: only `ranryu record --video` runs it, and says so when it is missing. Only missing packages are installed; through sudo
-# when not run as root.
+# no GPU) and test (Xvfb for the window test; ffmpeg and ffprobe for the video tests;
+# python3-jsonschema for the scene schema's test; python3-matplotlib for scripts/sweep-charts.py). ffmpeg
+# is a runtime option for users: only `ranryu record --video` runs it, and says so when it is missing.
+# Only missing packages are installed; through sudo when not run as root.
 set -euo pipefail
 pkgs=(g++ cmake ninja-build pkg-config
       libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
       libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev
-      xvfb xauth ffmpeg python3-matplotlib)
+      xvfb xauth ffmpeg python3-matplotlib python3-jsonschema)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

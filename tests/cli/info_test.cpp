@@ -88,7 +88,7 @@ TEST_CASE("ranryu COMMAND --help mentions each option the command takes", "[cli]
         {"run", {"--frames", "--screenshot"}},
         {"record", {"--frames", "--out", "--force", "--quiet"}},
         {"profile", {"--frames", "--warmup", "--json", "--csv", "--quiet"}},
-        {"scenes", {}},
+        {"scenes", {"--schema", "--markdown"}},
     };
     for (const auto& [cmd, own] : commands) {
         const Result r = run_ranryu(tmp.path(), {cmd, "--help"});
@@ -122,6 +122,22 @@ TEST_CASE("ranryu scenes lists the bundled scenes with descriptions", "[cli][inf
             CHECK(line.find_first_not_of(' ', std::string("falling-block").size()) != std::string::npos);
         }
     CHECK(found);
+}
+
+TEST_CASE("ranryu scenes --schema and --markdown print the committed scene schema and docs/SCENES.md", "[cli][info]") {
+    // What `cmake --build build/test --target scene-docs` writes; tests/unit/scene_keys_test.cpp checks
+    // the same text against the table in process.
+    TempDir tmp;
+    const std::pair<std::string, fs::path> outputs[] = {{"--schema", source_dir() / "media" / "scenes" / "scene.schema.json"},
+                                                        {"--markdown", source_dir() / "docs" / "SCENES.md"}};
+    for (const auto& [option, file] : outputs) {
+        const Result r = run_ranryu(tmp.path(), {"scenes", option});
+        INFO("ranryu scenes " << option << "\n" << r.describe());
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.empty());
+        CHECK(r.out == read_file(file));
+    }
+    CHECK(list_dir(tmp.path()).empty());
 }
 
 TEST_CASE("ranryu with no command exits 2 with one line on stderr", "[cli][info]") {

@@ -38,7 +38,12 @@ namespace ranryu::test {
 
 namespace fs = std::filesystem;
 
-inline const std::string kBin = RANRYU_BIN;
+// The binary under test: the build's own, or RANRYU_TEST_BIN (scripts/sanitize.sh runs the fuzz
+// corpus against the sanitizer build's binary this way).
+inline const std::string kBin = [] {
+    const char* bin = std::getenv("RANRYU_TEST_BIN");
+    return std::string(bin && *bin ? bin : RANRYU_BIN);
+}();
 inline const fs::path kData = RANRYU_TEST_DATA;
 // The repository (tests/data/../..) and its glsl/ tree.
 inline fs::path source_dir() { return (kData / ".." / "..").lexically_normal(); }
