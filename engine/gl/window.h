@@ -32,6 +32,8 @@ public:
     };
     Input take_input();
 
+    GLFWwindow* handle() const { return window_; }   // for the overlay's GLFW backend
+
 private:
     GLFWwindow* window_ = nullptr;
     DeviceInfo info_;

@@ -41,6 +41,7 @@ TEST_CASE("ranryu run under Xvfb saves a --screenshot that is not blank", "[cli]
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("wrote " + shot));
     CHECK_THAT(r.out, Contains("present"));       // the window's own pass is timed too
+    CHECK_THAT(r.out, Contains("overlay"));       // and the panel's
     CHECK_THAT(r.err, !Contains("GL error"));    // Debug builds report every GL error on stderr
     REQUIRE(fs::exists(shot));
 
