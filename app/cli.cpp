@@ -7,13 +7,15 @@
 #include <set>
 
 #include "core/error.h"
+#include "input/commands.h"
 
 namespace ranryu::app {
 namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
+    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shots", "--shading",
+             "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
                 "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
@@ -133,6 +135,7 @@ Options parse(const std::vector<std::string>& args) {
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
         else if (opt == "--screenshot") o.screenshot = value;
+        else if (opt == "--shots") o.shots = value;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
@@ -194,9 +197,15 @@ std::string command_help(const std::string& cmd) {
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";
     if (cmd == "run")
-        return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom, Esc to quit.\n\n" + common +
+        return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom. A panel shows fps, GPU ms a\n"
+               "frame, the real-time factor, particles, substeps, solver iterations, the guard and a bar per GPU\n"
+               "pass, with the controls (pause, step, reset, shading, scene, solver: a change of these three\n"
+               "restarts the scene; viscosity, time-step factor, turbulence on/off and amplitude: live).\n\nkeys:\n" +
+               input::keys_help() + "\n" + common +
                R"(  --frames N          quit after N frames (default 0: run until the window closes)
   --screenshot FILE   save the window's last frame as PNG (with --frames, for tests)
+  --shots DIR         folder for F12's screenshots, shot_00000.png, ... (default screenshots; created
+                      when the first is taken; an existing file is never replaced)
 )";
     if (cmd == "record")
         return "usage: ranryu record [options]\n\nRender a scene offscreen and write frame_00000.png, ... and run.json (scene, size,\n"

@@ -22,6 +22,7 @@ struct Options {
     std::string out;              // record: output folder
     bool force = false;           // record: replace an earlier run in --out
     std::string screenshot;       // run: PNG of the window's last frame
+    std::string shots = "screenshots";   // run: folder of F12's screenshots
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
     std::string records;          // record/profile: the simulation's per-frame records as CSV

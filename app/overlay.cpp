@@ -13,7 +13,15 @@
 
 namespace ranryu::app {
 
+namespace {
+constexpr render::Shading kShadings[] = {render::Shading::fresnel, render::Shading::phong, render::Shading::gouraud,
+                                         render::Shading::particles};
+constexpr const char* kShadingNames[] = {"fresnel", "phong", "gouraud", "particles"};
+constexpr const char* kSolverNames[] = {"dfsph", "wcsph"};
+}  // namespace
+
 Overlay::Overlay(GLFWwindow* window) {
+    for (const scene::BundledScene& s : scene::bundled()) scenes_.push_back(s.name);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
@@ -37,7 +45,7 @@ Overlay::~Overlay() {
 
 bool Overlay::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
 
-void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st) {
+void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
     auto scope = p.timer().scope(pass);
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -51,7 +59,8 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
 
     const scene::Scene& scene = p.scene();
     const sim::Simulation* sim = p.simulation();
-    ImGui::Text("%s%s%s", scene.name.c_str(), sim ? " | " : " | ballistic", sim ? scene::solver_name(scene.sph.solver) : "");
+    ImGui::Text("%s%s%s%s", scene.name.c_str(), sim ? " | " : " | ballistic", sim ? scene::solver_name(scene.sph.solver) : "",
+                st.paused ? " | PAUSED" : "");
     const profile::GpuTimer& timer = p.timer();
     const double gpu_ms = timer.frame_ms().empty() ? 0.0 : timer.frame_ms().back();
     ImGui::Text("%.1f fps   GPU %.2f ms a frame", st.fps, gpu_ms);
@@ -87,6 +96,45 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         ImGui::TextUnformatted("guard: no record back yet");
     }
 
+    // Controls: each widget becomes a Command, applied before the next frame like a key.
+    auto push = [&](input::Command c) {
+        if (commands.size() < commands.capacity()) commands.push_back(c);
+    };
+    if (ImGui::Button(st.paused ? "Resume" : "Pause")) push({.kind = input::Kind::toggle_pause});
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) push({.kind = input::Kind::step});
+    ImGui::SameLine();
+    if (ImGui::Button("Reset")) push({.kind = input::Kind::reset});
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot")) push({.kind = input::Kind::screenshot});
+    ImGui::PushItemWidth(140.0f);
+    int shading = int(std::find(std::begin(kShadings), std::end(kShadings), p.shading()) - std::begin(kShadings));
+    if (ImGui::Combo("shading", &shading, kShadingNames, IM_ARRAYSIZE(kShadingNames)))
+        push({.kind = input::Kind::shading, .shading = kShadings[shading]});
+    int scene_index = st.scene_index;
+    if (ImGui::Combo("scene", &scene_index, [](void* data, int i, const char** out) {
+            *out = (*static_cast<const std::vector<std::string>*>(data))[std::size_t(i)].c_str();
+            return true;
+        }, &scenes_, int(scenes_.size())))
+        push({.kind = input::Kind::scene, .index = scene_index});
+    if (sim) {
+        int solver = scene.sph.solver == scene::Solver::dfsph ? 0 : 1;
+        if (ImGui::Combo("solver", &solver, kSolverNames, IM_ARRAYSIZE(kSolverNames)))
+            push({.kind = input::Kind::solver, .solver = solver == 0 ? scene::Solver::dfsph : scene::Solver::wcsph});
+        // Live: they act from the next frame on, without a restart.
+        float nu = st.viscosity, cfl = st.cfl, amplitude = st.amplitude;
+        bool turbulence = st.turbulence;
+        if (ImGui::SliderFloat("viscosity m^2/s", &nu, 1e-7f, 1e-1f, "%.2e", ImGuiSliderFlags_Logarithmic))
+            push({.kind = input::Kind::viscosity, .x = nu});
+        if (ImGui::SliderFloat("time-step factor (CFL)", &cfl, 0.05f, 1.0f, "%.2f"))
+            push({.kind = input::Kind::cfl, .x = cfl});
+        if (ImGui::Checkbox("turbulence", &turbulence)) push({.kind = input::Kind::turbulence, .on = turbulence});
+        if (ImGui::SliderFloat("amplitude A 1/m", &amplitude, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+            push({.kind = input::Kind::amplitude, .x = amplitude});
+    }
+    ImGui::PopItemWidth();
+    if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+
     // A bar per pass: its GPU ms in the last frame read back, against that frame's GPU span.
     if (ImGui::CollapsingHeader("GPU passes (ms, frames late)", ImGuiTreeNodeFlags_DefaultOpen)) {
         const std::vector<double>& ms = timer.last_frame_ms();
@@ -99,6 +147,11 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
             ImGui::ProgressBar(gpu_ms > 0.0 ? float(std::min(1.0, v / gpu_ms)) : 0.0f, ImVec2(280.0f, ImGui::GetTextLineHeight()), label);
         }
         ImGui::PopStyleVar(2);
+    }
+    if (ImGui::CollapsingHeader("Keys")) {
+        for (const input::Key& k : input::keys())
+            ImGui::Text("%-7.*s %.*s", int(k.name.size()), k.name.data(), int(k.help.size()), k.help.data());
+        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom");
     }
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     panel_ = {int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)};

@@ -2,7 +2,7 @@
 // The window's overlay (Dear ImGui, GLFW and OpenGL 3 backends): a panel with what the CPU already
 // knows about the run (fps, GPU ms a frame, the real-time factor, particles and sub-particles,
 // substeps and solver iterations a frame, the guard's state, and a bar per pass with its GPU ms from
-// the asynchronous timers, frames late).
+// the asynchronous timers, frames late), the run's controls, and the keys' help.
 //
 // Nothing here reads the GPU back or waits for it: the numbers are the timers' results and the
 // pipeline's last record, which came back through their rings. The panel is drawn as its own pass,
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "frame/pipeline.h"
+#include "input/commands.h"
 #include "profile/gpu_timer.h"
 #include "sim/guard.h"
 
@@ -49,12 +50,14 @@ public:
     bool wants_mouse() const;
 
     // Builds the panel and draws it into the bound (default) framebuffer as pass `pass` of p's timer.
-    void draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& state);
+    // What its widgets ask for is appended to `commands`.
+    void draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& state, std::vector<input::Command>& commands);
     // Where the panel was drawn last.
     const PanelRect& panel() const { return panel_; }
 
 private:
     PanelRect panel_;
+    std::vector<std::string> scenes_;   // the bundled scenes' names, for the scene list
 };
 
 }  // namespace ranryu::app
