@@ -14,7 +14,7 @@ namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shots", "--shading",
+    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--script", "--shots", "--shading",
              "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
                 "--records", "--quiet", "--shader-dir", "--gl-debug"}},
@@ -135,6 +135,7 @@ Options parse(const std::vector<std::string>& args) {
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
         else if (opt == "--screenshot") o.screenshot = value;
+        else if (opt == "--script") o.script = value;
         else if (opt == "--shots") o.shots = value;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
@@ -206,6 +207,18 @@ std::string command_help(const std::string& cmd) {
   --screenshot FILE   save the window's last frame as PNG (with --frames, for tests)
   --shots DIR         folder for F12's screenshots, shot_00000.png, ... (default screenshots; created
                       when the first is taken; an existing file is never replaced)
+  --script FILE       replay timed input from FILE, one event a line (FRAME is the frame, from 0,
+                      before which it acts; frames never decrease; # starts a comment):
+                        FRAME key NAME            space n r m t h f12 escape 1-9
+                        FRAME drag DX DY          a mouse drag of DX, DY pixels (orbit)
+                        FRAME wheel N             N notches of the wheel (zoom)
+                        FRAME panel ACTION [ARG]  the panel's widgets: pause on|off, step, reset,
+                                                  screenshot, quit, panel on|off, shading MODE,
+                                                  scene NAME, solver dfsph|wcsph,
+                                                  turbulence on|off, amplitude A (1/m),
+                                                  viscosity NU (m^2/s), cfl C
+                      a mistake is reported as FILE:LINE (exit 2); the script does not end the run:
+                      end it with "key escape" or "panel quit" (or --frames)
 )";
     if (cmd == "record")
         return "usage: ranryu record [options]\n\nRender a scene offscreen and write frame_00000.png, ... and run.json (scene, size,\n"

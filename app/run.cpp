@@ -1,5 +1,5 @@
 // ranryu run: the scene in a window, with the overlay's panel and the controls (app/overlay.h,
-// input/commands.h). It runs the one frame loop
+// input/commands.h), driven by a person or by --script (input/script.h). It runs the one frame loop
 // (frame/loop.h) through its hooks; a restart (reset, another scene, shading or solver) ends the loop,
 // rebuilds the pipeline and runs the loop again, keeping the window, the panel and the camera.
 #include <chrono>
@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "frame/loop.h"
 #include "frame/pipeline.h"
-#include "input/commands.h"
+#include "input/script.h"
 #include "record/png.h"
 #include "sim/fluid.h"
 #include "sim/guard.h"
@@ -113,6 +113,8 @@ int run(const Options& o) {
         if (!fs::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
     }
     Shots shots(o.shots);
+    input::Replay script;
+    if (!o.script.empty()) script = input::Replay(input::load_script(o.script));
 
     const shader::FileSource shaders = shader_source(o);
     const bool debug = debug_context(o);
@@ -121,7 +123,7 @@ int run(const Options& o) {
     print_device(window.info());
     Overlay overlay(window.handle());
 
-    // The controls' state, changed only by apply() (keys, panel widgets), read by the hooks.
+    // The controls' state, changed only by apply() (keys, panel widgets, script), read by the hooks.
     struct Controls {
         bool paused = false, step = false, panel = true, quit = false, restart = false, camera_moved = false;
         bool camera_from_scene = true;   // a new scene: its own camera
@@ -258,8 +260,8 @@ int run(const Options& o) {
         view.rtf.reset();
 
         frame::FrameHooks hooks;
-        // Before each frame: the window's input and the panel's widgets.
-        hooks.keep_going = [&](const frame::Pipeline&) {
+        // Before each frame: the window's input, the panel's widgets and the script's events due.
+        hooks.keep_going = [&](const frame::Pipeline& p) {
             window.poll();
             const gl::Window::Keys keys = window.take_keys();
             for (std::size_t i = 0; i < keys.count; ++i)
@@ -271,6 +273,8 @@ int run(const Options& o) {
             }
             for (const input::Command& cmd : pending) apply(cmd);
             pending.clear();
+            for (const std::uint64_t now = base + p.frames(); const input::Event* e = script.next_due(now); script.pop())
+                apply(e->command);
             return !c.quit && !c.restart && !window.should_close();
         };
         hooks.before = [&](frame::Pipeline& p) {

@@ -1,7 +1,8 @@
 #pragma once
 // What a person can do to `ranryu run` while it runs, as data: a key, a drag on the picture, or a
 // widget of the panel each become one Command, and the window applies every Command the same way
-// wherever it came from (app/run.cpp).
+// wherever it came from (app/run.cpp). `run --script FILE` (input/script.h) replays Commands at
+// given frames, so the window can be tested without a person.
 //
 // No GL and no GLFW here: the key names are ours (GLFW's key codes are mapped to them in app/).
 #include <cstdint>
@@ -46,7 +47,7 @@ struct Command {
     float x = 0.0f, y = 0.0f;                          // drag (pixels), wheel (notches in x), viscosity, cfl, amplitude
 };
 
-// A key of the window: its name, what it does, and the help line.
+// A key of the window: its name (as a script writes it), what it does, and the help line.
 struct Key {
     std::string_view name;   // "space", "n", ..., "f12", "escape", "1".."9"
     std::string_view help;
