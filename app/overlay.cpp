@@ -44,6 +44,7 @@ Overlay::~Overlay() {
 }
 
 bool Overlay::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
+bool Overlay::wants_text() const { return ImGui::GetIO().WantTextInput; }
 
 void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
     auto scope = p.timer().scope(pass);

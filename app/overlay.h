@@ -48,6 +48,8 @@ public:
 
     // Whether the panel has the mouse (the drag and the wheel are then the panel's, not the camera's).
     bool wants_mouse() const;
+    // Whether a text field of the panel is being typed into (Ctrl+click on a slider): keys are its.
+    bool wants_text() const;
 
     // Builds the panel and draws it into the bound (default) framebuffer as pass `pass` of p's timer.
     // What its widgets ask for is appended to `commands`.

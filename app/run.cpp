@@ -264,7 +264,7 @@ int run(const Options& o) {
         hooks.keep_going = [&](const frame::Pipeline& p) {
             window.poll();
             const gl::Window::Keys keys = window.take_keys();
-            for (std::size_t i = 0; i < keys.count; ++i)
+            for (std::size_t i = 0; i < keys.count && !overlay.wants_text(); ++i)
                 if (const auto cmd = input::key_command(keys.names[i])) queue(*cmd);
             const gl::Window::Input in = window.take_input();
             if (!overlay.wants_mouse()) {
