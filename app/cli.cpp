@@ -8,13 +8,15 @@
 
 #include "core/error.h"
 #include "record/particle_files.h"
+#include "input/commands.h"
 
 namespace ranryu::app {
 namespace {
 
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
-    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--shading", "--shader-dir", "--gl-debug"}},
+    {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--script", "--shots", "--shading",
+             "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
                 "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
@@ -149,6 +151,8 @@ Options parse(const std::vector<std::string>& args) {
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
         else if (opt == "--screenshot") o.screenshot = value;
+        else if (opt == "--script") o.script = value;
+        else if (opt == "--shots") o.shots = value;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
@@ -248,9 +252,27 @@ std::string command_help(const std::string& cmd) {
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";
     if (cmd == "run")
-        return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom, Esc to quit.\n\n" + common +
+        return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom. A panel shows fps, GPU ms a\n"
+               "frame, the real-time factor, particles, substeps, solver iterations, the guard and a bar per GPU\n"
+               "pass, with the controls (pause, step, reset, shading, scene, solver: a change of these three\n"
+               "restarts the scene; viscosity, time-step factor, turbulence on/off and amplitude: live).\n\nkeys:\n" +
+               input::keys_help() + "\n" + common +
                R"(  --frames N          quit after N frames (default 0: run until the window closes)
   --screenshot FILE   save the window's last frame as PNG (with --frames, for tests)
+  --shots DIR         folder for F12's screenshots, shot_00000.png, ... (default screenshots; created
+                      when the first is taken; an existing file is never replaced)
+  --script FILE       replay timed input from FILE, one event a line (FRAME is the frame, from 0,
+                      before which it acts; frames never decrease; # starts a comment):
+                        FRAME key NAME            space n r m t h f12 escape 1-9
+                        FRAME drag DX DY          a mouse drag of DX, DY pixels (orbit)
+                        FRAME wheel N             N notches of the wheel (zoom)
+                        FRAME panel ACTION [ARG]  the panel's widgets: pause on|off, step, reset,
+                                                  screenshot, quit, panel on|off, shading MODE,
+                                                  scene NAME, solver dfsph|wcsph,
+                                                  turbulence on|off, amplitude A (1/m),
+                                                  viscosity NU (m^2/s), cfl C
+                      a mistake is reported as FILE:LINE (exit 2); the script does not end the run:
+                      end it with "key escape" or "panel quit" (or --frames)
 )";
     if (cmd == "record")
         return "usage: ranryu record [options]\n\nRender a scene offscreen and write frame_00000.png, ... and run.json (scene, size,\n"

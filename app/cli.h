@@ -22,6 +22,8 @@ struct Options {
     std::string out;              // record: output folder
     bool force = false;           // record: replace an earlier run in --out
     std::string screenshot;       // run: PNG of the window's last frame
+    std::string script;           // run: timed input events to replay (input/script.h)
+    std::string shots = "screenshots";   // run: folder of F12's (and the script's) screenshots
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
     std::string records;          // record/profile: the simulation's per-frame records as CSV

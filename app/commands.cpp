@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "simulation_log.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -25,20 +27,14 @@
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
-#ifdef RANRYU_HAVE_GLFW
-#include "gl/window.h"
-#endif
 
 namespace ranryu::app {
-namespace {
 
 #ifdef NDEBUG
-constexpr bool kDebugBuild = false;
+bool debug_context(const Options& o) { return o.gl_debug; }
 #else
-constexpr bool kDebugBuild = true;
+bool debug_context(const Options&) { return true; }
 #endif
-
-}  // namespace
 
 shader::FileSource shader_source(const Options& o) {
     std::string dir = o.shader_dir;
@@ -48,8 +44,6 @@ shader::FileSource shader_source(const Options& o) {
     if (!std::filesystem::is_directory(dir)) throw InputError("--shader-dir " + dir + ": not a folder");
     return shader::FileSource::directory(dir);
 }
-
-namespace {
 
 std::optional<render::Shading> shading(const Options& o) {
     if (o.shading.empty()) return std::nullopt;
@@ -83,11 +77,10 @@ profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int
     return info;
 }
 
-}  // namespace
 
 // Headless context, with the debug callback in Debug builds or with --gl-debug.
 std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
-    const bool debug = kDebugBuild || o.gl_debug;
+    const bool debug = debug_context(o);
     auto ctx = std::make_unique<gl::HeadlessContext>(debug);
     if (debug) gl::install_debug_callback();
     print_device(ctx->info());
@@ -124,42 +117,6 @@ int scenes(const Options& o) {
     return 0;
 }
 
-namespace {
-
-// The summary of what the simulation did from the frame `from` on, fed by the fluid's records, and
-// (--records) every record as a CSV row.
-class SimulationLog {
-public:
-    SimulationLog(frame::Pipeline& p, std::uint64_t from, const std::string& records = {}) : from_(from) {
-        if (sim::Simulation* sim = p.simulation()) {
-            summary_.emplace();
-            summary_->solver = scene::solver_name(p.scene().sph.solver);
-            if (!records.empty()) csv_ = profile::record_csv_header();
-            sim->fluid().set_record_sink([this, keep = !records.empty()](const gpu::StepState& r) {
-                if (r.frame >= from_) summary_->add(r);
-                else summary_->start_time = r.time;
-                if (keep) csv_ += profile::record_csv_row(r);
-            });
-        }
-    }
-    // Writes the rows (after the run: not the frame path).
-    void write_records(const std::string& path) const {
-        if (!path.empty()) profile::write_text_file(path, csv_, "--records " + path);
-    }
-    void start_clock() { start_ = std::chrono::steady_clock::now(); }
-    void stop_clock() {
-        if (summary_) summary_->wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    }
-    const std::optional<profile::SimulationSummary>& summary() const { return summary_; }
-
-private:
-    std::uint64_t from_;
-    std::optional<profile::SimulationSummary> summary_;
-    std::string csv_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
-}  // namespace
 
 int record(const Options& o) {
     const scene::Scene scene = load_scene(o);
@@ -374,87 +331,6 @@ int profile_cmd(const Options& o) {
     if (!o.json.empty()) profile::write_text_file(o.json, extra.dump(2) + "\n", "--json " + o.json);
     if (!o.csv.empty()) profile::write_text_file(o.csv, csv, "--csv " + o.csv);
     return 0;
-}
-
-int run(const Options& o) {
-#ifndef RANRYU_HAVE_GLFW
-    (void)o;
-    throw Error("this build has no window (GLFW was not found at configure time); use `ranryu record` or `ranryu profile`");
-#else
-    const scene::Scene scene = load_scene(o);
-    const glm::ivec2 size = image_size(o, scene);
-    const int frames = o.frames.value_or(0);
-    if (!o.screenshot.empty()) {
-        // Refuse before opening anything: an existing file is earlier output, and the folder must exist.
-        const std::filesystem::path shot(o.screenshot);
-        if (std::filesystem::exists(shot)) throw InputError("--screenshot " + o.screenshot + ": the file exists; not overwriting it");
-        const auto parent = shot.parent_path().empty() ? std::filesystem::path(".") : shot.parent_path();
-        if (!std::filesystem::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
-    }
-    const shader::FileSource shaders = shader_source(o);
-    const bool debug = kDebugBuild || o.gl_debug;
-    gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
-    if (debug) gl::install_debug_callback();
-    print_device(window.info());
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
-    SimulationLog log(pipeline, 0);
-    const profile::PassId present = pipeline.timer().pass("present");
-
-    // Orbit camera: spherical coordinates around the scene's target.
-    render::Camera cam = pipeline.camera();
-    glm::vec3 arm = cam.eye - cam.target;
-    float radius = glm::length(arm);
-    float yaw = std::atan2(arm.x, arm.z), pitch = std::asin(glm::clamp(arm.y / radius, -1.0f, 1.0f));
-
-    frame::FrameHooks hooks;
-    hooks.keep_going = [&](const frame::Pipeline&) { return !window.should_close(); };
-    hooks.before = [&](frame::Pipeline& p) {
-        window.poll();
-        if (const gl::Window::Input in = window.take_input(); in.drag != glm::vec2(0.0f) || in.wheel != 0.0f) {
-            yaw -= 0.005f * in.drag.x;
-            pitch = glm::clamp(pitch + 0.005f * in.drag.y, -1.5f, 1.5f);
-            radius *= std::pow(0.9f, in.wheel);
-            cam.eye = cam.target + radius * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
-                                                      std::cos(pitch) * std::cos(yaw));
-            p.set_camera(cam);
-        }
-    };
-    glm::ivec2 fb{0};
-    hooks.after_draw = [&](frame::Pipeline& p) {
-        fb = window.framebuffer_size();
-        auto pass = p.timer().scope(present);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, p.target().framebuffer());
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    };
-    hooks.after = [&](frame::Pipeline& p) {
-        const bool last = frames != 0 && p.frames() == std::uint64_t(frames);
-        if (last && !o.screenshot.empty() && !p.instability()) {
-            // Once, at exit: read the window's back buffer, which is what the swap shows.
-            std::vector<std::uint8_t> pixels(std::size_t(fb.x) * std::size_t(fb.y) * 4), flipped(pixels.size());
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-            glReadBuffer(GL_BACK);
-            glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-            const std::size_t row = std::size_t(fb.x) * 4;
-            for (int y = 0; y < fb.y; ++y)
-                std::copy_n(pixels.data() + std::size_t(fb.y - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
-            record::write_png(o.screenshot, fb.x, fb.y, flipped.data());
-            std::printf("wrote %s (%dx%d)\n", o.screenshot.c_str(), fb.x, fb.y);
-        }
-        window.swap();
-    };
-    log.start_clock();
-    frame::run_frames(pipeline, frames ? std::optional<std::uint64_t>(frames) : std::nullopt, hooks);
-    pipeline.drain();
-    log.stop_clock();
-    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
-    const profile::Report report =
-        profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0), log.summary());
-    std::printf("%s", profile::table(report).c_str());
-    return 0;
-#endif
 }
 
 }  // namespace ranryu::app

@@ -1,9 +1,14 @@
 #pragma once
 #include <memory>
+#include <optional>
+
+#include <glm/glm.hpp>
 
 #include "cli.h"
 #include "frame/progress.h"
 #include "gl/context.h"
+#include "profile/report.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 
@@ -26,4 +31,11 @@ scene::Scene with_options(scene::Scene s, const Options& o);   // --spacing, --s
 // The progress line on stderr (frame/progress.h) labelled `label`: none with --quiet; on a log, a
 // line every 10 s or every RANRYU_PROGRESS_SECONDS (InputError when that is not a number of seconds).
 frame::Progress make_progress(const Options& o, const std::string& label);
+// A debug context (always in Debug builds; --gl-debug in others); --shading; --size or the scene's;
+// the device line on stdout; the run's facts for a report.
+bool debug_context(const Options& o);
+std::optional<render::Shading> shading(const Options& o);
+glm::ivec2 image_size(const Options& o, const scene::Scene& s);
+void print_device(const gl::DeviceInfo& d);
+profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int frames, int warmup);
 }  // namespace ranryu::app

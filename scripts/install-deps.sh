@@ -7,7 +7,7 @@
 set -euo pipefail
 pkgs=(g++ cmake ninja-build pkg-config
       libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
-      libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev
+      libglm-dev libstb-dev nlohmann-json3-dev catch2 libglfw3-dev libimgui-dev
       xvfb xauth ffmpeg python3-matplotlib python3-jsonschema)
 missing=()
 for p in "${pkgs[@]}"; do

@@ -10,7 +10,7 @@ std::uint64_t run_frames(Pipeline& pipeline, std::optional<std::uint64_t> frames
            (!hooks.keep_going || hooks.keep_going(pipeline))) {
         if (hooks.before) hooks.before(pipeline);
         pipeline.begin_frame();
-        pipeline.simulate();
+        if (!hooks.advance || hooks.advance(pipeline)) pipeline.simulate();
         pipeline.draw();
         if (hooks.after_draw) hooks.after_draw(pipeline);
         pipeline.end_frame();

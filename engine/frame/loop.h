@@ -4,7 +4,7 @@
 //
 //     hooks.before(pipeline)        input, camera (run)
 //     pipeline.begin_frame()
-//     pipeline.simulate()
+//     pipeline.simulate()           unless hooks.advance says hold (run's pause)
 //     pipeline.draw()               when the view draws
 //     hooks.after_draw(pipeline)    capture (record), present (run)
 //     pipeline.end_frame()
@@ -29,6 +29,9 @@ struct FrameHooks {
     std::function<void(Pipeline&)> after_draw;
     std::function<void(Pipeline&)> after;
     std::function<bool(const Pipeline&)> keep_going;   // asked before each frame
+    // Asked before simulate(): false holds the simulation for this frame (it is still drawn from the
+    // state that the last simulated frame left). None: every frame simulates.
+    std::function<bool(const Pipeline&)> advance;
 };
 
 // Runs frames; returns how many it ran.

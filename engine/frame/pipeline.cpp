@@ -69,6 +69,7 @@ std::vector<SkippedStage> Pipeline::skipped_stages() const {
 }
 
 void Pipeline::simulate() {
+    ++simulated_frames_;
     if (!sph_) {
         for (int s = 0; s < substeps_; ++s) ballistic_->integrate();
         return;
@@ -135,7 +136,7 @@ const gl::Buffer& Pipeline::velocities() const { return sph_ ? sph_->fluid().vel
 
 double Pipeline::simulated_time() const {
     if (sph_) return sph_->fluid().last_record() ? double(sph_->fluid().last_record()->time) : 0.0;
-    return double(frames_) * double(ballistic_->params().dt) * substeps_;
+    return double(simulated_frames_) * double(ballistic_->params().dt) * substeps_;
 }
 
 std::optional<std::uint32_t> Pipeline::substeps_per_frame() const {

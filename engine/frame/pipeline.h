@@ -97,12 +97,15 @@ public:
     // is built and no pass of theirs runs), written by this frame's simulate().
     turbulence::Subparticles* subparticles() { return sub_.get(); }
     const turbulence::Subparticles* subparticles() const { return sub_.get(); }
-    // Simulated time: the GPU's clock as last read back for SPH (frames late), else frames x frame_dt.
+    // Simulated time: the GPU's clock as last read back for SPH (frames late), else simulated frames x
+    // frame_dt.
     double simulated_time() const;
     // Substeps a frame: for SPH those of the frame whose record came back last (nothing before the
     // first), else the scene's fixed count.
     std::optional<std::uint32_t> substeps_per_frame() const;
     std::uint64_t frames() const { return frames_; }
+    // Frames that simulated: frames() less those the frame loop held (FrameHooks::advance, run's pause).
+    std::uint64_t simulated_frames() const { return simulated_frames_; }
 
 private:
     scene::Scene scene_;
@@ -118,6 +121,7 @@ private:
     render::Camera camera_;
     int substeps_ = 1;
     std::uint64_t frames_ = 0;
+    std::uint64_t simulated_frames_ = 0;
 };
 
 }  // namespace ranryu::frame

@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <string_view>
 #include <utility>
 
 #include "core/error.h"
@@ -34,6 +35,26 @@ Window::Window(int width, int height, const std::string& title, bool debug) {
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->input_.wheel += float(dy);
     });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+        if (action != GLFW_PRESS) return;
+        static constexpr std::string_view digits[] = {"1", "2", "3", "4", "5", "6", "7", "8", "9"};
+        std::string_view name;
+        switch (key) {
+            case GLFW_KEY_SPACE: name = "space"; break;
+            case GLFW_KEY_N: name = "n"; break;
+            case GLFW_KEY_R: name = "r"; break;
+            case GLFW_KEY_M: name = "m"; break;
+            case GLFW_KEY_T: name = "t"; break;
+            case GLFW_KEY_H: name = "h"; break;
+            case GLFW_KEY_F12: name = "f12"; break;
+            case GLFW_KEY_ESCAPE: name = "escape"; break;
+            default:
+                if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) name = digits[key - GLFW_KEY_1];
+                else return;
+        }
+        Keys& k = static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_;
+        if (k.count < kMaxKeys) k.names[k.count++] = name;
+    });
     info_ = query_device("GLFW");
 }
 
@@ -46,7 +67,6 @@ bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 
 void Window::poll() {
     glfwPollEvents();
-    if (glfwGetKey(window_, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glm::dvec2 c;
     glfwGetCursorPos(window_, &c.x, &c.y);
     const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;

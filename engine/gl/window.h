@@ -1,8 +1,12 @@
 #pragma once
-// A GLFW window with an OpenGL 4.3 core context (only in builds configured with GLFW). Mouse drag
-// orbits the camera around its target, the wheel zooms, Escape closes.
+// A GLFW window with an OpenGL 4.3 core context (only in builds configured with GLFW). It gathers the
+// input that the app turns into commands (input/commands.h): the left-button drag and the wheel, and
+// the presses of the keys the app answers, by name.
+#include <array>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -31,11 +35,22 @@ public:
         float wheel = 0.0f;
     };
     Input take_input();
+    // The keys pressed since the last call, by input::keys() name ("space", "n", ..., "f12",
+    // "escape", "1".."9"), in order; at most kMaxKeys a frame (more are dropped). No allocation.
+    static constexpr std::size_t kMaxKeys = 16;
+    struct Keys {
+        std::array<std::string_view, kMaxKeys> names;
+        std::size_t count = 0;
+    };
+    Keys take_keys() { return std::exchange(keys_, Keys{}); }
+
+    GLFWwindow* handle() const { return window_; }   // for the overlay's GLFW backend
 
 private:
     GLFWwindow* window_ = nullptr;
     DeviceInfo info_;
     Input input_;
+    Keys keys_;
     glm::dvec2 last_cursor_{0.0};
     bool dragging_ = false;
 };

@@ -51,6 +51,9 @@ public:
     // Pass indices in the order their first samples came back: the order they run in a frame.
     const std::vector<std::uint16_t>& first_use_order() const { return order_; }
     const std::vector<double>& frame_ms() const { return frame_ms_; }   // GPU span of each frame read back
+    // Per pass (by PassId index): its ms in the frame read back last, 0 where it did not run then. What
+    // the window's overlay shows: results that came back frames late, never waited for.
+    const std::vector<double>& last_frame_ms() const { return scratch_ms_; }
     static constexpr std::size_t kMaxFrames = 65536;   // history kept; the older half goes when it fills
     std::uint64_t frames_read() const { return frame_ms_.size(); }
 
@@ -84,7 +87,7 @@ private:
     std::vector<std::uint16_t> order_;
     std::vector<Slot> slots_;
     std::vector<double> frame_ms_;
-    std::vector<double> scratch_ms_;   // per pass, for one frame
+    std::vector<double> scratch_ms_;   // per pass, for one frame: the last one read back
     std::vector<int> scratch_calls_;
     std::size_t current_ = 0;
     std::size_t max_calls_;   // initial pool per slot, in timestamp pairs

@@ -281,6 +281,13 @@ void Fluid::integrate() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 
+void Fluid::set_viscosity_and_cfl(float viscosity, float cfl) {
+    if (params_.viscosity == viscosity && params_.cfl == cfl) return;
+    params_.viscosity = viscosity;
+    params_.cfl = cfl;
+    params_ubo_.upload_value(params_);
+}
+
 void Fluid::end_frame() {
     auto pass = timer_.scope(diag_pass_);
     readback_.copy(step_, 0, 0);

@@ -42,6 +42,11 @@ TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::Gpu
     glProgramUniform1f(program_.id(), RANRYU_LOC_COHERENCE_TIME, settings.coherence_time);
 }
 
+void TurbulenceForce::set_amplitude(float amplitude) {
+    settings_.amplitude = amplitude;
+    glProgramUniform1f(program_.id(), RANRYU_LOC_TURBULENCE_AMPLITUDE, amplitude);
+}
+
 const gl::Buffer& TurbulenceForce::noise_seeds() const { return fluid_.carried(seeds_); }
 
 void TurbulenceForce::analyse(sim::Fluid& fluid) { wavelet_.analyse(fluid, scale_); }

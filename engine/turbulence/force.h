@@ -57,6 +57,8 @@ public:
     const NoiseTiles& tiles() const { return tiles_; }   // the CPU copy (tests: curl_noise_octaves)
     const CurlNoise& noise() const { return noise_; }    // the GPU tiles (the sub-particles bind them)
     const scene::TurbulenceSettings& settings() const { return settings_; }
+    // Live (run's panel): A from the next step on; 0 turns the force off while ê is still analysed.
+    void set_amplitude(float amplitude);
     float scale() const { return scale_; }                // s (m)
 
 private:

@@ -194,3 +194,17 @@ TEST_CASE("bad input: profile --json or --csv onto a path that cannot be written
     }
     CHECK(list_dir(tmp.path()) == std::vector<std::string>{"blocker"});
 }
+
+// ---- run --script, --shots ----
+
+TEST_CASE("bad input: a run script with a mistake names the file and the line, before any window", "[cli][bad-input][script]") {
+    TempDir tmp;
+    write_file(tmp / "s.txt", "# a comment\n0 key h\n2 key q\n");
+    // No display: the refusal comes before a window is opened.
+    const RunOptions no_display{.cwd = tmp.path(), .timeout = std::chrono::seconds(60), .unset_env = {"DISPLAY", "WAYLAND_DISPLAY"}, .set_env = {}};
+    check_bad_input(run_ranryu(tmp.path(), {"run", "--script", "s.txt"}, no_display), {"--script s.txt:3:", "key q"});
+    check_bad_input(run_ranryu(tmp.path(), {"run", "--script", "missing.txt"}, no_display), {"--script missing.txt", "cannot read"});
+    write_file(tmp / "shots", "a file, not a folder\n");
+    check_bad_input(run_ranryu(tmp.path(), {"run", "--shots", "shots"}, no_display), {"--shots shots", "not a folder"});
+    CHECK(list_dir(tmp.path()) == std::vector<std::string>{"s.txt", "shots"});
+}

@@ -4,6 +4,8 @@
 // are skipped with a warning, unless RANRYU_REQUIRE_XVFB=1 (as CI sets it), where they fail.
 #include <catch2/catch.hpp>
 
+#include <regex>
+
 #include "image.h"
 #include "run_helper.h"
 
@@ -26,6 +28,70 @@ bool window_available(bool need_xvfb) {
     }
     WARN("skipped: " << why << " (set RANRYU_REQUIRE_XVFB=1 to make this a failure)");
     return false;
+}
+
+
+// The screenshots a run reported, in order: its lines "wrote PATH (WxH, frame F, panel at X,Y size
+// WxH)" or "wrote PATH (WxH, frame F, no panel)".
+struct Shot {
+    std::string file;
+    std::uint64_t frame = 0;
+    bool panel = false;
+    int x = 0, y = 0, width = 0, height = 0;
+};
+std::vector<Shot> shots_of(const Result& r) {
+    static const std::regex line(R"(wrote (\S+shot_\d{5}\.png) \(\d+x\d+, frame (\d+), (?:panel at (\d+),(\d+) size (\d+)x(\d+)|no panel)\))");
+    std::vector<Shot> shots;
+    for (const std::string& l : r.out_lines()) {
+        std::smatch m;
+        if (!std::regex_match(l, m, line)) continue;
+        Shot s{m[1], std::stoull(m[2]), m[3].matched};
+        if (s.panel) s.x = std::stoi(m[3]), s.y = std::stoi(m[4]), s.width = std::stoi(m[5]), s.height = std::stoi(m[6]);
+        shots.push_back(s);
+    }
+    return shots;
+}
+
+// Pixels whose RGB differ between two images of one size, and the box around them.
+struct Diff {
+    std::size_t pixels = 0;
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
+};
+Diff diff(const Image& a, const Image& b) {
+    Diff d;
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    REQUIRE(a.width == b.width);
+    REQUIRE(a.height == b.height);
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const std::size_t i = (std::size_t(y) * std::size_t(a.width) + std::size_t(x)) * 4;
+            if (a.rgba[i] == b.rgba[i] && a.rgba[i + 1] == b.rgba[i + 1] && a.rgba[i + 2] == b.rgba[i + 2]) continue;
+            ++d.pixels;
+            d.x0 = std::min(d.x0, x), d.y0 = std::min(d.y0, y), d.x1 = std::max(d.x1, x), d.y1 = std::max(d.y1, y);
+        }
+    return d;
+}
+
+// `ranryu run ARGS --script script.txt` (the script's text written into tmp) under xvfb-run with a
+// 640x480x24 screen; it must succeed without a GL error. Returns the run and the screenshots it took.
+struct ScriptRun {
+    Result result;
+    std::vector<Shot> shots;
+    std::vector<Image> images;   // of the shots, in order
+};
+ScriptRun run_script(const TempDir& tmp, const std::string& script, std::vector<std::string> args) {
+    write_file(tmp / "script.txt", script);
+    std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 640x480x24", kBin, "run", "--script", "script.txt"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    ScriptRun sr;
+    sr.result = run(argv, {.cwd = tmp.path(), .timeout = std::chrono::seconds(120), .unset_env = {}, .set_env = {}});
+    INFO(sr.result.describe());
+    REQUIRE(sr.result.exit_code == 0);
+    CHECK_THAT(sr.result.err, !Contains("GL error"));
+    sr.shots = shots_of(sr.result);
+    for (const Shot& shot : sr.shots) sr.images.push_back(load_png(tmp / shot.file));
+    return sr;
 }
 
 }  // namespace
@@ -86,4 +152,166 @@ TEST_CASE("ranryu run --screenshot onto an existing file is refused without touc
         CHECK_THAT(m.err, Contains("--screenshot " + missing));
         CHECK_FALSE(fs::exists(tmp / "no-such-folder"));
     }
+}
+
+// The demo's controls, driven by --script under Xvfb. The ballistic falling-block scene: cheap on
+// llvmpipe, and deterministic, so a restart gives the same picture bit for bit.
+
+TEST_CASE("ranryu run --script: pause freezes the picture and a single step moves it on", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const ScriptRun r = run_script(tmp,
+                                   "0 key h        # no panel: its fps would change between shots\n"
+                                   "1 key f12\n"
+                                   "2 key f12      # running: moved on\n"
+                                   "3 key space    # pause before frame 3\n"
+                                   "5 key f12\n"
+                                   "8 key f12      # paused: the same picture\n"
+                                   "9 key n        # one frame simulates\n"
+                                   "11 key f12\n"
+                                   "12 key f12     # and it holds again\n"
+                                   "13 key escape\n",
+                                   {"--scene", "falling-block", "--size", "320x240"});
+    INFO(r.result.describe());
+    REQUIRE(r.shots.size() == 6);
+    CHECK(r.shots[0].file == "screenshots/shot_00000.png");
+    CHECK(r.shots[5].file == "screenshots/shot_00005.png");
+    CHECK(r.shots[0].frame == 1);
+    CHECK(r.shots[2].frame == 5);
+    CHECK(r.shots[4].frame == 11);
+    CHECK_FALSE(r.shots[0].panel);
+    const std::vector<Image>& img = r.images;
+    CHECK(img[0].distinct_colours() >= 16);
+    CHECK(diff(img[0], img[1]).pixels > 50);   // running: it moved
+    CHECK(diff(img[2], img[3]).pixels == 0);   // paused: two screenshots equal
+    CHECK(diff(img[3], img[4]).pixels > 50);   // the single step moved it on
+    CHECK(diff(img[4], img[5]).pixels == 0);   // and it held again
+}
+
+TEST_CASE("ranryu run --script: reset brings back the first frame", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const ScriptRun r = run_script(tmp,
+                                   "0 key h\n"
+                                   "0 key f12\n"
+                                   "6 key f12\n"
+                                   "7 key r        # restart: frame 7 is the scene's first frame again\n"
+                                   "7 key f12\n"
+                                   "8 panel reset  # the panel's button does the same, paused or not\n"
+                                   "8 panel pause on\n"
+                                   "8 key f12\n"
+                                   "10 panel quit\n",
+                                   {"--scene", "falling-block", "--size", "320x240"});
+    INFO(r.result.describe());
+    REQUIRE(r.shots.size() == 4);
+    const std::vector<Image>& img = r.images;
+    CHECK(diff(img[0], img[1]).pixels > 50);   // frame 6 is not frame 0
+    CHECK(diff(img[0], img[2]).pixels == 0);   // after r: frame 0 again
+    CHECK(diff(img[0], img[3]).pixels == 0);   // after the panel's reset, paused: frame 0 again
+}
+
+TEST_CASE("ranryu run --script: the overlay changes the picture in the panel's region only", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const ScriptRun r = run_script(tmp,
+                                   "3 key space\n"
+                                   "4 key f12      # with the panel\n"
+                                   "5 key h\n"
+                                   "6 key f12      # without\n"
+                                   "7 key h\n"
+                                   "8 key escape\n",
+                                   {"--scene", "falling-block", "--size", "640x480", "--shots", "out/shots"});
+    INFO(r.result.describe());
+    CHECK_THAT(r.result.out, Contains("overlay"));   // its own pass in the timing table
+    REQUIRE(r.shots.size() == 2);
+    REQUIRE(r.shots[0].panel);
+    CHECK_FALSE(r.shots[1].panel);
+    CHECK(r.shots[0].file == "out/shots/shot_00000.png");
+    const Shot& p = r.shots[0];
+    INFO("panel at " << p.x << "," << p.y << " size " << p.width << "x" << p.height);
+    CHECK(p.width >= 100);
+    CHECK(p.height >= 100);
+    CHECK(p.x + p.width <= 640);
+    CHECK(p.y + p.height <= 480);
+    const Diff d = diff(r.images[0], r.images[1]);
+    INFO("differing pixels " << d.pixels << " in " << d.x0 << "," << d.y0 << " - " << d.x1 << "," << d.y1);
+    CHECK(d.pixels > std::size_t(p.width * p.height / 4));   // the panel is drawn
+    CHECK(d.x0 >= p.x - 1);
+    CHECK(d.y0 >= p.y - 1);
+    CHECK(d.x1 <= p.x + p.width);
+    CHECK(d.y1 <= p.y + p.height);
+}
+
+TEST_CASE("ranryu run: a screenshot never replaces an earlier one", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    fs::create_directories(tmp / "screenshots");
+    const std::string earlier = "an earlier screenshot, not to be lost\n";
+    write_file(tmp / "screenshots/shot_00000.png", earlier);
+    const ScriptRun r = run_script(tmp, "1 key f12\n1 panel screenshot\n3 key escape\n",
+                                   {"--scene", "falling-block", "--size", "160x120"});
+    INFO(r.result.describe());
+    REQUIRE(r.shots.size() == 2);
+    CHECK(r.shots[0].file == "screenshots/shot_00001.png");   // one a frame: the key's at 1, the panel's at 2
+    CHECK(r.shots[0].frame == 1);
+    CHECK(r.shots[1].file == "screenshots/shot_00002.png");
+    CHECK(r.shots[1].frame == 2);
+    CHECK(read_file(tmp / "screenshots/shot_00000.png") == earlier);
+    CHECK(r.images[1].ok());
+}
+
+TEST_CASE("ranryu run --script: the panel's scene, shading and solver restart an SPH scene", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const ScriptRun r = run_script(tmp,
+                                   "2 panel shading particles\n"
+                                   "4 key m            # particles -> fresnel\n"
+                                   "5 panel solver wcsph\n"
+                                   "6 key f12\n"
+                                   "7 panel scene falling-block\n"
+                                   "8 key m            # ballistic: particles only, a note in the panel\n"
+                                   "9 drag 40 -10\n"
+                                   "9 wheel 1\n"
+                                   "10 key escape\n",
+                                   {"--scene", "drop", "--spacing", "0.05", "--size", "320x240"});
+    INFO(r.result.describe());
+    REQUIRE(r.shots.size() == 1);
+    CHECK(r.shots[0].panel);
+    CHECK(r.images[0].ok());
+    // Each change restarted the scene, before the frame of its line.
+    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 4: drop, dfsph, fresnel\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 5: drop, wcsph, fresnel\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 7: falling-block, ballistic, particles\n"));
+    CHECK_THAT(r.result.out, !Contains("restart at frame 8"));   // m: nothing to change
+    CHECK_THAT(r.result.out, Contains("scene falling-block"));   // the last scene's report
+}
+
+// "simulation (dfsph): 4.0 substeps/frame" in a run's report, or -1.
+double substeps_per_frame(const std::string& out) {
+    static const std::regex line(R"(simulation \((?:dfsph|wcsph)\): ([0-9.]+) substeps/frame)");
+    std::smatch m;
+    return std::regex_search(out, m, line) ? std::stod(m[1]) : -1.0;
+}
+
+TEST_CASE("ranryu run --script: viscosity, the time-step factor and the turbulence act live", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    const std::vector<std::string> drop = {"--scene", "drop", "--spacing", "0.05", "--size", "160x120"};
+    TempDir plain_dir, live_dir, turbulence_dir;
+    const ScriptRun plain = run_script(plain_dir, "12 key escape\n", drop);
+    const ScriptRun live = run_script(live_dir, "0 panel cfl 0.1\n0 panel viscosity 0.001\n12 key escape\n", drop);
+    const double before = substeps_per_frame(plain.result.out), after = substeps_per_frame(live.result.out);
+    INFO(plain.result.describe() << "\n" << live.result.describe());
+    REQUIRE(before > 0.0);
+    CHECK(after > before * 1.4);   // a quarter of the Courant number: more, smaller substeps
+    CHECK_THAT(live.result.out, !Contains("restart"));
+
+    // The drop has no turbulence force: turning it on restarts the scene with it; off and on again,
+    // and a new amplitude, are live.
+    const ScriptRun t = run_script(turbulence_dir, "0 key t\n3 panel amplitude 20\n4 key t\n6 panel turbulence on\n8 key escape\n", drop);
+    INFO(t.result.describe());
+    CHECK_THAT(t.result.out, Contains("restart at frame 0: drop, dfsph, fresnel\n"));
+    CHECK_THAT(t.result.out, !Contains("restart at frame 4"));
+    CHECK_THAT(t.result.out, !Contains("restart at frame 6"));
+    CHECK_THAT(t.result.out, Contains("turbulence-force"));
 }

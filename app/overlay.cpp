@@ -1,0 +1,165 @@
+#include "overlay.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace ranryu::app {
+
+namespace {
+constexpr render::Shading kShadings[] = {render::Shading::fresnel, render::Shading::phong, render::Shading::gouraud,
+                                         render::Shading::particles};
+constexpr const char* kShadingNames[] = {"fresnel", "phong", "gouraud", "particles"};
+constexpr const char* kSolverNames[] = {"dfsph", "wcsph"};
+}  // namespace
+
+Overlay::Overlay(GLFWwindow* window) {
+    for (const scene::BundledScene& s : scene::bundled()) scenes_.push_back(s.name);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;   // no imgui.ini in the working folder
+    io.LogFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 0.0f;
+    if (!ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true) || !ImGui_ImplOpenGL3_Init("#version 430 core")) {
+        ImGui::DestroyContext();
+        throw Error("cannot start the overlay (Dear ImGui's GLFW or OpenGL 3 backend failed)");
+    }
+    // The font atlas and the backend's program and buffers: now, not in the first frame.
+    ImGui_ImplOpenGL3_CreateDeviceObjects();
+}
+
+Overlay::~Overlay() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+bool Overlay::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
+bool Overlay::wants_text() const { return ImGui::GetIO().WantTextInput; }
+
+void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
+    auto scope = p.timer().scope(pass);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(std::max(display.x - 16.0f, 64.0f), std::max(display.y - 16.0f, 64.0f)));
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    ImGui::Begin("ranryu", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings);
+
+    const scene::Scene& scene = p.scene();
+    const sim::Simulation* sim = p.simulation();
+    ImGui::Text("%s%s%s%s", scene.name.c_str(), sim ? " | " : " | ballistic", sim ? scene::solver_name(scene.sph.solver) : "",
+                st.paused ? " | PAUSED" : "");
+    const profile::GpuTimer& timer = p.timer();
+    const double gpu_ms = timer.frame_ms().empty() ? 0.0 : timer.frame_ms().back();
+    ImGui::Text("%.1f fps   GPU %.2f ms a frame", st.fps, gpu_ms);
+    if (st.rtf) ImGui::Text("real-time factor %.3f", *st.rtf);
+    else ImGui::TextUnformatted("real-time factor -");
+    if (const turbulence::Subparticles* sub = p.subparticles(); sub && sub->stats().last)
+        ImGui::Text("particles %zu   sub-particles %u", p.particle_count(), sub->stats().last->dispatch.w);
+    else
+        ImGui::Text("particles %zu   sub-particles %s", p.particle_count(), sub ? "-" : "off");
+    const std::optional<std::uint32_t> substeps = p.substeps_per_frame();
+    const auto& record = sim ? sim->fluid().last_record() : std::nullopt;
+    if (substeps && record && scene.sph.solver == scene::Solver::dfsph)
+        ImGui::Text("substeps %u a frame   solver iterations %u + %u", *substeps, record->iterations.x, record->iterations.y);
+    else if (substeps)
+        ImGui::Text("substeps %u a frame", *substeps);
+    else
+        ImGui::TextUnformatted("substeps -");
+
+    // The guard: the findings of the last record that came back, against their bounds.
+    if (!sim) {
+        ImGui::TextUnformatted("guard: none (ballistic model)");
+    } else if (const auto& bad = p.instability()) {
+        ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "guard: UNSTABLE at frame %llu (%s)", static_cast<unsigned long long>(bad->frame),
+                           bad->criterion.c_str());
+    } else if (record) {
+        const float density = std::bit_cast<float>(record->frame_max_density);
+        const float speed = std::bit_cast<float>(record->frame_max_speed);
+        ImGui::Text("guard: sound through frame %u", record->frame);
+        if (st.limits)
+            ImGui::Text("  max rho/rho0 %.4f of %.2f   max |v| %.2f of %.1f m/s", density, st.limits->density_ratio, speed,
+                        st.limits->speed);
+    } else {
+        ImGui::TextUnformatted("guard: no record back yet");
+    }
+
+    // Controls: each widget becomes a Command, applied before the next frame like a key.
+    auto push = [&](input::Command c) {
+        if (commands.size() < commands.capacity()) commands.push_back(c);
+    };
+    if (ImGui::Button(st.paused ? "Resume" : "Pause")) push({.kind = input::Kind::toggle_pause});
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) push({.kind = input::Kind::step});
+    ImGui::SameLine();
+    if (ImGui::Button("Reset")) push({.kind = input::Kind::reset});
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot")) push({.kind = input::Kind::screenshot});
+    ImGui::PushItemWidth(140.0f);
+    int shading = int(std::find(std::begin(kShadings), std::end(kShadings), p.shading()) - std::begin(kShadings));
+    if (ImGui::Combo("shading", &shading, kShadingNames, IM_ARRAYSIZE(kShadingNames)))
+        push({.kind = input::Kind::shading, .shading = kShadings[shading]});
+    int scene_index = st.scene_index;
+    if (ImGui::Combo("scene", &scene_index, [](void* data, int i, const char** out) {
+            *out = (*static_cast<const std::vector<std::string>*>(data))[std::size_t(i)].c_str();
+            return true;
+        }, &scenes_, int(scenes_.size())))
+        push({.kind = input::Kind::scene, .index = scene_index});
+    if (sim) {
+        int solver = scene.sph.solver == scene::Solver::dfsph ? 0 : 1;
+        if (ImGui::Combo("solver", &solver, kSolverNames, IM_ARRAYSIZE(kSolverNames)))
+            push({.kind = input::Kind::solver, .solver = solver == 0 ? scene::Solver::dfsph : scene::Solver::wcsph});
+        // Live: they act from the next frame on, without a restart.
+        float nu = st.viscosity, cfl = st.cfl, amplitude = st.amplitude;
+        bool turbulence = st.turbulence;
+        if (ImGui::SliderFloat("viscosity m^2/s", &nu, 1e-7f, 1e-1f, "%.2e", ImGuiSliderFlags_Logarithmic))
+            push({.kind = input::Kind::viscosity, .x = nu});
+        if (ImGui::SliderFloat("time-step factor (CFL)", &cfl, 0.05f, 1.0f, "%.2f"))
+            push({.kind = input::Kind::cfl, .x = cfl});
+        if (ImGui::Checkbox("turbulence", &turbulence)) push({.kind = input::Kind::turbulence, .on = turbulence});
+        if (ImGui::SliderFloat("amplitude A 1/m", &amplitude, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+            push({.kind = input::Kind::amplitude, .x = amplitude});
+    }
+    ImGui::PopItemWidth();
+    if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+
+    // A bar per pass: its GPU ms in the last frame read back, against that frame's GPU span.
+    if (ImGui::CollapsingHeader("GPU passes (ms, frames late)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const std::vector<double>& ms = timer.last_frame_ms();
+        char label[128];
+        ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(4.0f, 1.0f));
+        ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(4.0f, 0.0f));
+        for (const std::uint16_t i : timer.first_use_order()) {
+            const double v = i < ms.size() ? ms[i] : 0.0;
+            std::snprintf(label, sizeof label, "%s %.3f", timer.name(profile::PassId{i}).c_str(), v);
+            ImGui::ProgressBar(gpu_ms > 0.0 ? float(std::min(1.0, v / gpu_ms)) : 0.0f, ImVec2(280.0f, ImGui::GetTextLineHeight()), label);
+        }
+        ImGui::PopStyleVar(2);
+    }
+    if (ImGui::CollapsingHeader("Keys")) {
+        for (const input::Key& k : input::keys())
+            ImGui::Text("%-7.*s %.*s", int(k.name.size()), k.name.data(), int(k.help.size()), k.help.data());
+        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom");
+    }
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    panel_ = {int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)};
+    ImGui::End();
+
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace ranryu::app

@@ -1,0 +1,65 @@
+#pragma once
+// The window's overlay (Dear ImGui, GLFW and OpenGL 3 backends): a panel with what the CPU already
+// knows about the run (fps, GPU ms a frame, the real-time factor, particles and sub-particles,
+// substeps and solver iterations a frame, the guard's state, and a bar per pass with its GPU ms from
+// the asynchronous timers, frames late), the run's controls, and the keys' help.
+//
+// Nothing here reads the GPU back or waits for it: the numbers are the timers' results and the
+// pipeline's last record, which came back through their rings. The panel is drawn as its own pass,
+// "overlay" (a debug group and a GPU timer), after the frame is presented to the window's back buffer.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame/pipeline.h"
+#include "input/commands.h"
+#include "profile/gpu_timer.h"
+#include "sim/guard.h"
+
+struct GLFWwindow;
+
+namespace ranryu::app {
+
+// What the run knows that the pipeline does not: its clocks and its controls' state.
+struct OverlayState {
+    double fps = 0.0;               // frames a wall second, over the last half second
+    std::optional<double> rtf;      // simulated seconds a wall second, over the last half second
+    bool paused = false;
+    int scene_index = -1;           // in scene::bundled(); -1: a scene from a file
+    std::optional<sim::GuardLimits> limits;   // the guard's bounds (SPH)
+    // The live settings (SPH): viscosity (m^2/s), the Courant number, the turbulence force and its A.
+    float viscosity = 0.0f, cfl = 0.0f, amplitude = 0.0f;
+    bool turbulence = false;
+    std::string status;             // the last control's note ("scene falling-block: particles only"), or empty
+};
+
+// The panel's rectangle in window pixels (top-left origin), as drawn last.
+struct PanelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+class Overlay {
+public:
+    // Start-up: the ImGui context, the backends (their shaders and font texture are built here, once).
+    explicit Overlay(GLFWwindow* window);
+    ~Overlay();
+    Overlay(const Overlay&) = delete;
+    Overlay& operator=(const Overlay&) = delete;
+
+    // Whether the panel has the mouse (the drag and the wheel are then the panel's, not the camera's).
+    bool wants_mouse() const;
+    // Whether a text field of the panel is being typed into (Ctrl+click on a slider): keys are its.
+    bool wants_text() const;
+
+    // Builds the panel and draws it into the bound (default) framebuffer as pass `pass` of p's timer.
+    // What its widgets ask for is appended to `commands`.
+    void draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& state, std::vector<input::Command>& commands);
+    // Where the panel was drawn last.
+    const PanelRect& panel() const { return panel_; }
+
+private:
+    PanelRect panel_;
+    std::vector<std::string> scenes_;   // the bundled scenes' names, for the scene list
+};
+
+}  // namespace ranryu::app

@@ -1,0 +1,349 @@
+// ranryu run: the scene in a window, with the overlay's panel and the controls (app/overlay.h,
+// input/commands.h), driven by a person or by --script (input/script.h). It runs the one frame loop
+// (frame/loop.h) through its hooks; a restart (reset, another scene, shading or solver) ends the loop,
+// rebuilds the pipeline and runs the loop again, keeping the window, the panel and the camera.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "commands.h"
+#include "core/error.h"
+#include "frame/loop.h"
+#include "frame/pipeline.h"
+#include "input/script.h"
+#include "record/png.h"
+#include "sim/fluid.h"
+#include "sim/guard.h"
+#include "simulation_log.h"
+#include "turbulence/force.h"
+#ifdef RANRYU_HAVE_GLFW
+#include "gl/window.h"
+#include "overlay.h"
+#endif
+
+namespace ranryu::app {
+
+#ifdef RANRYU_HAVE_GLFW
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reads the window's back buffer (what the next swap shows) and writes it as a PNG. It waits for the
+// GPU: only when a screenshot is asked for.
+void save_back_buffer(const fs::path& file, glm::ivec2 fb) {
+    std::vector<std::uint8_t> pixels(std::size_t(fb.x) * std::size_t(fb.y) * 4), flipped(pixels.size());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    const std::size_t row = std::size_t(fb.x) * 4;
+    for (int y = 0; y < fb.y; ++y)
+        std::copy_n(pixels.data() + std::size_t(fb.y - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
+    record::write_png(file, fb.x, fb.y, flipped.data());
+}
+
+// The screenshot folder: shot_00000.png, shot_00001.png, ...; an existing file is never replaced.
+class Shots {
+public:
+    explicit Shots(fs::path dir) : dir_(std::move(dir)) {
+        if (fs::exists(dir_) && !fs::is_directory(dir_)) throw InputError("--shots " + dir_.string() + ": not a folder");
+    }
+    fs::path next() {
+        fs::create_directories(dir_);
+        char name[32];
+        for (;; ++counter_) {
+            std::snprintf(name, sizeof name, "shot_%05d.png", counter_);
+            if (!fs::exists(dir_ / name)) return dir_ / name;
+        }
+    }
+
+private:
+    fs::path dir_;
+    int counter_ = 0;
+};
+
+// The camera on a sphere around the scene's target: a drag turns it, the wheel moves it closer.
+struct Orbit {
+    render::Camera cam;
+    float radius = 1.0f, yaw = 0.0f, pitch = 0.0f;
+    explicit Orbit(const render::Camera& c = {}) : cam(c) {
+        const glm::vec3 arm = cam.eye - cam.target;
+        radius = glm::length(arm);
+        yaw = std::atan2(arm.x, arm.z);
+        pitch = radius > 0.0f ? std::asin(glm::clamp(arm.y / radius, -1.0f, 1.0f)) : 0.0f;
+    }
+    void move(glm::vec2 drag, float wheel) {
+        yaw -= 0.005f * drag.x;
+        pitch = glm::clamp(pitch + 0.005f * drag.y, -1.5f, 1.5f);
+        radius *= std::pow(0.9f, wheel);
+        cam.eye = cam.target + radius * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+    }
+};
+
+int bundled_index(const std::string& name) {
+    const std::vector<scene::BundledScene> all = scene::bundled();
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (all[i].name == name) return int(i);
+    return -1;
+}
+
+}  // namespace
+#endif
+
+int run(const Options& o) {
+#ifndef RANRYU_HAVE_GLFW
+    (void)o;
+    throw Error("this build has no window (GLFW was not found at configure time); use `ranryu record` or `ranryu profile`");
+#else
+    using Clock = std::chrono::steady_clock;
+    scene::Scene scene = load_scene(o);
+    const glm::ivec2 size = image_size(o, scene);
+    const std::uint64_t frames = std::uint64_t(o.frames.value_or(0));
+    // Refuse bad input before opening anything.
+    if (!o.screenshot.empty()) {
+        // An existing file is earlier output, and the folder must exist.
+        const fs::path shot(o.screenshot);
+        if (fs::exists(shot)) throw InputError("--screenshot " + o.screenshot + ": the file exists; not overwriting it");
+        const auto parent = shot.parent_path().empty() ? fs::path(".") : shot.parent_path();
+        if (!fs::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
+    }
+    Shots shots(o.shots);
+    input::Replay script;
+    if (!o.script.empty()) script = input::Replay(input::load_script(o.script));
+
+    const shader::FileSource shaders = shader_source(o);
+    const bool debug = debug_context(o);
+    gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
+    if (debug) gl::install_debug_callback();
+    print_device(window.info());
+    Overlay overlay(window.handle());
+
+    // The controls' state, changed only by apply() (keys, panel widgets, script), read by the hooks.
+    struct Controls {
+        bool paused = false, step = false, panel = true, quit = false, restart = false, camera_moved = false;
+        bool camera_from_scene = true;   // a new scene: its own camera
+        int shots = 0;                   // screenshots asked for, one a frame
+        std::optional<render::Shading> shading;
+        bool turbulence = false;     // the force on (with scene.turbulence.amplitude) or off (A = 0)
+        float amplitude = 5.0f;      // A for turning it on in a scene without it (a restart)
+        bool settings_changed = true;   // viscosity, CFL or turbulence: into the pipeline before the next frame
+    } c;
+    c.shading = shading(o);
+    c.turbulence = scene.turbulence.enabled();
+    OverlayState view;
+    view.scene_index = scene.origin == "bundled" ? bundled_index(scene.name) : -1;
+    Orbit orbit;
+    std::vector<input::Command> pending;   // keys and panel widgets, applied before the next frame
+    pending.reserve(64);
+    auto queue = [&](const input::Command& cmd) {
+        if (pending.size() < pending.capacity()) pending.push_back(cmd);
+    };
+
+    auto apply = [&](const input::Command& cmd) {
+        const bool sph = scene.model == scene::Model::sph;
+        switch (cmd.kind) {
+            case input::Kind::toggle_pause: c.paused = !c.paused; break;
+            case input::Kind::set_pause: c.paused = cmd.on; break;
+            case input::Kind::step: c.paused = c.step = true; break;
+            case input::Kind::reset: c.restart = true; break;
+            case input::Kind::toggle_panel: c.panel = !c.panel; break;
+            case input::Kind::set_panel: c.panel = cmd.on; break;
+            case input::Kind::screenshot: ++c.shots; break;
+            case input::Kind::quit: c.quit = true; break;
+            case input::Kind::next_shading:
+            case input::Kind::shading: {
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model: it is drawn as particles only";
+                    break;
+                }
+                render::Shading s = cmd.shading;
+                if (cmd.kind == input::Kind::next_shading) {
+                    constexpr render::Shading order[] = {render::Shading::fresnel, render::Shading::phong,
+                                                         render::Shading::gouraud, render::Shading::particles};
+                    const render::Shading now = c.shading.value_or(render::default_shading(scene));
+                    std::size_t i = 0;
+                    while (order[i] != now) ++i;
+                    s = order[(i + 1) % 4];
+                }
+                c.shading = s;
+                c.restart = true;
+                break;
+            }
+            case input::Kind::scene: {
+                try {
+                    scene::Scene next = scene::load(scene::bundled().at(std::size_t(cmd.index)).name);
+                    Options only = o;   // --spacing for every scene, --solver where there is one
+                    if (next.model != scene::Model::sph) only.solver.clear();
+                    scene = with_options(std::move(next), only);
+                } catch (const InputError& e) {
+                    view.status = e.what();
+                    break;
+                }
+                if (scene.model != scene::Model::sph) c.shading.reset();
+                c.turbulence = scene.turbulence.enabled();
+                c.settings_changed = true;
+                view.scene_index = cmd.index;
+                view.status.clear();
+                c.camera_from_scene = c.restart = true;
+                break;
+            }
+            case input::Kind::solver:
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model, which has no pressure solver";
+                    break;
+                }
+                scene.sph.solver = cmd.solver;
+                c.restart = true;
+                break;
+            case input::Kind::viscosity:
+            case input::Kind::cfl:
+            case input::Kind::amplitude:
+            case input::Kind::turbulence:
+            case input::Kind::toggle_turbulence: {
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model: no viscosity, time step or turbulence";
+                    break;
+                }
+                // Kept in the scene, so that a restart keeps them too.
+                if (cmd.kind == input::Kind::viscosity) scene.sph.viscosity = cmd.x;
+                if (cmd.kind == input::Kind::cfl) scene.sph.cfl = cmd.x;
+                if (cmd.kind == input::Kind::amplitude) {
+                    c.amplitude = cmd.x;
+                    if (scene.turbulence.enabled()) scene.turbulence.amplitude = cmd.x;
+                }
+                if (cmd.kind == input::Kind::turbulence || cmd.kind == input::Kind::toggle_turbulence) {
+                    c.turbulence = cmd.kind == input::Kind::turbulence ? cmd.on : !c.turbulence;
+                    // A scene without the force builds none of its passes: turning it on restarts it.
+                    if (c.turbulence && !scene.turbulence.enabled()) {
+                        scene.turbulence.amplitude = c.amplitude;
+                        c.restart = true;
+                    }
+                }
+                c.settings_changed = true;
+                break;
+            }
+            case input::Kind::drag:
+            case input::Kind::wheel:
+                orbit.move(cmd.kind == input::Kind::drag ? glm::vec2(cmd.x, cmd.y) : glm::vec2(0.0f),
+                           cmd.kind == input::Kind::wheel ? cmd.x : 0.0f);
+                c.camera_moved = true;
+                break;
+        }
+    };
+
+    std::uint64_t base = 0;   // frames run by the pipelines before this one
+    for (bool first = true;; first = false) {
+        frame::Pipeline pipeline(scene, shaders, size.x, size.y, c.shading);
+        if (!first)
+            std::printf("restart at frame %llu: %s, %s, %s\n", static_cast<unsigned long long>(base), scene.name.c_str(),
+                        pipeline.simulation() ? scene::solver_name(scene.sph.solver) : "ballistic",
+                        render::shading_name(pipeline.shading()));
+        if (c.camera_from_scene) orbit = Orbit(pipeline.camera());
+        else pipeline.set_camera(orbit.cam);
+        c.camera_from_scene = c.restart = c.camera_moved = false;
+        c.step = c.paused;   // a restart shows its first frame, paused or not
+        c.settings_changed = true;
+        SimulationLog log(pipeline, 0);
+        const profile::PassId present = pipeline.timer().pass("present");
+        const profile::PassId overlay_pass = pipeline.timer().pass("overlay");
+        view.limits.reset();
+        if (pipeline.simulation()) view.limits = sim::guard_limits(scene);
+        // fps and the real-time factor over the last half second.
+        Clock::time_point since = Clock::now();
+        std::uint64_t frames_since = 0;
+        double sim_since = pipeline.simulated_time();
+        view.rtf.reset();
+
+        frame::FrameHooks hooks;
+        // Before each frame: the window's input, the panel's widgets and the script's events due.
+        hooks.keep_going = [&](const frame::Pipeline& p) {
+            window.poll();
+            const gl::Window::Keys keys = window.take_keys();
+            for (std::size_t i = 0; i < keys.count && !overlay.wants_text(); ++i)
+                if (const auto cmd = input::key_command(keys.names[i])) queue(*cmd);
+            const gl::Window::Input in = window.take_input();
+            if (!overlay.wants_mouse()) {
+                if (in.drag != glm::vec2(0.0f)) queue({.kind = input::Kind::drag, .x = in.drag.x, .y = in.drag.y});
+                if (in.wheel != 0.0f) queue({.kind = input::Kind::wheel, .x = in.wheel});
+            }
+            for (const input::Command& cmd : pending) apply(cmd);
+            pending.clear();
+            for (const std::uint64_t now = base + p.frames(); const input::Event* e = script.next_due(now); script.pop())
+                apply(e->command);
+            return !c.quit && !c.restart && !window.should_close();
+        };
+        hooks.before = [&](frame::Pipeline& p) {
+            if (std::exchange(c.camera_moved, false)) p.set_camera(orbit.cam);
+            if (std::exchange(c.settings_changed, false) && p.simulation()) {
+                p.simulation()->fluid().set_viscosity_and_cfl(scene.sph.viscosity, scene.sph.cfl);
+                if (turbulence::TurbulenceForce* force = p.simulation()->turbulence())
+                    force->set_amplitude(c.turbulence ? scene.turbulence.amplitude : 0.0f);
+            }
+            view.viscosity = scene.sph.viscosity, view.cfl = scene.sph.cfl, view.turbulence = c.turbulence;
+            view.amplitude = scene.turbulence.enabled() ? scene.turbulence.amplitude : c.amplitude;
+        };
+        hooks.advance = [&](const frame::Pipeline&) { return !c.paused || std::exchange(c.step, false); };
+        hooks.after_draw = [&](frame::Pipeline& p) {
+            const glm::ivec2 fb = window.framebuffer_size();
+            {
+                auto pass = p.timer().scope(present);
+                glBindFramebuffer(GL_READ_FRAMEBUFFER, p.target().framebuffer());
+                glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+                glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+                glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            }
+            view.paused = c.paused;
+            if (c.panel) overlay.draw(p, overlay_pass, view, pending);
+            const std::uint64_t frame = base + p.frames();
+            if (c.shots > 0) {
+                --c.shots;
+                const fs::path file = shots.next();
+                save_back_buffer(file, fb);
+                const PanelRect& r = overlay.panel();
+                if (c.panel)
+                    std::printf("wrote %s (%dx%d, frame %llu, panel at %d,%d size %dx%d)\n", file.string().c_str(), fb.x, fb.y,
+                                static_cast<unsigned long long>(frame), r.x, r.y, r.width, r.height);
+                else
+                    std::printf("wrote %s (%dx%d, frame %llu, no panel)\n", file.string().c_str(), fb.x, fb.y,
+                                static_cast<unsigned long long>(frame));
+                std::fflush(stdout);
+            }
+            if (frames != 0 && frame + 1 == frames && !o.screenshot.empty() && !p.instability()) {
+                save_back_buffer(o.screenshot, fb);
+                std::printf("wrote %s (%dx%d)\n", o.screenshot.c_str(), fb.x, fb.y);
+            }
+        };
+        hooks.after = [&](frame::Pipeline& p) {
+            window.swap();
+            ++frames_since;
+            const Clock::time_point now = Clock::now();
+            if (const double dt = std::chrono::duration<double>(now - since).count(); dt >= 0.5) {
+                const double sim_now = p.simulated_time();
+                view.fps = double(frames_since) / dt;
+                view.rtf = (sim_now - sim_since) / dt;
+                since = now, frames_since = 0, sim_since = sim_now;
+            }
+        };
+
+        log.start_clock();
+        base += frame::run_frames(pipeline, frames ? std::optional<std::uint64_t>(frames - base) : std::nullopt, hooks);
+        // Every record and timing still on its way (the guard's last word included).
+        pipeline.drain();
+        log.stop_clock();
+        pipeline.poll();
+        if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+        if (c.restart && !c.quit && !window.should_close() && !(frames && base >= frames)) continue;
+        const profile::Report report =
+            profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0), log.summary());
+        std::printf("%s", profile::table(report).c_str());
+        return 0;
+    }
+#endif
+}
+
+}  // namespace ranryu::app
