@@ -57,11 +57,6 @@ glm::ivec2 image_size(const Options& o, const scene::Scene& s) {
     return {o.width.value_or(s.width), o.height.value_or(s.height)};
 }
 
-void print_device(const gl::DeviceInfo& d) {
-    std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
-    if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
-    std::fflush(stdout);
-}
 
 profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int frames, int warmup) {
     profile::RunInfo info;
@@ -80,14 +75,36 @@ profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int
     return info;
 }
 
+// "device memory: estimated X MiB, allocated Y MiB ..." and its JSON.
+std::string memory_line(const frame::MemoryUse& m) {
+    std::string line = "device memory: estimated " + frame::mib(m.estimate.total()) + ", allocated " + frame::mib(m.allocated) +
+                       " (peak " + frame::mib(m.peak) + " at start-up), available " +
+                       (m.device.available ? frame::mib(*m.device.available) : std::string("unknown")) + " (" + m.device.source + ")\n";
+    for (const frame::MemoryPart& p : m.estimate.parts) line += "  " + p.name + ": " + frame::mib(p.bytes) + "\n";
+    return line;
+}
+nlohmann::json memory_json(const frame::MemoryUse& m) {
+    nlohmann::json parts = nlohmann::json::object();
+    for (const frame::MemoryPart& p : m.estimate.parts) parts[p.name] = p.bytes;
+    return {{"estimated_bytes", m.estimate.total()}, {"allocated_bytes", m.allocated}, {"peak_bytes", m.peak},
+            {"available_bytes", m.device.available ? nlohmann::json(*m.device.available) : nlohmann::json(nullptr)},
+            {"source", m.device.source}, {"parts", parts}};
+}
+
 }  // namespace
 
+void print_device(const gl::DeviceInfo& d) {
+    std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
+    if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
+    std::fflush(stdout);
+}
+
 // Headless context, with the debug callback in Debug builds or with --gl-debug.
-std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
+std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce) {
     const bool debug = kDebugBuild || o.gl_debug;
     auto ctx = std::make_unique<gl::HeadlessContext>(debug);
     if (debug) gl::install_debug_callback();
-    print_device(ctx->info());
+    if (announce) print_device(ctx->info());
     return ctx;
 }
 
@@ -165,13 +182,17 @@ int record(const Options& o) {
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
-    // Check the folder before any GPU work, so bad input costs nothing and loses nothing.
+    // The scene's memory and the folder are checked before anything is built or written, so bad input
+    // costs little and loses nothing (the pipeline checks the memory again, as for every command).
+    frame::View view{size.x, size.y, shading(o), true, record::Recorder::bytes_for(size.x, size.y)};
+    if (o.export_mesh) view.extra_bytes += record::MeshExporter::bytes_for(std::size_t(scene.surface.max_vertices));
+    const shader::FileSource shaders = shader_source(o);
+    auto ctx = headless(o, /*announce=*/false);
+    frame::check_memory(scene, view, frame::device_memory());
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
-
-    const shader::FileSource shaders = shader_source(o);
-    auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
+    print_device(ctx->info());
+    frame::Pipeline pipeline(scene, shaders, view);
     SimulationLog log(pipeline, 0, o.records);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     std::unique_ptr<record::Recorder> recorder;
@@ -223,6 +244,7 @@ int record(const Options& o) {
     run["frame_pattern"] = "frame_%05d.png";
     run["simulated_seconds"] = pipeline.simulated_time();
     run["shading"] = render::shading_name(pipeline.shading());
+    run["device_memory"] = memory_json(pipeline.memory());
     if (meshes) {
         // Per written mesh: the MeshState's vertex count (every one is in the PLY) and its flags.
         nlohmann::json list = nlohmann::json::array();
@@ -282,7 +304,9 @@ int profile_cmd(const Options& o) {
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());
+    std::printf("%s", memory_line(pipeline.memory()).c_str());
     nlohmann::json extra = profile::to_json(report);
+    extra["device_memory"] = memory_json(pipeline.memory());
     if (const surface::MarchingCubes* mc = pipeline.mesh()) {
         // After the run, not in the frame path: the last frame's mesh size, read once.
         const gpu::MeshState m = mc->state().read<gpu::MeshState>(1)[0];

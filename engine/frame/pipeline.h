@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 
+#include "frame/memory.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
 #include "render/renderer.h"
@@ -40,6 +41,9 @@ struct View {
     int width = 960, height = 540;
     std::optional<render::Shading> shading;
     bool draw = true;
+    // Device memory the command allocates beside the pipeline (record's readback rings), counted
+    // in the memory check (frame/memory.h).
+    std::size_t extra_bytes = 0;
 };
 
 class Pipeline {
@@ -47,11 +51,15 @@ public:
     // Builds every program (start-up) and allocates the particle state and the view's target. A
     // shading other than particles also builds the level set and marching cubes (scene.surface); a
     // scene that draws particles builds neither. Throws InputError for a surface shading of a
-    // ballistic scene (it has no neighbour grid to mesh from).
+    // ballistic scene (it has no neighbour grid to mesh from), and, before allocating anything, for
+    // a scene whose memory_estimate() the device has no room for (frame/memory.h).
     Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, const View& view);
     Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height,
              std::optional<render::Shading> shading = std::nullopt)
         : Pipeline(scene, shaders, View{width, height, shading, true}) {}
+    // The device memory a pipeline of `scene` drawn as `view` allocates, by component: what the
+    // constructor builds, from each component's bytes_for() (frame/memory.h).
+    static MemoryEstimate memory_estimate(const scene::Scene& scene, const View& view);
     // The passes hold references to the pipeline's timer: a pipeline stays where it was built.
     Pipeline(const Pipeline&) = delete;
     Pipeline& operator=(const Pipeline&) = delete;
@@ -73,6 +81,8 @@ public:
     const render::Camera& camera() const { return camera_; }
 
     const scene::Scene& scene() const { return scene_; }
+    // The memory estimate, the device's figure it was checked against and what was allocated.
+    const MemoryUse& memory() const { return memory_; }
     profile::GpuTimer& timer() { return timer_; }
     const gl::RenderTarget& target() const { return target_; }
     std::size_t particle_count() const;
@@ -110,6 +120,7 @@ private:
     render::Camera camera_;
     int substeps_ = 1;
     std::uint64_t frames_ = 0;
+    MemoryUse memory_;
 };
 
 }  // namespace ranryu::frame

@@ -49,6 +49,33 @@ struct DeleteQuery { void operator()(GLuint n) const { glDeleteQueries(1, &n); }
 struct DeleteProgram { void operator()(GLuint n) const { glDeleteProgram(n); } };
 struct DeleteShader { void operator()(GLuint n) const { glDeleteShader(n); } };
 
+// Bytes of GL buffer and texture storage alive now, and the most alive at once since the process
+// started: what `profile` prints as allocated, and what frame/memory.h's estimate is checked against.
+std::uint64_t allocated_bytes();
+std::uint64_t peak_allocated_bytes();
+
+// Counts `bytes` into allocated_bytes() for as long as it lives; moves with its owner.
+class TrackedBytes {
+public:
+    TrackedBytes() = default;
+    explicit TrackedBytes(std::size_t bytes);
+    TrackedBytes(const TrackedBytes&) = delete;
+    TrackedBytes& operator=(const TrackedBytes&) = delete;
+    TrackedBytes(TrackedBytes&& o) noexcept : bytes_(std::exchange(o.bytes_, 0)) {}
+    TrackedBytes& operator=(TrackedBytes&& o) noexcept {
+        if (this != &o) {
+            release();
+            bytes_ = std::exchange(o.bytes_, 0);
+        }
+        return *this;
+    }
+    ~TrackedBytes() { release(); }
+
+private:
+    void release();
+    std::size_t bytes_ = 0;
+};
+
 // Attaches a debugger-visible label (KHR_debug, core 4.3) to a GL object.
 void label(GLenum identifier, GLuint name, std::string_view text);
 
@@ -91,6 +118,7 @@ public:
 private:
     Name<DeleteBuffer> name_;
     std::size_t size_ = 0;
+    TrackedBytes tracked_;
 };
 
 // An immutable-storage 2D texture (glTexStorage2D).
@@ -101,10 +129,13 @@ public:
     GLuint id() const { return name_.id(); }
     int width() const { return width_; }
     int height() const { return height_; }
+    // Bytes of one texel of `internal_format` (the formats ranryu uses; 4 otherwise).
+    static std::size_t texel_bytes(GLenum internal_format);
 
 private:
     Name<DeleteTexture> name_;
     int width_ = 0, height_ = 0;
+    TrackedBytes tracked_;
 };
 
 // A framebuffer with one RGBA8 colour and a 32-bit float depth attachment, both textures.
@@ -112,12 +143,15 @@ class RenderTarget {
 public:
     RenderTarget() = default;
     RenderTarget(int width, int height, std::string_view name = {});
+    // The storage a width x height target allocates: its colour and depth textures.
+    static std::size_t bytes_for(int width, int height);
     GLuint framebuffer() const { return fbo_.id(); }
     const Texture2D& color() const { return color_; }
     int width() const { return color_.width(); }
     int height() const { return color_.height(); }
 
 private:
+    static constexpr GLenum kColorFormat = GL_RGBA8, kDepthFormat = GL_DEPTH_COMPONENT32F;
     Texture2D color_, depth_;
     Name<DeleteFramebuffer> fbo_;
 };

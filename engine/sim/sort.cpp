@@ -117,15 +117,25 @@ KeySort::KeySort(const shader::FileSource& shaders, profile::GpuTimer& timer, st
         throw Error("KeySort: capacity " + std::to_string(capacity) + " needs more workgroups than the driver's " +
                     std::to_string(max_groups) + " per dispatch");
 
-    const std::size_t bytes = std::max<std::size_t>(capacity, 1) * sizeof(std::uint32_t);
+    const std::size_t bytes = pair_array_bytes(capacity);
     keys_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.keys");
     values_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.values");
     keys_alt_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.keys_alt");
     values_alt_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.values_alt");
-    // total[digit], then count[digit][tile] (glsl/sim/sort/radix.glsl).
-    const std::size_t tiles = std::max<std::size_t>(groups(capacity, radix_tile_), 1);
-    histogram_ = gl::Buffer((kRadixDigits + kRadixDigits * tiles) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
-                            "sort.histogram");
+    histogram_ = gl::Buffer(histogram_bytes(capacity, radix_tile_), GL_DYNAMIC_COPY, nullptr, "sort.histogram");
+}
+
+std::size_t KeySort::pair_array_bytes(std::size_t capacity) {
+    return std::max<std::size_t>(capacity, 1) * sizeof(std::uint32_t);
+}
+// total[digit], then count[digit][tile] (glsl/sim/sort/radix.glsl).
+std::size_t KeySort::histogram_bytes(std::size_t capacity, std::size_t radix_tile) {
+    const std::size_t tiles = std::max<std::size_t>(groups(capacity, radix_tile), 1);
+    return (kRadixDigits + kRadixDigits * tiles) * sizeof(std::uint32_t);
+}
+std::size_t KeySort::bytes_for(std::size_t capacity) {
+    // radix.glsl's RADIX_GROUP is RADIX_DIGITS: the tile the constructor reads from the programs.
+    return 4 * pair_array_bytes(capacity) + histogram_bytes(capacity, kRadixDigits * RANRYU_SORT_RADIX_ITEMS_PER_THREAD);
 }
 
 void KeySort::sort(SortMethod method, std::size_t count, std::uint32_t max_key) {
