@@ -15,6 +15,7 @@
 #include "frame/progress.h"
 #include "frame/stop.h"
 #include "gl/context.h"
+#include "gl/faults.h"
 #include "profile/report.h"
 #include "record/mesh_export.h"
 #include "record/png.h"
@@ -104,6 +105,7 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce) {
     const bool debug = kDebugBuild || o.gl_debug;
     auto ctx = std::make_unique<gl::HeadlessContext>(debug);
     if (debug) gl::install_debug_callback();
+    gl::set_error_checks(debug);   // glGetError after every pass (gl/faults.h)
     if (announce) print_device(ctx->info());
     return ctx;
 }
@@ -368,6 +370,7 @@ int run(const Options& o) {
     const bool debug = kDebugBuild || o.gl_debug;
     gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
     if (debug) gl::install_debug_callback();
+    gl::set_error_checks(debug);
     print_device(window.info());
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, 0);

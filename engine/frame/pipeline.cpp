@@ -1,6 +1,7 @@
 #include "frame/pipeline.h"
 
 #include "core/error.h"
+#include "gl/faults.h"
 #include "sim/fluid.h"
 #include "sim/solvers/dfsph.h"
 #include "sim/solvers/wcsph.h"
@@ -128,6 +129,7 @@ void Pipeline::draw() {
 
 void Pipeline::end_frame() {
     timer_.end_frame();
+    gl::check_faults(frames_);   // a GL error in a pass (with error checks on) or a lost context: exit 1
     ++frames_;
 }
 

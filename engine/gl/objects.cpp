@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "gl/faults.h"
 
 namespace ranryu::gl {
 
@@ -153,13 +154,15 @@ bool Fence::signaled() const {
     const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
     return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
 }
-void Fence::wait() const {
+void Fence::wait(const std::string& what) const {
     if (!sync_) return;
-    for (;;) {
-        const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000ull);
-        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
-        if (r == GL_WAIT_FAILED) throw Error("glClientWaitSync failed");
-    }
+    wait_or_fault(
+        [&] {
+            const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 50'000'000ull);   // 50 ms slices
+            if (r == GL_WAIT_FAILED) throw GpuFault("glClientWaitSync failed waiting for " + what);
+            return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+        },
+        std::chrono::duration<double>(fence_timeout_seconds()), what);
 }
 
 }  // namespace ranryu::gl

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -195,7 +196,9 @@ public:
     void insert();                  // replaces any earlier fence
     bool pending() const { return sync_ != nullptr; }
     bool signaled() const;          // non-blocking poll; flushes so the fence can complete
-    void wait() const;              // blocks: back-pressure and shutdown only
+    // Blocks: back-pressure and shutdown only. After gl::fence_timeout_seconds() throws gl::GpuFault
+    // naming `what` (gl/faults.h) instead of waiting forever.
+    void wait(const std::string& what = "a GL fence") const;
     void reset();
 
 private:

@@ -40,7 +40,7 @@ std::size_t MeshExporter::bytes_for(std::size_t max_vertices, int ring) {
 MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                            std::function<void()> pump, int ring)
     : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),
-      ring_(std::size_t(std::max(ring, 1))) {
+      ring_(std::size_t(std::max(ring, 1)), "mesh-readback") {
     for (std::size_t i = 0; i < ring_.size(); ++i) {
         Copies& c = ring_.slots()[i].data;
         c.vertices = gl::Buffer(max_vertices_ * sizeof(gpu::MeshVertex), GL_STREAM_READ, nullptr,
