@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "frame/pipeline.h"
+#include "gl/context.h"
 #include "gl/gl.h"
 
 namespace ranryu::frame {
@@ -16,16 +17,6 @@ namespace {
 
 constexpr GLenum kNvxCurrentAvailable = 0x9049;   // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX (KiB)
 constexpr GLenum kAtiVboFree = 0x87FB;            // GL_VBO_FREE_MEMORY_ATI: [0] total free (KiB)
-
-bool has_extension(std::string_view name) {
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) {
-        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (e && name == e) return true;
-    }
-    return false;
-}
 
 std::optional<std::uint64_t> host_available() {
     std::ifstream in("/proc/meminfo");
@@ -77,12 +68,12 @@ DeviceMemory device_memory() {
     const std::string renderer = r ? r : "";
     if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos)
         if (const auto host = host_available()) return {*host, "host memory (MemAvailable), " + renderer.substr(0, renderer.find(' '))};
-    if (has_extension("GL_NVX_gpu_memory_info")) {
+    if (gl::has_extension("GL_NVX_gpu_memory_info")) {
         GLint kib = 0;
         glGetIntegerv(kNvxCurrentAvailable, &kib);
         if (kib > 0) return {std::uint64_t(kib) * 1024, "GL_NVX_gpu_memory_info"};
     }
-    if (has_extension("GL_ATI_meminfo")) {
+    if (gl::has_extension("GL_ATI_meminfo")) {
         GLint v[4] = {0, 0, 0, 0};
         glGetIntegerv(kAtiVboFree, v);
         if (v[0] > 0) return {std::uint64_t(v[0]) * 1024, "GL_ATI_meminfo"};

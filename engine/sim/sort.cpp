@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "gl/context.h"
 #include "shared/bindings.h"
 
 namespace ranryu::sim {
@@ -21,15 +22,6 @@ constexpr GLuint kRadixDigits = 1u << kRadixBits;
 // at most 16 subgroups (shared counters per subgroup and digit) and fits a 128-bit ballot.
 constexpr GLint kMinSubgroup = 16, kMaxSubgroup = 128;
 
-bool has_extension(std::string_view name) {
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) {
-        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (e && name == e) return true;
-    }
-    return false;
-}
 
 bool subgroups_disabled_by_env() {
     const char* v = std::getenv("RANRYU_NO_SUBGROUPS");
@@ -49,7 +41,7 @@ void storage_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
 }  // namespace
 
 unsigned KeySort::driver_subgroup_size() {
-    if (!has_extension("GL_KHR_shader_subgroup")) return 0;
+    if (!gl::has_extension("GL_KHR_shader_subgroup")) return 0;
     GLint size = 0, stages = 0, features = 0;
     glGetIntegerv(GL_SUBGROUP_SIZE_KHR, &size);
     glGetIntegerv(GL_SUBGROUP_SUPPORTED_STAGES_KHR, &stages);
