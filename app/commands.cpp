@@ -17,6 +17,7 @@
 #include "frame/progress.h"
 #include "frame/stop.h"
 #include "gl/context.h"
+#include "gl/faults.h"
 #include "profile/report.h"
 #include "record/mesh_export.h"
 #include "record/particle_export.h"
@@ -54,11 +55,6 @@ glm::ivec2 image_size(const Options& o, const scene::Scene& s) {
     return {o.width.value_or(s.width), o.height.value_or(s.height)};
 }
 
-void print_device(const gl::DeviceInfo& d) {
-    std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
-    if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
-    std::fflush(stdout);
-}
 
 profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int frames, int warmup) {
     profile::RunInfo info;
@@ -77,13 +73,39 @@ profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int
     return info;
 }
 
+namespace {
+
+// "device memory: estimated X MiB, allocated Y MiB ..." and its JSON.
+std::string memory_line(const frame::MemoryUse& m) {
+    std::string line = "device memory: estimated " + frame::mib(m.estimate.total()) + ", allocated " + frame::mib(m.allocated) +
+                       " (peak " + frame::mib(m.peak) + " at start-up), available " +
+                       (m.device.available ? frame::mib(*m.device.available) : std::string("unknown")) + " (" + m.device.source + ")\n";
+    for (const frame::MemoryPart& p : m.estimate.parts) line += "  " + p.name + ": " + frame::mib(p.bytes) + "\n";
+    return line;
+}
+nlohmann::json memory_json(const frame::MemoryUse& m) {
+    nlohmann::json parts = nlohmann::json::object();
+    for (const frame::MemoryPart& p : m.estimate.parts) parts[p.name] = p.bytes;
+    return {{"estimated_bytes", m.estimate.total()}, {"allocated_bytes", m.allocated}, {"peak_bytes", m.peak},
+            {"available_bytes", m.device.available ? nlohmann::json(*m.device.available) : nlohmann::json(nullptr)},
+            {"source", m.device.source}, {"parts", parts}};
+}
+
+}  // namespace
+
+void print_device(const gl::DeviceInfo& d) {
+    std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
+    if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
+    std::fflush(stdout);
+}
 
 // Headless context, with the debug callback in Debug builds or with --gl-debug.
-std::unique_ptr<gl::HeadlessContext> headless(const Options& o) {
+std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce) {
     const bool debug = debug_context(o);
     auto ctx = std::make_unique<gl::HeadlessContext>(debug);
     if (debug) gl::install_debug_callback();
-    print_device(ctx->info());
+    gl::set_error_checks(debug);   // glGetError after every pass (gl/faults.h)
+    if (announce) print_device(ctx->info());
     return ctx;
 }
 
@@ -132,16 +154,20 @@ int record(const Options& o) {
         throw InputError("--no-png: nothing would be recorded; add --video, --export-particles or --export-mesh");
     std::optional<record::ParticleFormat> particle_format;
     if (!o.export_particles.empty()) particle_format = record::parse_particle_format(o.export_particles, "--export-particles");
-    // Check the video (its type, ffmpeg, an earlier file) and the folder before any GPU work, so bad
-    // input costs nothing and loses nothing: nothing is created before the checks have passed.
+    // Check the video (its type, ffmpeg, an earlier file), the scene's memory and the folder before
+    // any GPU work, so bad input costs nothing and loses nothing: nothing is created before the checks
+    // have passed (the pipeline checks the memory again, as for every command).
     std::optional<record::VideoPlan> video;
     if (!o.video.empty()) video = record::VideoPlan::check(o.video, o.force);
+    frame::View view{size.x, size.y, shading(o), true, record::Recorder::bytes_for(size.x, size.y)};
+    if (o.export_mesh) view.extra_bytes += record::MeshExporter::bytes_for(std::size_t(scene.surface.max_vertices));
+    auto ctx = headless(o, /*announce=*/false);
+    frame::check_memory(scene, view, frame::device_memory());
     if (video) video->prepare();
     if (const std::size_t removed = record::prepare_output(out, o.force))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
-
-    auto ctx = headless(o);
-    frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
+    print_device(ctx->info());
+    frame::Pipeline pipeline(scene, shaders, view);
     SimulationLog log(pipeline, 0, o.records);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     const bool gated = scene.model == scene::Model::sph;
@@ -183,16 +209,43 @@ int record(const Options& o) {
     };
     progress.expect(std::uint64_t(frames));
     log.start_clock();
-    const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
-    const bool interrupted = ran < std::uint64_t(frames) && frame::stop_requested();   // cut short by a signal
+    // A GPU fault (gl/faults.h: a GL error in a pass, a lost context, a fence that never signals)
+    // stops the run like an instability: the frames before it are written, the faulting frame and
+    // those after it are not, run.json says why, and the exit code is 1.
+    std::optional<gl::GpuFault> fault;
+    std::uint64_t ran = 0;
+    try {
+        ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
+    } catch (const gl::GpuFault& e) {
+        fault = e;
+        ran = pipeline.frames();
+    }
+    const bool interrupted = !fault && ran < std::uint64_t(frames) && frame::stop_requested();   // cut short by a signal
     progress.finish();
     // Stopped or not, every frame captured is written (or, after an instability, dropped) first.
-    pipeline.drain();
+    auto finish = [&] {
+        if (fault) {
+            if (recorder) recorder->discard_from(ran);
+            if (meshes) meshes->discard_from(ran);
+            if (particles) particles->discard_from(ran);
+        }
+        pipeline.drain();
+        validate();
+        if (recorder) recorder->finish();   // and closes the video: ffmpeg finishes the file
+        if (meshes) meshes->finish();
+        if (particles) particles->finish();
+    };
+    if (!fault) {
+        finish();
+    } else {
+        try {
+            finish();
+        } catch (const gl::GpuFault&) {
+            // The GPU is gone too far to drain (a lost context, a fence that never signals): what was
+            // written stays, and run.json still says what happened.
+        }
+    }
     log.stop_clock();
-    validate();
-    if (recorder) recorder->finish();   // and closes the video: ffmpeg finishes the file
-    if (meshes) meshes->finish();
-    if (particles) particles->finish();
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, int(ran), 0), log.summary());
     nlohmann::json run = profile::to_json(report);
@@ -201,6 +254,7 @@ int record(const Options& o) {
     // A run stopped by SIGINT or SIGTERM: the frames before `interrupted_at_frame` ran.
     run["interrupted"] = interrupted;
     run["interrupted_at_frame"] = interrupted ? nlohmann::json(ran) : nlohmann::json(nullptr);
+    run["fault"] = fault ? nlohmann::json({{"frame", ran}, {"message", fault->what()}}) : nlohmann::json(nullptr);
     const std::uint64_t pngs = recorder && !o.no_png ? recorder->frames_written() : 0;
     run["frames_written"] = pngs;
     run["frame_pattern"] = o.no_png ? nlohmann::json(nullptr) : nlohmann::json("frame_%05d.png");
@@ -217,6 +271,7 @@ int record(const Options& o) {
                                  {"frames_written", particles->frames_written()}};
     run["simulated_seconds"] = pipeline.simulated_time();
     run["shading"] = render::shading_name(pipeline.shading());
+    run["device_memory"] = memory_json(pipeline.memory());
     if (meshes) {
         // Per written mesh: the MeshState's vertex count (every one is in the PLY) and its flags.
         nlohmann::json list = nlohmann::json::array();
@@ -241,6 +296,7 @@ int record(const Options& o) {
         std::printf("wrote the particles of %llu frames as particles_*.%s\n",
                     static_cast<unsigned long long>(particles->frames_written()), record::extension(*particle_format));
     std::printf("%s", profile::table(report).c_str());
+    if (fault) throw *fault;
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     if (interrupted) throw frame::interrupted(ran, std::uint64_t(frames));
     return 0;
@@ -283,6 +339,7 @@ int profile_cmd(const Options& o) {
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());
+    std::printf("%s", memory_line(pipeline.memory()).c_str());
     nlohmann::json extra = profile::to_json(report);
     // What the scene does not run, and why (issue 12: a scene models no more than it needs).
     nlohmann::json skipped = nlohmann::json::array();
@@ -291,6 +348,7 @@ int profile_cmd(const Options& o) {
         skipped.push_back({{"passes", st.passes}, {"why", st.why}});
     }
     extra["not_run"] = skipped;
+    extra["device_memory"] = memory_json(pipeline.memory());
     if (const surface::MarchingCubes* mc = pipeline.mesh()) {
         // After the run, not in the frame path: the last frame's mesh size, read once.
         const gpu::MeshState m = mc->state().read<gpu::MeshState>(1)[0];

@@ -25,7 +25,8 @@ int export_field(const Options& o);
 // Shared by the commands: the shader files (embedded, or --shader-dir), a headless context that
 // prints the device line, and the scene at --spacing with --solver.
 shader::FileSource shader_source(const Options& o);
-std::unique_ptr<gl::HeadlessContext> headless(const Options& o);
+// `announce` = false leaves the device line to print_device(), for a command that checks more first.
+std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce = true);
 scene::Scene load_scene(const Options& o);
 scene::Scene with_options(scene::Scene s, const Options& o);   // --spacing, --solver
 // The progress line on stderr (frame/progress.h) labelled `label`: none with --quiet; on a log, a

@@ -22,6 +22,7 @@
 #include "simulation_log.h"
 #include "turbulence/force.h"
 #ifdef RANRYU_HAVE_GLFW
+#include "gl/faults.h"
 #include "gl/window.h"
 #include "overlay.h"
 #endif
@@ -120,6 +121,7 @@ int run(const Options& o) {
     const bool debug = debug_context(o);
     gl::Window window(size.x, size.y, "ranryu - " + scene.name, debug);
     if (debug) gl::install_debug_callback();
+    gl::set_error_checks(debug);   // glGetError after every pass (gl/faults.h)
     print_device(window.info());
     Overlay overlay(window.handle());
 

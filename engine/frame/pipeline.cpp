@@ -1,6 +1,12 @@
 #include "frame/pipeline.h"
 
+#include <cstdlib>
+
 #include "core/error.h"
+#include "gl/faults.h"
+#include "sim/fluid.h"
+#include "sim/solvers/dfsph.h"
+#include "sim/solvers/wcsph.h"
 #include "turbulence/force.h"
 
 namespace ranryu::frame {
@@ -13,7 +19,44 @@ render::Shading checked_shading(const scene::Scene& s, std::optional<render::Sha
                          " uses the ballistic model, which has no liquid surface; use --shading particles");
     return sh;
 }
+
+// The level set's settings (surface/level_set.h defaults with the scene's grid) and the mesh's capacity.
+surface::LevelSetSettings level_set_settings(const scene::Scene& s) {
+    surface::LevelSetSettings ls = surface::LevelSetSettings::for_spacing(s.spacing);
+    ls.node_spacing = s.surface.node_spacing * s.spacing;
+    ls.max_dims = glm::uvec3(std::uint32_t(s.surface.max_dims));
+    ls.subparticle_levels = s.turbulence.subparticles.enabled() ? s.turbulence.subparticles.levels : 0;
+    return ls;
+}
+surface::MeshCapacity mesh_capacity(const scene::Scene& s) {
+    return surface::MeshCapacity{glm::uvec3(std::uint32_t(s.surface.max_dims)), std::size_t(s.surface.max_vertices)};
+}
 }  // namespace
+
+MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view) {
+    MemoryEstimate e;
+    e.particles = s.particle_count();
+    e.extra = view.extra_bytes;
+    const std::size_t n = e.particles;
+    if (s.model == scene::Model::sph) {
+        e.boundary = sim::Fluid::boundary_count(s);
+        e.parts.push_back({"particles, boundary, grid and sort", sim::Fluid::bytes_for(s, n, e.boundary)});
+        e.transient = sim::Fluid::transient_bytes(e.boundary);
+        e.parts.push_back({std::string("solver ") + scene::solver_name(s.sph.solver),
+                           s.sph.solver == scene::Solver::dfsph ? sim::Dfsph::bytes_for(n) : sim::Wcsph::bytes_for(n)});
+        if (s.turbulence.enabled()) e.parts.push_back({"turbulence", turbulence::TurbulenceForce::bytes_for(n)});
+        if (s.turbulence.subparticles.enabled())
+            e.parts.push_back({"sub-particles", turbulence::Subparticles::bytes_for(s.turbulence.subparticles, n)});
+        if (view.draw && render::needs_surface(view.shading.value_or(render::default_shading(s)))) {
+            e.parts.push_back({"level set", surface::LevelSet::bytes_for(level_set_settings(s))});
+            e.parts.push_back({"marching cubes", surface::MarchingCubes::bytes_for(mesh_capacity(s))});
+        }
+    } else {
+        e.parts.push_back({"particles", sim::Particles::bytes_for(n)});
+    }
+    if (view.draw) e.parts.push_back({"render target", gl::RenderTarget::bytes_for(view.width, view.height)});
+    return e;
+}
 
 Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, const View& view)
     : scene_(scene),
@@ -21,6 +64,10 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
       shading_(checked_shading(scene, view.shading)),
       camera_(render::scene_camera(scene)),
       substeps_(scene.substeps()) {
+    // Before anything is allocated.
+    const std::uint64_t before = gl::allocated_bytes(), peak_before = gl::peak_allocated_bytes();
+    memory_.device = device_memory();
+    memory_.estimate = check_memory(scene_, view, memory_.device);
     const bool sph = scene_.model == scene::Model::sph;
     if (view.draw) {
         renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled());
@@ -32,14 +79,8 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
             sub_ = std::make_unique<turbulence::Subparticles>(shaders, timer_, scene_.turbulence, scene_.spacing, sph_->fluid().count(),
                                                               sph_->turbulence()->tiles(), sph_->turbulence()->noise());
         if (view.draw && render::needs_surface(shading_)) {
-            // Level set defaults (surface/level_set.h) with the scene's grid; the mesh's capacity.
-            surface::LevelSetSettings ls = surface::LevelSetSettings::for_spacing(scene_.spacing);
-            ls.node_spacing = scene_.surface.node_spacing * scene_.spacing;
-            ls.max_dims = glm::uvec3(std::uint32_t(scene_.surface.max_dims));
-            ls.subparticle_levels = sub_ ? scene_.turbulence.subparticles.levels : 0;
-            level_set_ = std::make_unique<surface::LevelSet>(shaders, timer_, ls);
-            mc_ = std::make_unique<surface::MarchingCubes>(
-                shaders, timer_, surface::MeshCapacity{ls.max_dims, std::size_t(scene_.surface.max_vertices)});
+            level_set_ = std::make_unique<surface::LevelSet>(shaders, timer_, level_set_settings(scene_));
+            mc_ = std::make_unique<surface::MarchingCubes>(shaders, timer_, mesh_capacity(scene_));
             renderer_->set_absorption(scene_.surface.absorption);
         }
     } else {
@@ -48,6 +89,15 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
         ballistic_->set_params(sim::sim_params(scene_, ballistic_->count()));
     }
     if (renderer_) renderer_->set_frame(render::frame_params(scene_, camera_, view.width, view.height));
+    memory_.allocated = gl::allocated_bytes() - before;
+    memory_.peak = gl::peak_allocated_bytes() > peak_before ? gl::peak_allocated_bytes() - before : memory_.allocated;
+    if (const char* at = std::getenv("RANRYU_FAULT_AT_FRAME")) {
+        char* end = nullptr;
+        const unsigned long long n = std::strtoull(at, &end, 10);
+        if (!*at || *end) throw InputError(std::string("RANRYU_FAULT_AT_FRAME=") + at + ": expected a frame number");
+        inject_fault_at_ = n;
+        fault_pass_ = timer_.pass("fault-injection");
+    }
 }
 
 std::vector<SkippedStage> Pipeline::skipped_stages() const {
@@ -106,7 +156,12 @@ void Pipeline::draw() {
 }
 
 void Pipeline::end_frame() {
+    if (inject_fault_at_ && frames_ == *inject_fault_at_) {
+        auto pass = timer_.scope(*fault_pass_);
+        glBindBuffer(GL_ARRAY_BUFFER, 0xFFFFFFF0u);   // a name never generated: GL_INVALID_OPERATION
+    }
     timer_.end_frame();
+    gl::check_faults(frames_);   // a GL error in a pass (with error checks on) or a lost context: exit 1
     ++frames_;
 }
 

@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 
+#include "frame/memory.h"
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
 #include "render/renderer.h"
@@ -40,6 +41,9 @@ struct View {
     int width = 960, height = 540;
     std::optional<render::Shading> shading;
     bool draw = true;
+    // Device memory the command allocates beside the pipeline (record's readback rings), counted
+    // in the memory check (frame/memory.h).
+    std::size_t extra_bytes = 0;
 };
 
 // A stage of the frame that a scene or view leaves out, with why: a scene models no more than it
@@ -54,11 +58,15 @@ public:
     // Builds every program (start-up) and allocates the particle state and the view's target. A
     // shading other than particles also builds the level set and marching cubes (scene.surface); a
     // scene that draws particles builds neither. Throws InputError for a surface shading of a
-    // ballistic scene (it has no neighbour grid to mesh from).
+    // ballistic scene (it has no neighbour grid to mesh from), and, before allocating anything, for
+    // a scene whose memory_estimate() the device has no room for (frame/memory.h).
     Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, const View& view);
     Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, int width, int height,
              std::optional<render::Shading> shading = std::nullopt)
         : Pipeline(scene, shaders, View{width, height, shading, true}) {}
+    // The device memory a pipeline of `scene` drawn as `view` allocates, by component: what the
+    // constructor builds, from each component's bytes_for() (frame/memory.h).
+    static MemoryEstimate memory_estimate(const scene::Scene& scene, const View& view);
     // The passes hold references to the pipeline's timer: a pipeline stays where it was built.
     Pipeline(const Pipeline&) = delete;
     Pipeline& operator=(const Pipeline&) = delete;
@@ -80,6 +88,8 @@ public:
     const render::Camera& camera() const { return camera_; }
 
     const scene::Scene& scene() const { return scene_; }
+    // The memory estimate, the device's figure it was checked against and what was allocated.
+    const MemoryUse& memory() const { return memory_; }
     profile::GpuTimer& timer() { return timer_; }
     std::vector<SkippedStage> skipped_stages() const;
     const gl::RenderTarget& target() const { return target_; }
@@ -122,6 +132,11 @@ private:
     int substeps_ = 1;
     std::uint64_t frames_ = 0;
     std::uint64_t simulated_frames_ = 0;
+    // Tests: RANRYU_FAULT_AT_FRAME=N makes frame N raise a GL error in a pass of its own
+    // ("fault-injection"), so the fault path (gl/faults.h) runs end to end.
+    std::optional<std::uint64_t> inject_fault_at_;
+    std::optional<profile::PassId> fault_pass_;
+    MemoryUse memory_;
 };
 
 }  // namespace ranryu::frame

@@ -40,6 +40,16 @@ std::vector<std::string> g_errors;  // GL errors since the last take_gl_errors()
 
 }  // namespace
 
+bool has_extension(std::string_view name) {
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; ++i) {
+        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && name == e) return true;
+    }
+    return false;
+}
+
 std::string DeviceInfo::line() const { return renderer + " | OpenGL " + version + " | " + platform; }
 
 DeviceInfo query_device(const std::string& platform) {

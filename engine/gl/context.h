@@ -4,6 +4,7 @@
 // in engine/gl/window.h, a GLFW window. Both print the same DeviceInfo line at start.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ranryu::gl {
@@ -17,6 +18,9 @@ struct DeviceInfo {
     bool timer_queries = false;
     std::string line() const;   // one line for logs: renderer | GL version | platform
 };
+
+// Whether the current context lists GL extension `name`.
+bool has_extension(std::string_view name);
 
 // Reads DeviceInfo from the current context.
 DeviceInfo query_device(const std::string& platform);

@@ -13,6 +13,8 @@
 // waits only when the whole ring is still in flight at acquire(): back-pressure, not a stall.
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/objects.h"
@@ -29,7 +31,8 @@ public:
         bool busy = false;
     };
 
-    explicit FenceRing(std::size_t depth) : slots_(depth < 1 ? 1 : depth) {}
+    // `name`: what the slots hold, for the report of a fence that does not signal (gl/faults.h).
+    explicit FenceRing(std::size_t depth, std::string name = "readback") : slots_(depth < 1 ? 1 : depth), name_(std::move(name)) {}
 
     std::vector<Slot>& slots() { return slots_; }
     std::size_t size() const { return slots_.size(); }
@@ -38,7 +41,7 @@ public:
     Slot& acquire(Retire&& retire) {
         Slot& s = slots_[next_];
         if (s.busy) {   // the GPU is a whole ring behind
-            s.fence.wait();
+            s.fence.wait(what(s));
             hand_over(s, retire);
         }
         return s;
@@ -74,7 +77,7 @@ public:
         for (std::size_t k = 0; k < slots_.size(); ++k) {
             Slot& s = slots_[(next_ + k) % slots_.size()];
             if (!s.busy) continue;
-            s.fence.wait();
+            s.fence.wait(what(s));
             hand_over(s, retire);
             ++n;
         }
@@ -82,6 +85,7 @@ public:
     }
 
 private:
+    std::string what(const Slot& s) const { return name_ + " of frame " + std::to_string(s.tag); }
     template <class Retire>
     void hand_over(Slot& s, Retire& retire) {
         retire(s);
@@ -90,6 +94,7 @@ private:
     }
 
     std::vector<Slot> slots_;
+    std::string name_;
     std::size_t next_ = 0;
 };
 

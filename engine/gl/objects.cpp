@@ -1,17 +1,37 @@
 #include "gl/objects.h"
 
+#include <atomic>
 #include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "gl/faults.h"
 
 namespace ranryu::gl {
+
+namespace {
+std::atomic<std::uint64_t> g_allocated{0}, g_peak{0};
+}  // namespace
+
+std::uint64_t allocated_bytes() { return g_allocated.load(); }
+std::uint64_t peak_allocated_bytes() { return g_peak.load(); }
+
+TrackedBytes::TrackedBytes(std::size_t bytes) : bytes_(bytes) {
+    const std::uint64_t now = g_allocated += bytes;
+    std::uint64_t peak = g_peak.load();
+    while (now > peak && !g_peak.compare_exchange_weak(peak, now)) {}
+}
+void TrackedBytes::release() {
+    g_allocated -= bytes_;
+    bytes_ = 0;
+}
 
 void label(GLenum identifier, GLuint name, std::string_view text) {
     if (!text.empty() && name != 0) glObjectLabel(identifier, name, GLsizei(text.size()), text.data());
 }
 
-Buffer::Buffer(std::size_t bytes, GLenum usage, const void* data, std::string_view name) : size_(bytes) {
+Buffer::Buffer(std::size_t bytes, GLenum usage, const void* data, std::string_view name)
+    : size_(bytes), tracked_(bytes == 0 ? 4 : bytes) {
     GLuint id = 0;
     glGenBuffers(1, &id);
     name_ = Name<DeleteBuffer>(id);
@@ -51,7 +71,7 @@ void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::s
 }
 
 Texture2D::Texture2D(GLenum internal_format, int width, int height, std::string_view name)
-    : width_(width), height_(height) {
+    : width_(width), height_(height), tracked_(std::size_t(width) * std::size_t(height) * texel_bytes(internal_format)) {
     GLuint id = 0;
     glGenTextures(1, &id);
     name_ = Name<DeleteTexture>(id);
@@ -63,9 +83,24 @@ Texture2D::Texture2D(GLenum internal_format, int width, int height, std::string_
     label(GL_TEXTURE, id, name);
 }
 
+std::size_t Texture2D::texel_bytes(GLenum internal_format) {
+    switch (internal_format) {
+        case GL_RGBA16F: case GL_RG32F: return 8;
+        case GL_RGBA32F: return 16;
+        case GL_R8: return 1;
+        case GL_RG8: case GL_R16F: return 2;
+        default: return 4;   // RGBA8, DEPTH_COMPONENT32F, R32F, R32UI, DEPTH24_STENCIL8
+    }
+}
+
+std::size_t RenderTarget::bytes_for(int width, int height) {
+    return std::size_t(width) * std::size_t(height) *
+           (Texture2D::texel_bytes(kColorFormat) + Texture2D::texel_bytes(kDepthFormat));
+}
+
 RenderTarget::RenderTarget(int width, int height, std::string_view name)
-    : color_(GL_RGBA8, width, height, std::string(name) + ".color"),
-      depth_(GL_DEPTH_COMPONENT32F, width, height, std::string(name) + ".depth") {
+    : color_(kColorFormat, width, height, std::string(name) + ".color"),
+      depth_(kDepthFormat, width, height, std::string(name) + ".depth") {
     GLuint id = 0;
     glGenFramebuffers(1, &id);
     fbo_ = Name<DeleteFramebuffer>(id);
@@ -127,13 +162,15 @@ bool Fence::signaled() const {
     const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
     return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
 }
-void Fence::wait() const {
+void Fence::wait(const std::string& what) const {
     if (!sync_) return;
-    for (;;) {
-        const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000ull);
-        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
-        if (r == GL_WAIT_FAILED) throw Error("glClientWaitSync failed");
-    }
+    wait_or_fault(
+        [&] {
+            const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 50'000'000ull);   // 50 ms slices
+            if (r == GL_WAIT_FAILED) throw GpuFault("glClientWaitSync failed waiting for " + what);
+            return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+        },
+        std::chrono::duration<double>(fence_timeout_seconds()), what);
 }
 
 }  // namespace ranryu::gl

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -49,6 +50,33 @@ struct DeleteQuery { void operator()(GLuint n) const { glDeleteQueries(1, &n); }
 struct DeleteProgram { void operator()(GLuint n) const { glDeleteProgram(n); } };
 struct DeleteShader { void operator()(GLuint n) const { glDeleteShader(n); } };
 
+// Bytes of GL buffer and texture storage alive now, and the most alive at once since the process
+// started: what `profile` prints as allocated, and what frame/memory.h's estimate is checked against.
+std::uint64_t allocated_bytes();
+std::uint64_t peak_allocated_bytes();
+
+// Counts `bytes` into allocated_bytes() for as long as it lives; moves with its owner.
+class TrackedBytes {
+public:
+    TrackedBytes() = default;
+    explicit TrackedBytes(std::size_t bytes);
+    TrackedBytes(const TrackedBytes&) = delete;
+    TrackedBytes& operator=(const TrackedBytes&) = delete;
+    TrackedBytes(TrackedBytes&& o) noexcept : bytes_(std::exchange(o.bytes_, 0)) {}
+    TrackedBytes& operator=(TrackedBytes&& o) noexcept {
+        if (this != &o) {
+            release();
+            bytes_ = std::exchange(o.bytes_, 0);
+        }
+        return *this;
+    }
+    ~TrackedBytes() { release(); }
+
+private:
+    void release();
+    std::size_t bytes_ = 0;
+};
+
 // Attaches a debugger-visible label (KHR_debug, core 4.3) to a GL object.
 void label(GLenum identifier, GLuint name, std::string_view text);
 
@@ -91,6 +119,7 @@ public:
 private:
     Name<DeleteBuffer> name_;
     std::size_t size_ = 0;
+    TrackedBytes tracked_;
 };
 
 // Queues a GPU-side copy of `bytes` from `from` at `from_offset` to the start of `to`
@@ -106,10 +135,13 @@ public:
     GLuint id() const { return name_.id(); }
     int width() const { return width_; }
     int height() const { return height_; }
+    // Bytes of one texel of `internal_format` (the formats ranryu uses; 4 otherwise).
+    static std::size_t texel_bytes(GLenum internal_format);
 
 private:
     Name<DeleteTexture> name_;
     int width_ = 0, height_ = 0;
+    TrackedBytes tracked_;
 };
 
 // A framebuffer with one RGBA8 colour and a 32-bit float depth attachment, both textures.
@@ -117,12 +149,15 @@ class RenderTarget {
 public:
     RenderTarget() = default;
     RenderTarget(int width, int height, std::string_view name = {});
+    // The storage a width x height target allocates: its colour and depth textures.
+    static std::size_t bytes_for(int width, int height);
     GLuint framebuffer() const { return fbo_.id(); }
     const Texture2D& color() const { return color_; }
     int width() const { return color_.width(); }
     int height() const { return color_.height(); }
 
 private:
+    static constexpr GLenum kColorFormat = GL_RGBA8, kDepthFormat = GL_DEPTH_COMPONENT32F;
     Texture2D color_, depth_;
     Name<DeleteFramebuffer> fbo_;
 };
@@ -166,7 +201,9 @@ public:
     void insert();                  // replaces any earlier fence
     bool pending() const { return sync_ != nullptr; }
     bool signaled() const;          // non-blocking poll; flushes so the fence can complete
-    void wait() const;              // blocks: back-pressure and shutdown only
+    // Blocks: back-pressure and shutdown only. After gl::fence_timeout_seconds() throws gl::GpuFault
+    // naming `what` (gl/faults.h) instead of waiting forever.
+    void wait(const std::string& what = "a GL fence") const;
     void reset();
 
 private:

@@ -6,7 +6,7 @@
 namespace ranryu::gl {
 
 AsyncReadback::AsyncReadback(std::size_t record_bytes, int depth, std::string_view name, Consumer on_record)
-    : on_record_(std::move(on_record)), bytes_(record_bytes), ring_(std::size_t(depth < 1 ? 1 : depth)),
+    : on_record_(std::move(on_record)), bytes_(record_bytes), ring_(std::size_t(depth < 1 ? 1 : depth), std::string(name)),
       scratch_(record_bytes) {
     for (std::size_t i = 0; i < ring_.size(); ++i)
         ring_.slots()[i].data = Buffer(bytes_, GL_STREAM_READ, nullptr, std::string(name) + "." + std::to_string(i));

@@ -1,5 +1,7 @@
 #include "profile/gpu_timer.h"
 
+#include "gl/faults.h"
+
 #include <algorithm>
 
 #include "core/error.h"
@@ -116,11 +118,14 @@ GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t) {
     query_ = timer_.begin(id);   // throws before anything needs undoing
     const std::string& n = t.name(id);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, id.index, GLsizei(n.size()), n.c_str());
+    gl::check_gl_error(gl::current_pass());   // an error raised between passes is named by the one before
+    gl::set_current_pass(n);
 }
 
 GpuTimer::Scope::~Scope() {
     timer_.end(query_);
     glPopDebugGroup();
+    gl::check_gl_error(gl::current_pass());   // with error checks on (gl/faults.h): the pass that raised it
 }
 
 }  // namespace ranryu::profile

@@ -26,6 +26,10 @@ bool read_mapped(const gl::Buffer& from, void* dst, std::size_t bytes) {
 }
 }  // namespace
 
+std::size_t MeshExporter::bytes_for(std::size_t max_vertices, int ring) {
+    return std::size_t(std::max(ring, 1)) * (max_vertices * sizeof(gpu::MeshVertex) + sizeof(gpu::MeshState));
+}
+
 MeshExporter::MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                            std::function<void()> pump, int ring)
     : timer_(timer), pass_(timer.pass("mesh-readback")), dir_(std::move(dir)), max_vertices_(max_vertices),

@@ -44,6 +44,8 @@ public:
     MeshExporter(profile::GpuTimer& timer, std::filesystem::path dir, std::size_t max_vertices, bool gated,
                  std::function<void()> pump = {}, int ring = 3);
     ~MeshExporter();
+    // Device memory the constructor allocates: its readback ring (frame/memory.h).
+    static std::size_t bytes_for(std::size_t max_vertices, int ring = 3);
     MeshExporter(const MeshExporter&) = delete;
     MeshExporter& operator=(const MeshExporter&) = delete;
 

@@ -62,13 +62,17 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
     return earlier.size();
 }
 
+std::size_t Recorder::bytes_for(int width, int height, int ring) {
+    return std::size_t(std::max(ring, 1)) * std::size_t(width) * std::size_t(height) * 4;   // RGBA8
+}
+
 Recorder::Recorder(profile::GpuTimer& timer, fs::path dir, int width, int height, bool gated,
                    std::function<void()> pump, int ring, int writers, FrameSinks sinks)
     : timer_(timer), pass_(timer.pass("readback")), dir_(std::move(dir)), width_(width), height_(height),
       sinks_(std::move(sinks)),
       queue_("Recorder", ring, writers > 0 ? writers : std::max(1, int(std::thread::hardware_concurrency()) - 1), gated,
              [this](std::uint64_t frame, std::size_t b) { write(frame, b); }, std::move(pump), [this](Slot& s) { retire(s); }) {
-    const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
+    const std::size_t bytes = bytes_for(width, height, 1);
     for (std::size_t i = 0; i < queue_.slots().size(); ++i)
         queue_.slots()[i].data = gl::Buffer(bytes, GL_STREAM_READ, nullptr, "readback." + std::to_string(i));
     buffers_.resize(queue_.buffers());

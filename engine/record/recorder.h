@@ -48,6 +48,8 @@ public:
     Recorder(profile::GpuTimer& timer, std::filesystem::path dir, int width, int height, bool gated,
              std::function<void()> pump = {}, int ring = 3, int writers = 0, FrameSinks sinks = {});
     ~Recorder();
+    // Device memory the constructor allocates: its readback ring (frame/memory.h).
+    static std::size_t bytes_for(int width, int height, int ring = 3);
     Recorder(const Recorder&) = delete;
     Recorder& operator=(const Recorder&) = delete;
 

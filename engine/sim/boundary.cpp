@@ -35,7 +35,8 @@ Axis axis(float lo, float hi, float dx, int layers) {
 
 // N points spread evenly over the sphere of radius r about c (the Fibonacci lattice: equal-area bands
 // in z, successive points turned by the golden angle), each standing for volume `cell`.
-void fibonacci_shell(glm::vec3 c, float r, int n, float cell, std::vector<glm::vec4>& out) {
+template <class Out>
+void fibonacci_shell(glm::vec3 c, float r, int n, float cell, Out& out) {
     const float golden = kPi * (3.0f - std::sqrt(5.0f));
     for (int k = 0; k < n; ++k) {
         const float z = 1.0f - (2.0f * float(k) + 1.0f) / float(n);
@@ -48,19 +49,20 @@ void fibonacci_shell(glm::vec3 c, float r, int n, float cell, std::vector<glm::v
 
 int boundary_layers(float spacing, float support) { return int(std::ceil(support / spacing)) + 1; }
 
-std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers) {
+namespace {
+
+// The tank's three axes of sites.
+struct TankAxes {
+    Axis x, y, z;
+    TankAxes(const scene::Scene& s, int layers)
+        : x(axis(s.tank_min.x, s.tank_max.x, s.spacing, layers)), y(axis(s.tank_min.y, s.tank_max.y, s.spacing, layers)),
+          z(axis(s.tank_min.z, s.tank_max.z, s.spacing, layers)) {}
+};
+
+// Calls out.emplace_back(vec3, w) for every obstacle's boundary particle, in sample_boundary()'s order.
+template <class Out>
+void walk_obstacles(const scene::Scene& s, int layers, Out& out) {
     const float dx = s.spacing;
-    std::vector<glm::vec4> out;
-    // Tank: the shell around the inner box, less the part above the top unless the tank is closed.
-    const Axis ax = axis(s.tank_min.x, s.tank_max.x, dx, layers), ay = axis(s.tank_min.y, s.tank_max.y, dx, layers),
-               az = axis(s.tank_min.z, s.tank_max.z, dx, layers);
-    for (std::size_t k = 0; k < az.at.size(); ++k)
-        for (std::size_t j = 0; j < ay.at.size(); ++j) {
-            if (ay.side[j] > 0 && !s.tank_closed) continue;
-            for (std::size_t i = 0; i < ax.at.size(); ++i)
-                if (ax.side[i] != 0 || ay.side[j] != 0 || az.side[k] != 0)
-                    out.emplace_back(ax.at[i], ay.at[j], az.at[k], ax.pitch[i] * ay.pitch[j] * az.pitch[k]);
-        }
     const float depth = float(layers) * dx;
     for (const scene::Obstacle& o : s.obstacles) {
         if (o.kind == scene::Obstacle::Kind::box) {
@@ -97,7 +99,53 @@ std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers) {
             }
         }
     }
+}
+
+// Calls out.emplace_back(x, y, z, w) or out.emplace_back(vec3, w) for every boundary particle, in
+// sample_boundary()'s order: the tank's shell, less the part above the top unless the tank is
+// closed, then the obstacles.
+template <class Out>
+void walk_boundary(const scene::Scene& s, int layers, Out& out) {
+    const float dx = s.spacing;
+    const TankAxes t(s, layers);
+    const Axis &ax = t.x, &ay = t.y, &az = t.z;
+    for (std::size_t k = 0; k < az.at.size(); ++k)
+        for (std::size_t j = 0; j < ay.at.size(); ++j) {
+            if (ay.side[j] > 0 && !s.tank_closed) continue;
+            for (std::size_t i = 0; i < ax.at.size(); ++i)
+                if (ax.side[i] != 0 || ay.side[j] != 0 || az.side[k] != 0)
+                    out.emplace_back(ax.at[i], ay.at[j], az.at[k], ax.pitch[i] * ay.pitch[j] * az.pitch[k]);
+        }
+    walk_obstacles(s, layers, out);
+}
+
+
+struct Counter {
+    std::size_t n = 0;
+    template <class... A>
+    void emplace_back(A&&...) { ++n; }
+};
+
+}  // namespace
+
+std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers) {
+    std::vector<glm::vec4> out;
+    walk_boundary(s, layers, out);
     return out;
+}
+
+std::size_t boundary_count(const scene::Scene& s, int layers) {
+    // The tank's shell by counting (the memory check asks at tens of millions), the obstacles by walking.
+    const TankAxes t(s, layers);
+    const auto inside = [](const Axis& a) { return std::size_t(std::count(a.side.begin(), a.side.end(), 0)); };
+    const std::size_t nx = t.x.at.size(), nz = t.z.at.size(), hole = inside(t.x) * inside(t.z);
+    Counter c;
+    for (int side : t.y.side) {
+        if (side > 0 && !s.tank_closed) continue;
+        c.n += nx * nz - (side == 0 ? hole : 0);
+    }
+    walk_obstacles(s, layers, c);
+    return c.n;
 }
 
 std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s) {

@@ -5,6 +5,7 @@
 // fluid's spacing. Each particle is (x_b, V_cell): its position and the volume of the lattice cell it
 // stands for, which caps its Akinci volume on the GPU (glsl/sim/boundary/compute_boundary_volume.comp
 // replaces w with psi_b at start).
+#include <cstddef>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,6 +24,8 @@ int boundary_layers(float spacing, float support);
 // each a Fibonacci lattice with points 0.7 spacings apart, and a centre particle where the shells
 // reach it.
 std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers);
+// sample_boundary(s, layers).size(), without storing the samples.
+std::size_t boundary_count(const scene::Scene& s, int layers);
 
 // The obstacles as the integrate pass's last-resort projection reads them
 // (glsl/sim/fluid/motion.glsl, storage block Obstacles): element 0 is (count, 0, 0, 0);

@@ -35,9 +35,41 @@ bool merge_rows(const scene::Scene& s) {
     return !s.sph.morton && !(off && std::string(off) == "1");
 }
 
-std::vector<glm::vec4> boundary_of(const scene::Scene& s) {
-    return sample_boundary(s, boundary_layers(s.spacing, 2.0f * s.spacing));
+int layers_of(const scene::Scene& s) { return boundary_layers(s.spacing, 2.0f * s.spacing); }
+std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_boundary(s, layers_of(s)); }
+
+// One vec4 a particle (at least one), the size of every state array.
+std::size_t vec4_array_bytes(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec4); }
+// (start, mask) per neighbour run and particle.
+std::size_t mask_bytes(std::size_t count, int runs) {
+    return std::max<std::size_t>(count, 1) * 2 * std::size_t(runs) * sizeof(std::uint32_t);
 }
+// One sort serves the fluid every substep and the boundary once at start.
+std::size_t sort_capacity(std::size_t count, std::size_t boundary) { return std::max({count, boundary, std::size_t(1)}); }
+
+}  // namespace
+
+std::size_t Fluid::boundary_count(const scene::Scene& s) { return sim::boundary_count(s, layers_of(s)); }
+
+std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
+    return 2 * std::max<std::size_t>(count, 1) * words * sizeof(std::uint32_t);
+}
+
+std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array_bytes(boundary); }
+
+std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
+    const GridLayout g = fluid_grid(s, 2.0f * s.spacing, layers_of(s));
+    std::size_t b = 6 * vec4_array_bytes(count)                      // position, velocity (two each), density, accel
+                    + (s.sph.neighbour_masks ? mask_bytes(count, merge_rows(s) ? 9 : 27) : 0)
+                    + vec4_array_bytes(boundary)                     // boundary
+                    + std::size_t(g.key_count) * sizeof(std::uint32_t)   // boundary_near
+                    + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
+                    + NeighbourGrid::bytes_for(sort_capacity(count, boundary));
+    b += sizeof(gpu::SphParams) + sizeof(gpu::StepState) + obstacle_shapes(s).size() * sizeof(glm::vec4);
+    return b;
+}
+
+namespace {
 
 }  // namespace
 
@@ -101,8 +133,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       max_substeps_(scene.sph.max_substeps),
       grid_(shaders, timer,
             fluid_grid(scene, 2.0f * scene.spacing, boundary_layers(scene.spacing, 2.0f * scene.spacing)),
-            // One sort serves the fluid every substep and the boundary once at start.
-            std::max({scene.particle_count(), boundary_of(scene).size(), std::size_t(1)}),
+            sort_capacity(scene.particle_count(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),
       readback_(sizeof(gpu::StepState), 4, "StepState.readback",
@@ -115,18 +146,17 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_ubo_ = gl::Buffer(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, &params_, "SphParams");
     obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), GL_STATIC_DRAW, "fluid.obstacles");
 
-    const std::size_t n = std::max<std::size_t>(count_, 1);
+    const std::size_t bytes = vec4_array_bytes(count_);
     for (int k = 0; k < 2; ++k) {
-        position_[k] = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.position." + std::to_string(k));
-        velocity_[k] = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.velocity." + std::to_string(k));
+        position_[k] = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.position." + std::to_string(k));
+        velocity_[k] = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.velocity." + std::to_string(k));
     }
     position_[0].upload(x.data(), x.size() * sizeof(glm::vec4));
     velocity_[0].upload(v.data(), v.size() * sizeof(glm::vec4));
-    density_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.density");
-    accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "fluid.accel");
-    if (scene.sph.neighbour_masks)   // (start, mask) per run and particle
-        neighbours_ = gl::Buffer(n * 2 * std::size_t(runs_) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
-                                 "fluid.neighbour_masks");
+    density_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.density");
+    accel_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.accel");
+    if (scene.sph.neighbour_masks)
+        neighbours_ = gl::Buffer(mask_bytes(count_, runs_), GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
     ranges_ = grid_.make_ranges("fluid.cells");
     boundary_ranges_ = grid_.make_ranges("fluid.boundary_cells");
 
@@ -145,12 +175,12 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
 // Start-up, not the frame path: the boundary sorted by cell once, psi_b from the sorted set, and the
 // cells that have boundary particles around them (the boundary is static).
 void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
-    const std::size_t m = std::max<std::size_t>(boundary_count_, 1);
+    const std::size_t m = vec4_array_bytes(boundary_count_);   // transient_bytes(): raw, zeros, zeros_sorted, weighted
     gl::Buffer raw = gl::Buffer::from<glm::vec4>(wall, GL_STATIC_DRAW, "fluid.boundary.raw");
-    gl::Buffer zeros(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
-    gl::Buffer zeros_sorted(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
-    boundary_ = gl::Buffer(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary");
-    gl::Buffer weighted(m * sizeof(glm::vec4), GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
+    gl::Buffer zeros(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
+    gl::Buffer zeros_sorted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
+    boundary_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary");
+    gl::Buffer weighted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
     const GridLayout& g = grid_.layout();
     boundary_near_ = gl::Buffer(std::size_t(g.key_count) * sizeof(std::uint32_t), GL_STATIC_DRAW, nullptr, "fluid.boundary_near");
     const GLuint zero = 0;
@@ -189,7 +219,7 @@ void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
 int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill) {
     if (carried_.size() == NeighbourGrid::max_carried)
         throw Error("Fluid::carry: at most " + std::to_string(NeighbourGrid::max_carried) + " carried arrays (adding " + block + ")");
-    const std::size_t n = std::max<std::size_t>(count_, 1);
+    const std::size_t n = std::max<std::size_t>(count_, 1);   // as carried_bytes()
     if (words == 0 || (fill.size() != words && fill.size() != count_ * words))
         throw Error("Fluid::carry: " + block + " needs a fill of one particle's words or of every particle's");
     std::vector<std::uint32_t> all(n * words);

@@ -54,6 +54,15 @@ public:
     // Samples the boundary, computes its psi_b and the cells near it (start-up passes
     // "boundary-volume", "boundary-cells"), and places the scene's particles.
     Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene);
+    // Device memory the constructor keeps for `count` particles and `boundary` boundary particles
+    // (scene.particle_count(), boundary_count()): the state, the masks, the boundary, the grid and its
+    // sort (frame/memory.h). `transient`: what start-up holds besides, and frees.
+    static std::size_t bytes_for(const scene::Scene& scene, std::size_t count, std::size_t boundary);
+    static std::size_t transient_bytes(std::size_t boundary);
+    // The boundary particles a Fluid of `scene` samples: sample_boundary()'s count at its layers.
+    static std::size_t boundary_count(const scene::Scene& scene);
+    // Device memory of one carry() of `words` words a particle.
+    static std::size_t carried_bytes(std::size_t count, std::uint32_t words);
 
     // ---- the frame
     void begin_frame(std::uint64_t frame_index);   // plans substeps_this_frame() from the records seen

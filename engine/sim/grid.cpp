@@ -61,8 +61,11 @@ NeighbourGrid::NeighbourGrid(const shader::FileSource& shaders, profile::GpuTime
       method_(method),
       params_(sizeof(gpu::GridParams), GL_DYNAMIC_DRAW, nullptr, "GridParams") {}
 
+std::size_t NeighbourGrid::bytes_for(std::size_t capacity) { return KeySort::bytes_for(capacity) + sizeof(gpu::GridParams); }
+std::size_t NeighbourGrid::ranges_bytes(const GridLayout& layout) { return 2 * std::size_t(layout.key_count) * sizeof(std::uint32_t); }
+
 CellRanges NeighbourGrid::make_ranges(std::string_view name) const {
-    const std::size_t bytes = std::size_t(layout_.key_count) * sizeof(std::uint32_t);
+    const std::size_t bytes = ranges_bytes(layout_) / 2;
     return CellRanges{gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".start"),
                       gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".end")};
 }

@@ -49,6 +49,11 @@ public:
     NeighbourGrid(const shader::FileSource& shaders, profile::GpuTimer& timer, const GridLayout& layout,
                   std::size_t capacity, SortMethod method);
 
+    // Device memory the constructor allocates (its sort's buffers and parameters), and one
+    // make_ranges() of `layout` (frame/memory.h).
+    static std::size_t bytes_for(std::size_t capacity);
+    static std::size_t ranges_bytes(const GridLayout& layout);
+
     const GridLayout& layout() const { return layout_; }
     CellRanges make_ranges(std::string_view name) const;
     void set_method(SortMethod m) { method_ = m; }

@@ -18,6 +18,8 @@ namespace ranryu::sim {
 class Particles {
 public:
     Particles(const shader::FileSource& shaders, profile::GpuTimer& timer);
+    // Device memory a reset() of `count` particles leaves allocated (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count) { return sizeof(gpu::SimParams) + 2 * count * sizeof(glm::vec4); }
 
     // Allocates the state for `positions.size()` particles and uploads it. Start-up only.
     void reset(const std::vector<glm::vec4>& positions, const std::vector<glm::vec4>& velocities);

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "gl/context.h"
 #include "shared/bindings.h"
 
 namespace ranryu::sim {
@@ -21,15 +22,6 @@ constexpr GLuint kRadixDigits = 1u << kRadixBits;
 // at most 16 subgroups (shared counters per subgroup and digit) and fits a 128-bit ballot.
 constexpr GLint kMinSubgroup = 16, kMaxSubgroup = 128;
 
-bool has_extension(std::string_view name) {
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) {
-        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (e && name == e) return true;
-    }
-    return false;
-}
 
 bool subgroups_disabled_by_env() {
     const char* v = std::getenv("RANRYU_NO_SUBGROUPS");
@@ -49,7 +41,7 @@ void storage_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
 }  // namespace
 
 unsigned KeySort::driver_subgroup_size() {
-    if (!has_extension("GL_KHR_shader_subgroup")) return 0;
+    if (!gl::has_extension("GL_KHR_shader_subgroup")) return 0;
     GLint size = 0, stages = 0, features = 0;
     glGetIntegerv(GL_SUBGROUP_SIZE_KHR, &size);
     glGetIntegerv(GL_SUBGROUP_SUPPORTED_STAGES_KHR, &stages);
@@ -117,15 +109,25 @@ KeySort::KeySort(const shader::FileSource& shaders, profile::GpuTimer& timer, st
         throw Error("KeySort: capacity " + std::to_string(capacity) + " needs more workgroups than the driver's " +
                     std::to_string(max_groups) + " per dispatch");
 
-    const std::size_t bytes = std::max<std::size_t>(capacity, 1) * sizeof(std::uint32_t);
+    const std::size_t bytes = pair_array_bytes(capacity);
     keys_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.keys");
     values_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.values");
     keys_alt_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.keys_alt");
     values_alt_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "sort.values_alt");
-    // total[digit], then count[digit][tile] (glsl/sim/sort/radix.glsl).
-    const std::size_t tiles = std::max<std::size_t>(groups(capacity, radix_tile_), 1);
-    histogram_ = gl::Buffer((kRadixDigits + kRadixDigits * tiles) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
-                            "sort.histogram");
+    histogram_ = gl::Buffer(histogram_bytes(capacity, radix_tile_), GL_DYNAMIC_COPY, nullptr, "sort.histogram");
+}
+
+std::size_t KeySort::pair_array_bytes(std::size_t capacity) {
+    return std::max<std::size_t>(capacity, 1) * sizeof(std::uint32_t);
+}
+// total[digit], then count[digit][tile] (glsl/sim/sort/radix.glsl).
+std::size_t KeySort::histogram_bytes(std::size_t capacity, std::size_t radix_tile) {
+    const std::size_t tiles = std::max<std::size_t>(groups(capacity, radix_tile), 1);
+    return (kRadixDigits + kRadixDigits * tiles) * sizeof(std::uint32_t);
+}
+std::size_t KeySort::bytes_for(std::size_t capacity) {
+    // radix.glsl's RADIX_GROUP is RADIX_DIGITS: the tile the constructor reads from the programs.
+    return 4 * pair_array_bytes(capacity) + histogram_bytes(capacity, kRadixDigits * RANRYU_SORT_RADIX_ITEMS_PER_THREAD);
 }
 
 void KeySort::sort(SortMethod method, std::size_t count, std::uint32_t max_key) {

@@ -47,6 +47,8 @@ public:
     // subgroups the driver lacks. Needs a current GL 4.3 context.
     KeySort(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity,
             SubgroupMode mode = SubgroupMode::automatic);
+    // Device memory the constructor allocates for `capacity` pairs (frame/memory.h).
+    static std::size_t bytes_for(std::size_t capacity);
 
     // The input: the caller writes `count` keys and values here, e.g. with the buffers bound at
     // the storage blocks Keys, Values (uint[capacity] each), before sort().
@@ -94,6 +96,8 @@ private:
     shader::Program bitonic_sort_local_, bitonic_merge_local_, bitonic_merge_global_;
     std::size_t radix_tile_ = 0, bitonic_tile_ = 0;
     GLuint max_groups_ = 0;
+    static std::size_t pair_array_bytes(std::size_t capacity);
+    static std::size_t histogram_bytes(std::size_t capacity, std::size_t radix_tile);
     gl::Buffer keys_, values_, keys_alt_, values_alt_, histogram_;
     bool result_in_alt_ = false;
 };

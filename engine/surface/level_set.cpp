@@ -135,6 +135,12 @@ void level_set_cpu(std::span<const glm::vec4> positions, std::span<const std::ui
     for (std::size_t i = 0; i < sum.size(); ++i) grid.phi[i] = float(double(grid.phi[i]) + sum[i]);
 }
 
+std::size_t LevelSet::bytes_for(const LevelSetSettings& s) {
+    const std::size_t nodes = std::size_t(s.max_dims.x) * s.max_dims.y * s.max_dims.z;
+    return sizeof(gpu::SurfaceParams) + sizeof(gpu::SurfaceGrid) + nodes * sizeof(float) +
+           (s.subparticle_levels > 0 ? nodes * sizeof(std::uint32_t) : 0);   // phi, the splat grid
+}
+
 LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings)
     : timer_(timer),
       bounds_pass_(timer.pass("surface.bounds")),

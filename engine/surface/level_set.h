@@ -129,6 +129,8 @@ class LevelSet {
 public:
     // Builds the programs and allocates φ for max_dims nodes. Throws InputError on bad settings.
     LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings);
+    // Device memory the constructor allocates (frame/memory.h).
+    static std::size_t bytes_for(const LevelSetSettings& settings);
 
     // φ of `count` particles whose positions are in cell order in `sorted_position`, with the
     // cell ranges `ranges` and the sorted keys of `grid`'s last build() (cleared or not); the

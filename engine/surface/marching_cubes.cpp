@@ -45,6 +45,15 @@ std::span<const int, 4096> mc_triangle_table() { return std::span<const int, 409
 std::span<const int, 24> mc_corner_table() { return std::span<const int, 24>(kCorners); }
 std::span<const int, 24> mc_edge_table() { return std::span<const int, 24>(kEdges); }
 
+std::size_t MarchingCubes::bytes_for(const MeshCapacity& capacity) {
+    const glm::uvec3 d = capacity.max_dims;
+    const std::size_t cells = std::size_t(d.x - 1) * (d.y - 1) * (d.z - 1), active = std::min(cells, capacity.max_vertices / 3);
+    const std::size_t blocks = (cells + 255) / 256 + capacity.groups_x;   // mc_classify.comp's local size, 256
+    return sizeof(gpu::MeshState) + cells * sizeof(std::uint32_t) + blocks * sizeof(glm::uvec2) +
+           std::max<std::size_t>(active, 1) * sizeof(glm::uvec2) + capacity.max_vertices * sizeof(gpu::MeshVertex) +
+           sizeof kTriangles;
+}
+
 MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTimer& timer, const MeshCapacity& capacity)
     : timer_(timer),
       classify_pass_(timer.pass("mc.classify")),

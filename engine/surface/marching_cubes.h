@@ -50,6 +50,8 @@ public:
     // Builds the programs and allocates every buffer. Throws ranryu::Error when a dispatch could not
     // cover the capacity (the cell passes dispatch in 2-D).
     MarchingCubes(const shader::FileSource& shaders, profile::GpuTimer& timer, const MeshCapacity& capacity);
+    // Device memory the constructor allocates (frame/memory.h).
+    static std::size_t bytes_for(const MeshCapacity& capacity);
 
     // Meshes the φ = 0 surface of `phi` (float[], layout of shared/bindings.h) on the grid described
     // by `grid` (SurfaceGrid: origin, dims). A grid with more cells than max_cells() gives an empty

@@ -10,6 +10,7 @@
 namespace ranryu::turbulence {
 
 namespace {
+constexpr std::uint32_t kSeedWords = std::uint32_t(sizeof(gpu::NoiseSeed) / sizeof(std::uint32_t));
 std::vector<std::uint32_t> unseeded_words() {
     const gpu::NoiseSeed s = unseeded_noise();
     std::vector<std::uint32_t> w(sizeof s / sizeof(std::uint32_t));
@@ -31,7 +32,7 @@ TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::Gpu
       program_(shader::Program::compute(shaders, "turbulence/apply_turbulence_force.comp")),
       noise_params_(sizeof(gpu::NoiseParams), GL_STATIC_DRAW, nullptr, "turbulence NoiseParams"),
       fluid_(fluid),
-      seeds_(fluid.carry("NoiseSeeds", std::uint32_t(sizeof(gpu::NoiseSeed) / sizeof(std::uint32_t)), unseeded_words())) {
+      seeds_(fluid.carry("NoiseSeeds", kSeedWords, unseeded_words())) {
     gpu::NoiseParams p{};
     p.lmin = settings.lmin;
     p.lmax = settings.lmax;
@@ -45,6 +46,11 @@ TurbulenceForce::TurbulenceForce(const shader::FileSource& shaders, profile::Gpu
 void TurbulenceForce::set_amplitude(float amplitude) {
     settings_.amplitude = amplitude;
     glProgramUniform1f(program_.id(), RANRYU_LOC_TURBULENCE_AMPLITUDE, amplitude);
+}
+
+std::size_t TurbulenceForce::bytes_for(std::size_t count) {
+    return CurlNoise::bytes_for(kDefaultTileSize) + WaveletAnalysis::bytes_for(count) + sizeof(gpu::NoiseParams) +
+           sim::Fluid::carried_bytes(count, kSeedWords);
 }
 
 const gl::Buffer& TurbulenceForce::noise_seeds() const { return fluid_.carried(seeds_); }

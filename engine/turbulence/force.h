@@ -41,6 +41,9 @@ class TurbulenceForce final : public sim::StepHooks {
 public:
     // Tiles from settings.seed, the wavelet buffer for the fluid's particles and their noise seeds,
     // carried by the fluid (every particle unseeded at first).
+    // Device memory the constructor allocates for `count` particles: the noise tiles, the wavelet
+    // energies and the carried noise seeds (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count);
     TurbulenceForce(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
                     sim::Fluid& fluid);
 

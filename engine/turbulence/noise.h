@@ -87,6 +87,8 @@ struct FieldSpec {
 class CurlNoise {
 public:
     CurlNoise(const shader::FileSource& shaders, profile::GpuTimer& timer, const NoiseTiles& tiles);
+    // Device memory the constructor allocates for tiles of n³ (frame/memory.h).
+    static std::size_t bytes_for(int n) { return 3 * std::size_t(n) * n * n * sizeof(float) + sizeof(gpu::NoiseParams); }
     int tile_size() const { return n_; }
     const gl::Buffer& tiles() const { return tiles_; }
 

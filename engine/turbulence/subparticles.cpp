@@ -132,6 +132,23 @@ std::string budget_note(const SubparticleStats& s) {
            std::to_string(s.finest_wanted) + " wanted)";
 }
 
+std::size_t Subparticles::capacity_for(const scene::SubparticleSettings& s, std::size_t particles) {
+    return std::min<std::size_t>(std::size_t(s.budget), particles << (3 * s.levels));
+}
+
+Subparticles::Sizes Subparticles::sizes(const scene::SubparticleSettings& s, std::size_t particles, std::size_t group) {
+    const std::size_t n = std::max<std::size_t>(particles, 1), blocks = (particles + group - 1) / group;
+    return Sizes{n * sizeof(std::uint32_t), std::max<std::size_t>(blocks, 1) * sizeof(glm::uvec4),
+                 n * std::size_t(s.levels) * sizeof(std::uint32_t),
+                 std::max<std::size_t>(capacity_for(s, particles), 1) * sizeof(glm::vec4)};
+}
+
+std::size_t Subparticles::bytes_for(const scene::SubparticleSettings& s, std::size_t particles) {
+    // classify_particles.comp's local size (the constructor reads it from the program).
+    const Sizes z = sizes(s, particles, 256);
+    return sizeof(gpu::SubparticleParams) + sizeof(gpu::SubparticleState) + z.levels + z.blocks + z.lists + 2 * z.children;
+}
+
 Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
                            float spacing, std::size_t particles, const NoiseTiles& tiles, const CurlNoise& noise)
     : timer_(timer),
@@ -158,7 +175,7 @@ Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer&
     if (blocks > 65535 || particles >= (std::size_t(1) << 32) / std::size_t(s.levels))
         throw Error("sub-particles: " + std::to_string(particles) + " particles need more than 65,535 workgroups of " +
                     std::to_string(group));
-    capacity_ = std::min<std::size_t>(std::size_t(s.budget), particles << (3 * s.levels));
+    capacity_ = capacity_for(s, particles);
 
     params_.level_energy = level_energies(s.threshold, settings.beta, s.levels);
     params_.energy_scale = energy_scales(settings.beta);
@@ -175,13 +192,12 @@ Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer&
     params_ubo_ = gl::Buffer(sizeof params_, GL_DYNAMIC_DRAW, &params_, "SubparticleParams");
     const gpu::SubparticleState empty{};
     state_ = gl::Buffer(sizeof empty, GL_DYNAMIC_COPY, &empty, "subparticles.state");
-    const std::size_t n = std::max<std::size_t>(particles, 1);
-    levels_ = gl::Buffer(n * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "subparticles.levels");
-    blocks_ = gl::Buffer(std::max<std::size_t>(blocks, 1) * sizeof(glm::uvec4), GL_DYNAMIC_COPY, nullptr, "subparticles.blocks");
-    lists_ = gl::Buffer(n * std::size_t(s.levels) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "subparticles.lists");
-    const std::size_t cap = std::max<std::size_t>(capacity_, 1);
-    positions_ = gl::Buffer(cap * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "subparticles.position");
-    velocities_ = gl::Buffer(cap * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "subparticles.velocity");
+    const Sizes z = sizes(s, particles, group);
+    levels_ = gl::Buffer(z.levels, GL_DYNAMIC_COPY, nullptr, "subparticles.levels");
+    blocks_ = gl::Buffer(z.blocks, GL_DYNAMIC_COPY, nullptr, "subparticles.blocks");
+    lists_ = gl::Buffer(z.lists, GL_DYNAMIC_COPY, nullptr, "subparticles.lists");
+    positions_ = gl::Buffer(z.children, GL_DYNAMIC_COPY, nullptr, "subparticles.position");
+    velocities_ = gl::Buffer(z.children, GL_DYNAMIC_COPY, nullptr, "subparticles.velocity");
     stats_.budget = std::uint32_t(capacity_);
 
     const GLuint spawn_group = spawn_.local_size()[0];

@@ -133,6 +133,8 @@ public:
     // InputError on levels outside 1..3 or a non-positive spacing.
     Subparticles(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::TurbulenceSettings& settings,
                  float spacing, std::size_t particles, const NoiseTiles& tiles, const CurlNoise& noise);
+    // Device memory the constructor allocates for `particles` parents (frame/memory.h).
+    static std::size_t bytes_for(const scene::SubparticleSettings& s, std::size_t particles);
     Subparticles(const Subparticles&) = delete;   // the stats' readback calls back into this object
     Subparticles& operator=(const Subparticles&) = delete;
 
@@ -182,6 +184,12 @@ private:
     const CurlNoise& noise_;   // the force's tiles on the GPU
     gpu::SubparticleParams params_{};
     std::size_t max_particles_, capacity_;
+    // The buffers' sizes (bytes) for `particles` parents in workgroups of `group`.
+    struct Sizes {
+        std::size_t levels, blocks, lists, children;
+    };
+    static std::size_t capacity_for(const scene::SubparticleSettings& s, std::size_t particles);
+    static Sizes sizes(const scene::SubparticleSettings& s, std::size_t particles, std::size_t group);
     gl::Buffer params_ubo_, state_, levels_, blocks_, lists_, positions_, velocities_;
     gl::AsyncReadback readback_;
     SubparticleStats stats_;

@@ -21,8 +21,12 @@ WaveletAnalysis::WaveletAnalysis(const shader::FileSource& shaders, profile::Gpu
                             : shader::Program()),
       mask_runs_(mask_runs),
       capacity_(capacity),
-      energy_(std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
+      energy_(bytes_for(capacity) - sizeof(gpu::WaveletParams), GL_DYNAMIC_COPY, nullptr, "wavelet energy"),
       params_(sizeof(gpu::WaveletParams), GL_DYNAMIC_DRAW, nullptr, "WaveletParams") {}
+
+std::size_t WaveletAnalysis::bytes_for(std::size_t capacity) {
+    return std::max<std::size_t>(capacity, 1) * sizeof(glm::vec4) + sizeof(gpu::WaveletParams);
+}
 
 void WaveletAnalysis::analyse(sim::Fluid& fluid, float scale) {
     const std::size_t count = fluid.count();

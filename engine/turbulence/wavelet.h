@@ -58,6 +58,7 @@ public:
     // `mask_runs` > 0 (sim::Fluid::neighbour_runs() of a fluid with neighbour masks) also builds the
     // variant that reads the density pass's masks for that many runs.
     WaveletAnalysis(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t capacity, int mask_runs = 0);
+    static std::size_t bytes_for(std::size_t capacity);   // device memory the constructor allocates
 
     // ê of `fluid` at scale s (m), 0 < s <= max_scale(fluid.grid().layout().cell), from the
     // positions, velocities, cell ranges and sorted keys of its last rebuild_grid(). Exact when the

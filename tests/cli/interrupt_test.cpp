@@ -35,20 +35,6 @@ bool wait_until(F done, std::chrono::seconds limit = std::chrono::seconds(60)) {
     return true;
 }
 
-// A PNG that ends with its IEND chunk (length 0, "IEND", its CRC) and decodes at the size asked.
-void check_whole_png(const fs::path& file, int width, int height) {
-    INFO(file.string());
-    const std::string bytes = read_file(file);
-    static const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
-    REQUIRE(bytes.size() > iend.size());
-    CHECK(bytes.compare(bytes.size() - iend.size(), iend.size(), iend) == 0);
-    const Image img = load_png(file);
-    INFO(img.error);
-    REQUIRE(img.ok());
-    CHECK(img.width == width);
-    CHECK(img.height == height);
-}
-
 // Starts `record` of a million frames of `scene`, signals it once a few frames are on disk, and
 // checks what it leaves.
 void check_interrupted_record(const std::string& scene, const std::vector<std::string>& extra, int signal, const std::string& name) {

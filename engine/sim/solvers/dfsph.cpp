@@ -12,6 +12,7 @@ namespace ranryu::sim {
 namespace {
 
 constexpr int kInitialCap = 32;   // iterations a solve is issued before any record has come back
+constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
 constexpr GLbitfield kAfterIteration = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
 
 // The next frames' cap: 1.5 times the most one step needed over the recent records, plus two; at
@@ -60,7 +61,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
       fluid_(fluid),
-      warm_(fluid.carry("Warm", 2, initial_warm_start(scene))) {
+      warm_(fluid.carry("Warm", kWarmWords, initial_warm_start(scene))) {
     if (accelerate_.local_size()[0] != correct_.local_size()[0])
         throw Error("DFSPH: the accelerate and correct passes must share a workgroup size (one indirect dispatch serves both)");
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
@@ -90,6 +91,12 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     opened_ = gl::Buffer(opened.size(), GL_STATIC_DRAW, opened.data(), "dfsph.solve.opened");
     kappa_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa");
     pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+}
+
+std::size_t Dfsph::bytes_for(std::size_t count) {
+    const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_ and pressure_accel_
+    return sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
+           Fluid::carried_bytes(count, kWarmWords);
 }
 
 const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }

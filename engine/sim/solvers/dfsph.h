@@ -36,6 +36,9 @@ namespace ranryu::sim {
 class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
+    // Device memory the constructor allocates for `count` particles, its carried warm start
+    // included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;

@@ -10,7 +10,9 @@ Wcsph::Wcsph(const shader::FileSource& shaders, profile::GpuTimer& timer, Fluid&
       forces_pass_(timer.pass("forces")),
       density_(shader::Program::compute(shaders, "sim/wcsph/compute_density.comp", fluid.neighbour_defines())),
       forces_(shader::Program::compute(shaders, "sim/wcsph/compute_forces.comp", fluid.neighbour_defines())),
-      pair_terms_(std::max<std::size_t>(fluid.count(), 1) * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "wcsph.pair_terms") {}
+      pair_terms_(bytes_for(fluid.count()), GL_DYNAMIC_COPY, nullptr, "wcsph.pair_terms") {}
+
+std::size_t Wcsph::bytes_for(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec2); }
 
 void Wcsph::step(Fluid& fluid, StepHooks& hooks) {
     fluid.choose_time_step();

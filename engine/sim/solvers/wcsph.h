@@ -20,6 +20,8 @@ namespace ranryu::sim {
 class Wcsph final : public Solver {
 public:
     Wcsph(const shader::FileSource& shaders, profile::GpuTimer& timer, Fluid& fluid);
+    // Device memory the constructor allocates for `count` particles (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count);
     scene::Solver kind() const override { return scene::Solver::wcsph; }
     void step(Fluid& fluid, StepHooks& hooks) override;
 
