@@ -51,12 +51,22 @@ EGLContext try_context(EGLDisplay dpy, bool debug, std::string& why) {
             return EGL_NO_CONTEXT;
         }
     }
+    // Robust where the driver offers it (EGL 1.5): a lost context then reports its reset through
+    // glGetGraphicsResetStatus, which gl/faults.h checks at every frame's end. Else a plain context.
+    const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
+                             EGL_CONTEXT_MINOR_VERSION, 3,
+                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                             EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                             EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
+                             EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET,
+                             EGL_NONE};
     const EGLint attrs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
                             EGL_CONTEXT_MINOR_VERSION, 3,
                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                             EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
                             EGL_NONE};
-    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attrs);
+    EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, robust);
+    if (ctx == EGL_NO_CONTEXT) ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attrs);
     if (ctx == EGL_NO_CONTEXT) {
         why = "no OpenGL 4.3 core context (EGL error 0x" + std::to_string(eglGetError()) + ")";
         eglTerminate(dpy);

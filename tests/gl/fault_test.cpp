@@ -57,3 +57,17 @@ TEST_CASE("faults: a fence wait gives up after its timeout and names what is pen
     CHECK_NOTHROW(f.wait("test fence"));
     test::require_no_gl_errors();
 }
+
+TEST_CASE("faults: the headless context is robust where the driver allows, so a lost context reports its reset", "[gl][faults]") {
+    // gl/context_egl.cpp asks EGL 1.5 for robust access with lose-context-on-reset; where that is
+    // granted, glGetGraphicsResetStatus (checked at every frame's end, gl/faults.h) reports a GPU
+    // reset instead of leaving the run to draw garbage. Mesa's llvmpipe and NVIDIA's driver grant it.
+    ranryu::test::context();
+    GLint strategy = 0, flags = 0;
+    glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    INFO("strategy 0x" << std::hex << strategy << ", context flags 0x" << flags);
+    CHECK(strategy == GL_LOSE_CONTEXT_ON_RESET);
+    CHECK((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) != 0);
+    CHECK(glGetGraphicsResetStatus() == GL_NO_ERROR);   // and it has not been lost
+}
