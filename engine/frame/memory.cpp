@@ -55,30 +55,40 @@ std::string mib(std::uint64_t bytes) {
     return buf;
 }
 
+DeviceMemory device_capacity();   // below: the memory figures alone
+
 DeviceMemory device_memory() {
+    DeviceMemory d = device_capacity();
+    GLint groups = 0;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &groups);
+    if (groups > 0) d.max_workgroups = std::uint64_t(groups);
+    return d;
+}
+
+DeviceMemory device_capacity() {
     if (const char* env = std::getenv("RANRYU_MEMORY_LIMIT_MB")) {
         char* end = nullptr;
         const double mb = std::strtod(env, &end);
         if (!*env || *end || !(mb > 0.0 && mb < 1e9))
             throw InputError(std::string("RANRYU_MEMORY_LIMIT_MB=") + env + ": expected a positive number of MiB");
-        return {std::uint64_t(mb * 1024.0 * 1024.0), "RANRYU_MEMORY_LIMIT_MB"};
+        return {std::uint64_t(mb * 1024.0 * 1024.0), "RANRYU_MEMORY_LIMIT_MB", std::nullopt};
     }
     // A software rasteriser's buffers are host memory (Mesa's llvmpipe reports NVX figures of its own).
     const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const std::string renderer = r ? r : "";
     if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos)
-        if (const auto host = host_available()) return {*host, "host memory (MemAvailable), " + renderer.substr(0, renderer.find(' '))};
+        if (const auto host = host_available()) return {*host, "host memory (MemAvailable), " + renderer.substr(0, renderer.find(' ')), std::nullopt};
     if (gl::has_extension("GL_NVX_gpu_memory_info")) {
         GLint kib = 0;
         glGetIntegerv(kNvxCurrentAvailable, &kib);
-        if (kib > 0) return {std::uint64_t(kib) * 1024, "GL_NVX_gpu_memory_info"};
+        if (kib > 0) return {std::uint64_t(kib) * 1024, "GL_NVX_gpu_memory_info", std::nullopt};
     }
     if (gl::has_extension("GL_ATI_meminfo")) {
         GLint v[4] = {0, 0, 0, 0};
         glGetIntegerv(kAtiVboFree, v);
-        if (v[0] > 0) return {std::uint64_t(v[0]) * 1024, "GL_ATI_meminfo"};
+        if (v[0] > 0) return {std::uint64_t(v[0]) * 1024, "GL_ATI_meminfo", std::nullopt};
     }
-    return {std::nullopt, "not reported by " + renderer};
+    return {std::nullopt, "not reported by " + renderer, std::nullopt};
 }
 
 std::optional<float> finest_spacing_within(const scene::Scene& scene, const View& view, std::uint64_t budget) {
@@ -104,11 +114,25 @@ std::optional<float> finest_spacing_within(const scene::Scene& scene, const View
     return dx;
 }
 
+// The dispatch limit of DeviceMemory::max_workgroups (see check_memory()).
+static void check_dispatch_reach(const scene::Scene& scene, const MemoryEstimate& e, const DeviceMemory& device) {
+    if (device.max_workgroups && e.particles > *device.max_workgroups * kParticleWorkgroup) {
+        const std::uint64_t reach = *device.max_workgroups * kParticleWorkgroup;
+        float dx = round_up_3(scene.spacing * float(std::cbrt(double(e.particles) / double(reach))));
+        for (int i = 0; i < 60 && scene::with_spacing(scene, dx, "the fitted spacing").particle_count() > reach; ++i)
+            dx = round_up_3(dx * 1.01f);
+        throw InputError("scene " + scene.name + " at spacing " + fmt_spacing(scene.spacing) + " m: " + std::to_string(e.particles) +
+                         " particles are more than one dispatch reaches on this device (" + std::to_string(*device.max_workgroups) +
+                         " workgroups of " + std::to_string(kParticleWorkgroup) + ": " + std::to_string(reach) +
+                         " particles); the finest spacing within it is --spacing " + fmt_spacing(dx));
+    }
+}
+
 MemoryEstimate check_memory(const scene::Scene& scene, const View& view, const DeviceMemory& device) {
     MemoryEstimate e = Pipeline::memory_estimate(scene, view);
-    if (!device.available) return e;
+    if (!device.available) return check_dispatch_reach(scene, e, device), e;
     const auto budget = std::uint64_t(kMemoryFraction * double(*device.available));
-    if (e.total() <= budget) return e;
+    if (e.total() <= budget) return check_dispatch_reach(scene, e, device), e;
     std::string parts;
     for (const MemoryPart& p : e.parts)
         if (p.bytes * 20 >= e.total()) parts += (parts.empty() ? "" : ", ") + p.name + " " + mib(p.bytes);

@@ -39,7 +39,14 @@ struct MemoryEstimate {
 struct DeviceMemory {
     std::optional<std::uint64_t> available;   // bytes; nothing when the device does not say
     std::string source;                       // where the number came from
+    // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]: a per-particle pass is one 1-D dispatch, so a scene may have
+    // at most this times kParticleWorkgroup particles (nothing: not checked).
+    std::optional<std::uint64_t> max_workgroups;
 };
+
+// The smallest workgroup of the per-particle passes (local_size_x 128 or 256 in glsl/sim,
+// glsl/turbulence): with the device's dispatch limit, the most particles a scene may have.
+constexpr std::uint64_t kParticleWorkgroup = 128;
 
 // What the current context's device has free (see the header comment). Throws InputError on a
 // malformed RANRYU_MEMORY_LIMIT_MB.
@@ -47,7 +54,8 @@ DeviceMemory device_memory();
 
 // The estimate for `scene` drawn as `view` (Pipeline::memory_estimate) against `device`: throws
 // InputError naming the scene, spacing, particle count, estimate, what is available and the finest
-// spacing that fits, when the estimate exceeds kMemoryFraction of device.available. Returns the estimate.
+// spacing that fits, when the estimate exceeds kMemoryFraction of device.available, or when the
+// particles are more than one dispatch reaches (device.max_workgroups). Returns the estimate.
 MemoryEstimate check_memory(const scene::Scene& scene, const View& view, const DeviceMemory& device);
 
 // A pipeline's estimate next to what its construction allocated (gl::allocated_bytes()).

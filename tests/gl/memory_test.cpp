@@ -86,7 +86,7 @@ TEST_CASE("memory: a scene above the available memory is refused with the spacin
     const frame::View view{160, 90, render::Shading::particles};
     const std::uint64_t need = frame::Pipeline::memory_estimate(s, view).total();
     // Room for half of it: refused, naming the scene, its particles, the estimate and a spacing.
-    const frame::DeviceMemory half{need / 2, "test"};
+    const frame::DeviceMemory half{need / 2, "test", std::nullopt};
     try {
         frame::check_memory(s, view, half);
         FAIL("not refused");
@@ -105,7 +105,35 @@ TEST_CASE("memory: a scene above the available memory is refused with the spacin
     const scene::Scene at = scene::with_spacing(s, *fit, "test");
     CHECK_NOTHROW(frame::check_memory(at, view, half));
     // Room for it all: accepted.
-    CHECK_NOTHROW(frame::check_memory(s, view, frame::DeviceMemory{2 * need, "test"}));
+    CHECK_NOTHROW(frame::check_memory(s, view, frame::DeviceMemory{2 * need, "test", std::nullopt}));
     // A device that says nothing is not checked.
-    CHECK_NOTHROW(frame::check_memory(s, view, frame::DeviceMemory{std::nullopt, "nothing"}));
+    CHECK_NOTHROW(frame::check_memory(s, view, frame::DeviceMemory{std::nullopt, "nothing", std::nullopt}));
 }
+
+TEST_CASE("memory: a scene with more particles than one dispatch reaches is refused with the spacing that does", "[gl][memory]") {
+    // A device of 100 workgroups reaches 12,800 particles (kParticleWorkgroup 128): the dam break at
+    // 0.01 m (8,000) passes, at 0.005 m (64,000) it is refused, and the spacing named passes.
+    ranryu::test::context();
+    const frame::View view = sized(64, 48, render::Shading::particles);
+    const frame::DeviceMemory device{std::nullopt, "test", 100};
+    const scene::Scene coarse = scene::with_spacing(scene::load("dam-break"), 0.01f, "test");
+    CHECK_NOTHROW(frame::check_memory(coarse, view, device));
+    const scene::Scene fine = scene::with_spacing(scene::load("dam-break"), 0.005f, "test");
+    std::string message;
+    try {
+        frame::check_memory(fine, view, device);
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    INFO(message);
+    REQUIRE_FALSE(message.empty());
+    CHECK_THAT(message, Catch::Matchers::Contains("64000 particles are more than one dispatch reaches on this device (100 workgroups of 128: 12800 particles)"));
+    const std::size_t at = message.find("--spacing ");
+    REQUIRE(at != std::string::npos);
+    const float dx = std::stof(message.substr(at + 10));
+    const scene::Scene fitted = scene::with_spacing(scene::load("dam-break"), dx, "test");
+    CHECK(fitted.particle_count() <= 12800);
+    CHECK(fitted.particle_count() > 12800 / 2);
+    CHECK_NOTHROW(frame::check_memory(fitted, view, device));
+}
+
