@@ -21,9 +21,6 @@ export LSAN_OPTIONS=suppressions=$root/tests/sanitizers/lsan.supp:print_suppress
 
 echo "sanitize: unit tests"
 build/asan/tests/ranryu_unit_tests
-echo "sanitize: fuzz corpus through build/asan/app/ranryu"
-RANRYU_TEST_BIN=$root/build/asan/app/ranryu build/test/tests/ranryu_cli_tests "[fuzz]"
-echo "sanitize: a short headless record"
 # Mesa's EGL vendor library and its DRI driver are preloaded so that they stay mapped until the leak
 # check: glvnd and EGL dlclose them at exit, after which LeakSanitizer can neither scan their globals
 # (which still hold the driver's long-lived blocks, so those read as leaks) nor name them in a stack
@@ -32,6 +29,12 @@ echo "sanitize: a short headless record"
 multiarch=$(gcc -print-multiarch 2>/dev/null || echo x86_64-linux-gnu)
 preload=libEGL_mesa.so.0
 for dri in /usr/lib/$multiarch/dri/swrast_dri.so; do [ -f "$dri" ] && preload="$preload $dri"; done
+echo "sanitize: fuzz corpus through build/asan/app/ranryu"
+# With Mesa preloaded too: a command that made a context before refusing its input (record checks
+# the scene's memory against the device before it makes its folder) must not read as a leak.
+LD_PRELOAD="$preload" ASAN_OPTIONS=$ASAN_OPTIONS:verify_asan_link_order=0 \
+  RANRYU_TEST_BIN=$root/build/asan/app/ranryu build/test/tests/ranryu_cli_tests "[fuzz]"
+echo "sanitize: a short headless record"
 out=$(mktemp -d /tmp/ranryu-sanitize-XXXXXX)
 trap 'rm -rf "$out"' EXIT
 LD_PRELOAD="$preload" ASAN_OPTIONS=$ASAN_OPTIONS:verify_asan_link_order=0 \
