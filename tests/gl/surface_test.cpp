@@ -150,18 +150,7 @@ void check_watertight(const std::vector<MeshVertex>& soup, long euler) {
     else CHECK(topo.euler() % 2 == 0);
 }
 
-// φ = R - |x - c| (see tests/unit/marching_cubes_table_test.cpp).
-PhiGrid sphere(glm::vec3 origin, float h, glm::uvec3 dims, glm::vec3 centre, float R) {
-    PhiGrid g{origin, h, dims, {}};
-    g.phi.resize(g.nodes());
-    for (std::uint32_t k = 0; k < dims.z; ++k)
-        for (std::uint32_t j = 0; j < dims.y; ++j)
-            for (std::uint32_t i = 0; i < dims.x; ++i) {
-                const float f = R - float(glm::length(glm::dvec3(g.node({i, j, k})) - glm::dvec3(centre)));
-                g.phi[g.index({i, j, k})] = f == 0.0f ? -1e-30f : f;
-            }
-    return g;
-}
+using ranryu::test::sphere;
 
 glm::vec3 random_vec(ranryu::test::Random& rng, float lo, float hi) {
     return {rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi)};

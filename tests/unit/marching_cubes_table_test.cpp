@@ -38,22 +38,7 @@ std::pair<int, int> edge(int e) {
 // Twice the midpoint of edge e: integer coordinates 0..2.
 glm::ivec3 edge_mid2(int e) { return corner(edge(e).first) + corner(edge(e).second); }
 
-// φ = R - |x - c| on a grid of spacing h; exact zeros (probability ~1e-7 per node) nudged outside so
-// that vertices never sit on nodes and welding by position is exact.
-PhiGrid sphere(glm::vec3 origin, float h, glm::uvec3 dims, glm::vec3 centre, float R) {
-    PhiGrid g{origin, h, dims, {}};
-    g.phi.resize(g.nodes());
-    for (std::uint32_t k = 0; k < dims.z; ++k)
-        for (std::uint32_t j = 0; j < dims.y; ++j)
-            for (std::uint32_t i = 0; i < dims.x; ++i) {
-                // Kept 1e-3 h off zero: a crossing closer to a node than a float's resolution of the
-                // position lands on the node, where the weld (by exact position) would merge distinct
-                // edge vertices into one and the mesh would read as non-manifold.
-                const float f = R - float(glm::length(glm::dvec3(g.node({i, j, k})) - glm::dvec3(centre)));
-                g.phi[g.index({i, j, k})] = std::abs(f) < 1e-3f * h ? std::copysign(1e-3f * h, f) : f;
-            }
-    return g;
-}
+using ranryu::test::sphere;
 
 }  // namespace
 
