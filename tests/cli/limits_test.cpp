@@ -39,9 +39,9 @@ TEST_CASE("limits: the dam break at 64M particles is refused at once with its es
           "[cli][limits]") {
     TempDir tmp;
     const auto start = std::chrono::steady_clock::now();
-    // 24 GiB of memory, say, whatever this machine has free: the estimate (15 GiB) is what refuses it
-    // on every machine of that size, and the dispatch limit (8.4M particles on llvmpipe and NVIDIA)
-    // is not what is tested here (tests/gl/memory_test.cpp).
+    // 12 GiB of memory, whatever this machine has free: the estimate (15 GiB) exceeds it, so the
+    // refusal is the memory one everywhere (it is checked before the dispatch limit, 8.4M particles on
+    // llvmpipe, which tests/gl/memory_test.cpp tests).
     RunOptions as_ci;
     as_ci.set_env = {{"RANRYU_MEMORY_LIMIT_MB", "12288"}};
     const Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.0005", "--out", tmp.str("out")}, as_ci);
