@@ -43,7 +43,7 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
         e.parts.push_back({"particles, boundary, grid and sort", sim::Fluid::bytes_for(s, n, e.boundary)});
         e.transient = sim::Fluid::transient_bytes(e.boundary);
         e.parts.push_back({std::string("solver ") + scene::solver_name(s.sph.solver),
-                           s.sph.solver == scene::Solver::dfsph ? sim::Dfsph::bytes_for(n) : sim::Wcsph::bytes_for(n)});
+                           s.sph.solver == scene::Solver::dfsph ? sim::Dfsph::bytes_for(n, e.boundary, s.sph.boundary_rows) : sim::Wcsph::bytes_for(n)});
         if (s.turbulence.enabled()) e.parts.push_back({"turbulence", turbulence::TurbulenceForce::bytes_for(n)});
         if (s.turbulence.subparticles.enabled())
             e.parts.push_back({"sub-particles", turbulence::Subparticles::bytes_for(s.turbulence.subparticles, n)});

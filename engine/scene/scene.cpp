@@ -419,6 +419,8 @@ Scene parse(const std::string& text, const std::string& origin) {
         if (h.min_iterations > h.max_iterations) p.fail("\"sph.min_iterations\" must not exceed \"sph.max_iterations\"");
         h.max_divergence_iterations = p.integer("max_divergence_iterations");
         h.divergence_solve = p.boolean("divergence_solve");
+        h.boundary_rows = p.boolean("boundary_rows");
+        h.boundary_relaxation = float(p.number("boundary_relaxation"));
         h.warm_start = float(p.number("warm_start"));
         h.divergence_warm_start = float(p.number("divergence_warm_start"));
         h.relaxation = float(p.number("relaxation"));

@@ -159,7 +159,7 @@ RANRYU_STRUCT(DfsphParams) {
     float boundary_viscosity;    // nu_b of (D7) (m^2/s)
     uint groups;                 // workgroups of the iteration passes over every particle
     float warm_start_divergence; // w of (D6), the divergence solve's
-    uint pad0;
+    float boundary_relaxation;   // omega_b of (D9): the boundary rows' l1-Jacobi relaxation
     uint pad1;
     uint pad2;
 }
@@ -178,6 +178,19 @@ RANRYU_STRUCT(SolveState) {
 }
 RANRYU_STRUCT_END(SolveState, 32)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
+
+// The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block
+// BoundaryRows): those within h of a fluid particle, listed by the density pass (an atomic append to
+// BoundaryList, each once: BoundaryMark holds the step's epoch), then sized for the indirect dispatch of
+// the boundary passes by "size_boundary_rows", which also opens the next step's list.
+RANRYU_STRUCT(BoundaryRowsState) {
+    uvec4 dispatch;   // xyz: workgroups of the boundary passes over this step's rows; w: unused
+    uint rows;        // rows this step (BoundaryList[0, rows))
+    uint count;       // rows the density pass has listed so far (the next step's, once sized)
+    uint epoch;       // the step's mark: a boundary particle listed with mark epoch − 1 was a row the step before
+    uint pad0;
+}
+RANRYU_STRUCT_END(BoundaryRowsState, 32)
 // ---- end DFSPH
 
 // Tests only: one of each member kind, to pin the layout rules both sides rely on.

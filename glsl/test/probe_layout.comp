@@ -1,7 +1,7 @@
 #version 430
 // Tests only (tests/gl/interop_test.cpp). Declares the shared parameter structs as the engine's
 // shaders do (std140 uniform blocks at their shared binding points; StepState, SubparticleState and
-// SolveState std430 storage blocks, bound by name) and copies every member, as raw 32-bit words, into
+// SolveState and BoundaryRowsState std430 storage blocks, bound by name) and copies every member, as raw 32-bit words, into
 // the storage block ProbeOut in the order below, followed by the values of the shared macros as GLSL
 // sees them. The test builds the same sequence from the C++ structs and macros and compares bits.
 //
@@ -18,6 +18,7 @@
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
 //   DfsphParams:  its 16 scalars in order                                            16 words
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
+//   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   kMacros:      the RANRYU_* macros, in the order of the array below               23 words
 #include "../shared/bindings.h"
 
@@ -33,6 +34,7 @@ layout(std140, binding = RANRYU_UBO_SUBPARTICLES) uniform SubparticleBlock { Sub
 layout(std430) readonly buffer SubparticleStateBlock { SubparticleState subs; };
 layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsph; };
 layout(std430) readonly buffer Solve { SolveState solve; };
+layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
 layout(std430) buffer ProbeOut { uint words[]; };
 
 const uint kMacros[23] = uint[23](
@@ -87,9 +89,11 @@ void main() {
     put(dfsph.eta); put(dfsph.eta_divergence); put(dfsph.relaxation); put(dfsph.warm_start);
     put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
-    put(dfsph.warm_start_divergence); put(dfsph.pad0); put(dfsph.pad1); put(dfsph.pad2);
+    put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.pad1); put(dfsph.pad2);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
+
+    put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
 
     for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
 }

@@ -40,7 +40,7 @@ void main() {
         if (e > 0.0 && step.dt > 0.0) {
             vec3 y = carried_value(r, t, coherence_time);   // the octave sums were evaluated at re-seeding
             a += (amplitude * e) * y;
-            accel[i] = vec4(a, 0.0);
+            accel[i].xyz = a;   // w is the solver's (docs/DFSPH.md (D9))
         }
         magnitude = length(a);
     }

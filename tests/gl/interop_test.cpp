@@ -155,7 +155,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.boundary_viscosity", {offsetof(gpu::DfsphParams, boundary_viscosity), GL_FLOAT}},
         {"dfsph.groups", {offsetof(gpu::DfsphParams, groups), GL_UNSIGNED_INT}},
         {"dfsph.warm_start_divergence", {offsetof(gpu::DfsphParams, warm_start_divergence), GL_FLOAT}},
-        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
+        {"dfsph.boundary_relaxation", {offsetof(gpu::DfsphParams, boundary_relaxation), GL_FLOAT}},
         {"dfsph.pad1", {offsetof(gpu::DfsphParams, pad1), GL_UNSIGNED_INT}},
         {"dfsph.pad2", {offsetof(gpu::DfsphParams, pad2), GL_UNSIGNED_INT}},
 
@@ -164,6 +164,12 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.error_sum", {offsetof(gpu::SolveState, error_sum), GL_UNSIGNED_INT}},
         {"solve.groups_done", {offsetof(gpu::SolveState, groups_done), GL_UNSIGNED_INT}},
         {"solve.solve", {offsetof(gpu::SolveState, solve), GL_UNSIGNED_INT}},
+
+        {"rows.dispatch", {offsetof(gpu::BoundaryRowsState, dispatch), GL_UNSIGNED_INT_VEC4}},
+        {"rows.rows", {offsetof(gpu::BoundaryRowsState, rows), GL_UNSIGNED_INT}},
+        {"rows.count", {offsetof(gpu::BoundaryRowsState, count), GL_UNSIGNED_INT}},
+        {"rows.epoch", {offsetof(gpu::BoundaryRowsState, epoch), GL_UNSIGNED_INT}},
+        {"rows.pad0", {offsetof(gpu::BoundaryRowsState, pad0), GL_UNSIGNED_INT}},
     };
     return table;
 }
@@ -192,6 +198,7 @@ const Block kBlocks[] = {
     {"SubparticleStateBlock", "subs.", sizeof(gpu::SubparticleState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
     {"DfsphBlock", "dfsph.", sizeof(gpu::DfsphParams), RANRYU_UBO_DFSPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"Solve", "solve.", sizeof(gpu::SolveState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"BoundaryRows", "rows.", sizeof(gpu::BoundaryRowsState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
 };
 
 // The shared macros in the order of kMacros in probe_layout.comp.
@@ -415,11 +422,16 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.boundary_viscosity = d.f();
     dp.groups = d.u();
     dp.warm_start_divergence = d.f();
-    for (std::uint32_t* u : {&dp.pad0, &dp.pad1, &dp.pad2}) *u = d.u();
+    dp.boundary_relaxation = d.f();
+    for (std::uint32_t* u : {&dp.pad1, &dp.pad2}) *u = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
     for (std::uint32_t* u : {&ss.iterations, &ss.error_sum, &ss.groups_done, &ss.solve}) *u = d.u();
+
+    gpu::BoundaryRowsState rs{};
+    rs.dispatch = d.u4();
+    for (std::uint32_t* u : {&rs.rows, &rs.count, &rs.epoch, &rs.pad0}) *u = d.u();
 
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
@@ -459,11 +471,13 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.min_iterations); expect.put(dp.min_divergence_iterations); expect.put(dp.issued);
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
-    expect.put(dp.pad0); expect.put(dp.pad1); expect.put(dp.pad2);
+    expect.put(dp.boundary_relaxation); expect.put(dp.pad1); expect.put(dp.pad2);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve);
     const std::size_t solve_end = expect.w.size();
+    expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
+    const std::size_t rows_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.
     REQUIRE(probe_end == 28);
@@ -476,6 +490,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     REQUIRE(subs_end - subp_end == sizeof(gpu::SubparticleState) / 4);
     REQUIRE(dfsph_end - subs_end == sizeof(gpu::DfsphParams) / 4);
     REQUIRE(solve_end - dfsph_end == sizeof(gpu::SolveState) / 4);
+    REQUIRE(rows_end - solve_end == sizeof(gpu::BoundaryRowsState) / 4);
 
     // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
     // keep it, so the shader wrote exactly expect.w.size() words.
@@ -493,6 +508,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     Buffer ssbo_subs(sizeof ps, GL_DYNAMIC_DRAW, &ps, "probe.SubparticleState");
     Buffer ubo_dfsph(sizeof dp, GL_DYNAMIC_DRAW, &dp, "probe.DfsphParams");
     Buffer ssbo_solve(sizeof ss, GL_DYNAMIC_DRAW, &ss, "probe.SolveState");
+    Buffer ssbo_rows(sizeof rs, GL_DYNAMIC_DRAW, &rs, "probe.BoundaryRowsState");
     ubo_subp.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
     ubo_dfsph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
     ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
@@ -500,7 +516,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     ubo_frame.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
     ubo_grid.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_GRID);
     ubo_sph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
-    probe().bind({{"Step", &ssbo_step}, {"SubparticleStateBlock", &ssbo_subs}, {"Solve", &ssbo_solve}, {"ProbeOut", &out}}).use();
+    probe().bind({{"Step", &ssbo_step}, {"SubparticleStateBlock", &ssbo_subs}, {"Solve", &ssbo_solve}, {"BoundaryRows", &ssbo_rows}, {"ProbeOut", &out}}).use();
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<std::uint32_t> got = out.read<std::uint32_t>(total);
@@ -516,7 +532,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         if (i < subs_end) return "SubparticleState word " + std::to_string(i - subp_end);
         if (i < dfsph_end) return "DfsphParams word " + std::to_string(i - subs_end);
         if (i < solve_end) return "SolveState word " + std::to_string(i - dfsph_end);
-        if (i < expect.w.size()) return kMacros[i - solve_end].first;
+        if (i < rows_end) return "BoundaryRowsState word " + std::to_string(i - solve_end);
+        if (i < expect.w.size()) return kMacros[i - rows_end].first;
         return "past the end, word " + std::to_string(i);
     };
     for (std::size_t i = 0; i < total; ++i) {

@@ -130,6 +130,83 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     return r;
 }
 
+std::vector<double> spreads(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                            const Params& params) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> u(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+        dvec3 sum(0.0);
+        double magnitudes = 0.0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            if (j == i || glm::length(x[i] - x[j]) >= params.h) continue;
+            sum += params.mass * kernel.gradW(x[i] - x[j]);
+            magnitudes += params.mass * glm::length(kernel.gradW(x[i] - x[j]));
+        }
+        for (size_t b = 0; b < boundary.size(); ++b) {
+            if (glm::length(x[i] - boundary[b]) >= params.h) continue;
+            sum += psi[b] * kernel.gradW(x[i] - boundary[b]);
+            magnitudes += params.mass * glm::length(kernel.gradW(x[i] - boundary[b]));
+        }
+        u[i] = glm::length(sum) + magnitudes;
+    }
+    return u;
+}
+
+std::vector<bool> boundary_rows(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const Params& params) {
+    std::vector<bool> row(boundary.size(), false);
+    for (size_t b = 0; b < boundary.size(); ++b)
+        for (const dvec3& xi : x) row[b] = row[b] || glm::length(xi - boundary[b]) < params.h;
+    return row;
+}
+
+Rows row_sources(Solve which, const std::vector<dvec3>& x, const std::vector<dvec3>& v, const std::vector<double>& u,
+                 const std::vector<dvec3>& boundary, const std::vector<double>& psi, const Params& params, double dt) {
+    const CubicKernel kernel{params.h};
+    const std::vector<bool> row = boundary_rows(x, boundary, params);
+    Rows r{std::vector<double>(boundary.size(), 0.0), std::vector<double>(boundary.size(), 0.0)};
+    for (size_t b = 0; b < boundary.size(); ++b) {
+        if (!row[b]) continue;
+        double rho = 0.0, rate = 0.0, diagonal = 0.0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            const double distance = glm::length(boundary[b] - x[j]);
+            if (distance >= params.h) continue;
+            const dvec3 g = kernel.gradW(boundary[b] - x[j]);
+            rho += params.mass * kernel.W(distance);
+            rate -= params.mass * glm::dot(v[j], g);
+            diagonal += glm::length(g) * u[j];
+        }
+        for (size_t q = 0; q < boundary.size(); ++q) rho += psi[q] * kernel.W(glm::length(boundary[b] - boundary[q]));
+        r.source[b] = which == Solve::density ? params.rest_density - (rho + dt * rate) : -dt * rate;
+        r.diagonal[b] = psi[b] * diagonal;
+    }
+    return r;
+}
+
+void correct_rows(const std::vector<dvec3>& x, const std::vector<dvec3>& a, const Rows& rows, const std::vector<dvec3>& boundary,
+                  const Params& params, double omega_b, double dt, std::vector<double>& kappa_b) {
+    const CubicKernel kernel{params.h};
+    for (size_t b = 0; b < boundary.size(); ++b) {
+        if (rows.diagonal[b] <= 0.0) continue;
+        double change = 0.0;
+        for (size_t j = 0; j < x.size(); ++j)
+            if (glm::length(boundary[b] - x[j]) < params.h) change -= params.mass * glm::dot(a[j], kernel.gradW(boundary[b] - x[j]));
+        const double residual = dt * dt * change - rows.source[b];
+        kappa_b[b] = std::max(kappa_b[b] + omega_b * residual / (rows.diagonal[b] * dt * dt), 0.0);
+    }
+}
+
+std::vector<dvec3> pressure_accelerations(const std::vector<dvec3>& x, const std::vector<double>& kappa,
+                                          const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                                          const std::vector<double>& kappa_b, const Params& params) {
+    const CubicKernel kernel{params.h};
+    std::vector<dvec3> a(x.size(), dvec3(0.0));
+    for (size_t i = 0; i < x.size(); ++i) {
+        for (size_t j = 0; j < x.size(); ++j) a[i] -= params.mass * (kappa[i] + kappa[j]) * kernel.gradW(x[i] - x[j]);
+        for (size_t b = 0; b < boundary.size(); ++b) a[i] -= psi[b] * (kappa[i] + kappa_b[b]) * kernel.gradW(x[i] - boundary[b]);
+    }
+    return a;
+}
+
 StepResult step(State& state, const std::vector<dvec3>& boundary, const std::vector<double>& psi, const Params& params,
                 const Settings& s, double dt, bool divergence_solve) {
     const size_t n = state.x.size();

@@ -77,6 +77,33 @@ SolveResult solve(Solve which, const std::vector<glm::dvec3>& x, std::vector<glm
                   const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi, const Params& params,
                   const Settings& s, double dt);
 
+// (D9), the boundary rows: a boundary particle b within h of some fluid particle is a row with its own
+// kappa_b; the fluid pairs with it as with a fluid neighbour, a_i −= psi_b (κ_i + κ_b) ∇W_ib. These
+// functions take kappa_b per boundary particle (0 where b is no row).
+//
+// u_i = |Σ_j m∇W_ij + Σ_b ψ_b∇W_ib| + Σ_j m|∇W_ij| + Σ_b m|∇W_ib|: the bound on how much one unit of
+// multiplier at any row moves particle i, which the rows' l1 diagonal sums.
+std::vector<double> spreads(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary,
+                            const std::vector<double>& psi, const Params& params);
+// Whether each boundary particle is a row: some fluid particle within h.
+std::vector<bool> boundary_rows(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary, const Params& params);
+// A solve's rows: s_b = ρ0 − ρ*_b (density; ρ*_b = Σ_j m W_bj + Σ_b' ψ_b' W_bb' + dt Σ_j m(0 − v_j)·∇W_bj)
+// or −dt Σ_j m(0 − v_j)·∇W_bj (divergence); D_b = ψ_b Σ_j |∇W_bj| u_j. 0 for both where b is no row.
+struct Rows {
+    std::vector<double> source, diagonal;
+};
+Rows row_sources(Solve which, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v, const std::vector<double>& u,
+                 const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi, const Params& params, double dt);
+// One l1-Jacobi update of the rows from the fluid's pressure accelerations a:
+// κ_b ← max(κ_b + ω_b r_b / (dt² D_b), 0), r_b = dt² Σ_j m(0 − a_j)·∇W_bj − s_b.
+void correct_rows(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& a, const Rows& rows,
+                  const std::vector<glm::dvec3>& boundary, const Params& params, double omega_b, double dt,
+                  std::vector<double>& kappa_b);
+// (D3) with (D9): a_i = −Σ_j m(κ_i + κ_j)∇W_ij − Σ_b ψ_b(κ_i + κ_b)∇W_ib (boundary_factor 1).
+std::vector<glm::dvec3> pressure_accelerations(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa,
+                                               const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,
+                                               const std::vector<double>& kappa_b, const Params& params);
+
 // The fluid between steps: positions, velocities and the two warm-start stiffnesses κ (density
 // solve) and κ_v (divergence solve) of the last step.
 struct State {

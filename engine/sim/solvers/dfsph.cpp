@@ -36,8 +36,13 @@ std::vector<std::uint32_t> initial_warm_start(const scene::Scene& scene) {
     return words;
 }
 
-std::string defines(const Fluid& fluid, bool divergence) {
-    return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "");
+std::string defines(const Fluid& fluid, bool divergence, bool rows) {
+    return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "") +
+           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "");
+}
+
+shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows) {
+    return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true)) : shader::Program{};
 }
 
 }  // namespace
@@ -50,13 +55,19 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       predict_pass_(timer.pass("dfsph.pressure.predict")),
       pressure_solve_(timer.pass("dfsph.pressure.solve")),
       integrate_pass_(timer.pass("dfsph.integrate")),
+      prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
-      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_))),
-      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false))),
-      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_))),
-      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false))),
-      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false))),
+      rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
+      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, false))),
+      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_))),
+      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_))),
+      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_))),
+      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_))),
+      list_rows_(rows_program(shaders, "sim/dfsph/list_boundary_rows.comp", fluid, rows_)),
+      size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
+      prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
+      correct_rows_(rows_program(shaders, "sim/dfsph/correct_boundary_pressure.comp", fluid, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
@@ -70,6 +81,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.relaxation = scene.sph.relaxation;
     params_.warm_start = scene.sph.warm_start;
     params_.warm_start_divergence = scene.sph.divergence_warm_start;
+    params_.boundary_relaxation = scene.sph.boundary_relaxation;
     params_.min_iterations = std::uint32_t(least_);
     params_.min_divergence_iterations = 1;
     params_.issued = std::uint32_t(std::clamp(kInitialCap, least_, most_));
@@ -89,14 +101,32 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
     solve_ = gl::Buffer(opened.size(), GL_DYNAMIC_COPY, opened.data(), "dfsph.solve");
     opened_ = gl::Buffer(opened.size(), GL_STATIC_DRAW, opened.data(), "dfsph.solve.opened");
-    kappa_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa");
+    // The fluid's kappa_i, then (D9)'s (kappa_b, kappa_v,b) per boundary particle, which start at 0.
+    const std::size_t nb = rows_ ? fluid.boundary_count() : 0;
+    const std::vector<float> no_pressure(n + 2 * nb, 0.0f);
+    kappa_ = gl::Buffer(no_pressure.size() * sizeof(float), GL_DYNAMIC_COPY, no_pressure.data(), "dfsph.kappa");
     pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+    if (rows_) {
+        if (prepare_rows_.local_size()[0] != 128 || correct_rows_.local_size()[0] != 128)
+            throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
+        const std::vector<std::uint32_t> unmarked(nb, 0u);
+        boundary_mark_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, unmarked.data(), "dfsph.boundary_mark");
+        boundary_list_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_list");
+        boundary_row_ = gl::Buffer(nb * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_row");
+        gpu::BoundaryRowsState opened_rows{};
+        opened_rows.epoch = 1u;   // marks start at 0: "a row the step before", whose kappa_b is the initial 0
+        rows_state_ = gl::Buffer(sizeof opened_rows, GL_DYNAMIC_COPY, &opened_rows, "dfsph.boundary_rows");
+    }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count) {
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_ and pressure_accel_
-    return sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
-           Fluid::carried_bytes(count, kWarmWords);
+    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE +
+                             n * (sizeof(float) + sizeof(glm::vec4)) + Fluid::carried_bytes(count, kWarmWords);
+    if (!rows || boundary == 0) return base;
+    // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_; rows_state_
+    return base + boundary * (2 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
+           sizeof(gpu::BoundaryRowsState);
 }
 
 const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
@@ -137,6 +167,9 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     shader::StorageSet set = fluid.bind_state();
     set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_);
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
+    if (rows_)
+        set.add("BoundaryMark", boundary_mark_)
+            .add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_);
     return set;
 }
 
@@ -170,6 +203,29 @@ void Dfsph::compute_density(Fluid& fluid) {
     density_.bind(state(fluid, 1)).dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     fluid.set_neighbour_masks_current(true);
+    if (rows_) {
+        list_rows_.bind(state(fluid, 1)).dispatch(fluid.count());
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        size_rows_.bind(state(fluid, 1)).use();
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+}
+
+void Dfsph::dispatch_rows(const shader::Program& program) {
+    program.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, rows_state_.id());
+    glDispatchComputeIndirect(GLintptr(offsetof(gpu::BoundaryRowsState, dispatch)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+// (D9): the solve's boundary rows open (sources, diagonals, warm start) from the velocities it starts from.
+void Dfsph::prepare_rows(Fluid& fluid, int solve) {
+    if (!rows_) return;
+    auto pass = timer_.scope(prepare_pass_);
+    prepare_rows_.bind(state(fluid, solve));
+    dispatch_rows(prepare_rows_);
 }
 
 // A solve's (D6) iterations, timed as one pass: the first "correct" directly (the pass before it
@@ -178,16 +234,21 @@ void Dfsph::compute_density(Fluid& fluid) {
 void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
     const shader::StorageSet set = state(fluid, solve);
     auto pass = timer_.scope(pass_id);
+    if (rows_) dispatch_rows(correct_rows_.bind(set));
     correct_.bind(set).use();
     glDispatchCompute(params_.groups, 1, 1);
     glMemoryBarrier(kAfterIteration);
     if (issued <= 1) return;
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
     const auto offset = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE + offsetof(gpu::SolveState, dispatch));
     for (int k = 1; k < issued; ++k) {
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
         accelerate_.bind(set).use();
         glDispatchComputeIndirect(offset);
         glMemoryBarrier(kAfterIteration);
+        if (rows_) {
+            dispatch_rows(correct_rows_.bind(set));
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
+        }
         correct_.bind(set).use();
         glDispatchComputeIndirect(offset);
         glMemoryBarrier(kAfterIteration);
@@ -196,7 +257,10 @@ void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id
 }
 
 void Dfsph::solve_divergence(Fluid& fluid) {
-    if (divergence_) iterate(fluid, 1, int(params_.issued_divergence), divergence_solve_);
+    if (divergence_) {
+        prepare_rows(fluid, 1);
+        iterate(fluid, 1, int(params_.issued_divergence), divergence_solve_);
+    }
     auto pass = timer_.scope(divergence_finish_);
     finish_.bind(state(fluid, 1)).dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -204,6 +268,7 @@ void Dfsph::solve_divergence(Fluid& fluid) {
 
 void Dfsph::predict_density(Fluid& fluid) {
     open_solve(0);
+    prepare_rows(fluid, 0);
     auto pass = timer_.scope(predict_pass_);
     predict_.bind(state(fluid, 0)).dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

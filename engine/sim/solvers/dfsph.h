@@ -14,6 +14,11 @@
 //     "dfsph.pressure.solve"         (D6) iterations, likewise
 //     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
 //
+// With the boundary rows of (D9) (sph.boundary_rows, the default), the density pass is followed by
+// list_boundary_rows.comp (the boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve
+// opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration
+// runs correct_boundary_pressure.comp before correct_pressure.comp, indirectly over the rows.
+//
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
 // CPU issues a cap of iterations a solve each step, learnt from the records that come back frames
@@ -36,9 +41,9 @@ namespace ranryu::sim {
 class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
-    // Device memory the constructor allocates for `count` particles, its carried warm start
-    // included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count);
+    // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
+    // (the rows of (D9) when `rows`), its carried warm start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -57,7 +62,9 @@ public:
     void set_issued_iterations(int density, int divergence);
 
     // Per-particle arrays, in the fluid's current cell order (tests).
-    const gl::Buffer& kappa() const { return kappa_; }                    // float: the solve's current kappa
+    // float: the solve's current kappa_i, count() of them; then, with the boundary rows of (D9),
+    // (kappa_b, kappa_v,b) per boundary particle, kept from step to step.
+    const gl::Buffer& kappa() const { return kappa_; }
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }   // vec4: xyz a^p, w the source s_i
     const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
     // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
@@ -65,17 +72,25 @@ public:
     void upload_warm_start(const std::vector<glm::vec2>& kappa);
     const gl::Buffer& solve_states() const { return solve_; }             // SolveState, density at 0, divergence at RANRYU_DFSPH_SOLVE_STRIDE
     const gpu::DfsphParams& params() const { return params_; }
+    // (D9), tests: this step's rows (BoundaryRowsState) and their list (uint entries, kFreshRow's bit on
+    // the ones that were no row the step before); empty without rows.
+    const gl::Buffer& boundary_rows() const { return rows_state_; }
+    const gl::Buffer& boundary_list() const { return boundary_list_; }
 
 private:
     shader::StorageSet state(Fluid& fluid, int solve) const;
     void iterate(Fluid& fluid, int solve, int issued, profile::PassId pass);
     void upload_params();
     void open_solve(int solve);
+    void prepare_rows(Fluid& fluid, int solve);   // "dfsph.boundary.prepare"
+    void dispatch_rows(const shader::Program& program);   // indirectly over the step's rows
 
     profile::GpuTimer& timer_;
-    profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_;
-    bool divergence_;
+    profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
+        prepare_pass_;
+    bool divergence_, rows_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
+    shader::Program list_rows_, size_rows_, prepare_rows_, correct_rows_;   // (D9), built when rows_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
@@ -83,6 +98,8 @@ private:
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_;
+    // (D9), per boundary particle: the step's mark, list entry and row; the rows' BoundaryRowsState.
+    gl::Buffer boundary_mark_, boundary_list_, boundary_row_, rows_state_;
     Fluid& fluid_;
     int warm_;
 };

@@ -1,7 +1,7 @@
 #version 430
 // A Jacobi iteration's first half (docs/DFSPH.md (D3), (D6)): the pressure accelerations of the kappa
 // the last residual pass left,
-//     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − kappa_i Σ_b psi_b gradW_ib.
+//     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − Σ_b psi_b (kappa_i + kappa_b) gradW_ib   (kappa_b: (D9)).
 // Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
 #include "dfsph.glsl"
 
@@ -10,13 +10,14 @@ layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source, kept
+layout(std430) readonly buffer Solve { SolveState solve; };
 
 #include "../fluid/neighbours.glsl"
 
 float kappa_i_;
 vec3 a_;
 void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
-void visit_boundary(uint b, vec3 d, float r2) { a_ -= kappa_i_ * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, solve.solve)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

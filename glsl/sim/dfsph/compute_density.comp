@@ -6,6 +6,7 @@
 //   kappa_v,i = w·kappa_v of the last step (Warm.y), and its pressure accelerations (D3), the first
 //   iteration's first half.
 // Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
+// Accelerations[i].w = u_i of (D9), for the boundary rows' diagonals.
 // Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
@@ -23,7 +24,7 @@ layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };
 #include "../fluid/density_walk.glsl"
 
 vec3 xi_, vi_, grad_fluid_, grad_wall_, viscous_, viscous_wall_, pressure_;
-float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_;
+float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_, spread_;
 
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
@@ -32,6 +33,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
     vec3 vj = velocity[j].xyz;
     grad_fluid_ += sph.mass * g;
     squares_ += sph.mass * sph.mass * dot(g, g);
+    spread_ += sph.mass * length(g);
     rate_ += sph.mass * dot(vi_ - vj, g);
     viscous_ += (sph.mass / sph.rest_density) * dot(vi_ - vj, d) / (r2 + 0.01 * sph.h * sph.h) * g;
 #ifdef RANRYU_DIVERGENCE_SOLVE
@@ -46,8 +48,9 @@ void visit_boundary(uint b, vec3 d, float r2) {
     grad_wall_ += psi * g;
     rate_ += psi * dot(vi_, g);
     viscous_wall_ += (psi / sph.rest_density) * dot(vi_, d) / (r2 + 0.01 * sph.h * sph.h) * g;
+    spread_ += sph.mass * length(g);
 #ifdef RANRYU_DIVERGENCE_SOLVE
-    pressure_ -= kappa_i_ * psi * g;
+    pressure_ -= kappa_i_ * psi * g;   // (D9): the boundary rows' divergence solve starts from kappa_v,b = 0
 #endif
 }
 
@@ -59,7 +62,7 @@ void main() {
         xi_ = position[i].xyz;
         vi_ = velocity[i].xyz;
         grad_fluid_ = grad_wall_ = viscous_ = viscous_wall_ = pressure_ = vec3(0.0);
-        fluid_sum_ = wall_sum_ = squares_ = rate_ = 0.0;
+        fluid_sum_ = wall_sum_ = squares_ = rate_ = spread_ = 0.0;
         kappa_i_ = 0.0;
 #ifdef RANRYU_DIVERGENCE_SOLVE
         kappa_i_ = dfsph.warm_start_divergence * warm[i].y;
@@ -72,7 +75,7 @@ void main() {
         float diagonal = dot(sum, sum) + squares_;   // (D2)
         density[i] = vec4(rho, 0.0, diagonal > 0.0 ? 1.0 / diagonal : 0.0, uintBitsToFloat(flags));
         vec3 a = sph.gravity.xyz + kViscosityFactor * (sph.viscosity * viscous_ + dfsph.boundary_viscosity * viscous_wall_);
-        accel[i] = vec4(a, 0.0);
+        accel[i] = vec4(a, length(sum) + spread_);   // w: u_i of (D9)
 #ifdef RANRYU_DIVERGENCE_SOLVE
         kappa[i] = kappa_i_;
         // (D5): s_i (a deficient particle: rho0, so no correction); a positive w drops the warm start.

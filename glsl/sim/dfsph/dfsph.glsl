@@ -20,3 +20,19 @@ const float kViscosityFactor = 10.0;
 // separation (a splash, the free surface), far beyond the solve's own error, while the bulk of a
 // resting column, within eta of rho0 either way, keeps its hydrostatic pressure.
 float warm_start_drop() { return 0.01 * sph.rest_density; }
+
+// The boundary rows of (D9): with RANRYU_BOUNDARY_ROWS each boundary particle b within h of the fluid
+// has its own kappa_b, kept from step to step (the walls do not move) after the fluid's in the Kappa
+// block: kappa[particle_count + 2b + s], s = 0 the density solve's, 1 the divergence solve's. A fluid
+// particle pairs with it as with a fluid neighbour,
+//     a_i −= psi_b (kappa_i + kappa_b) gradW_ib          (D3) with (D9)
+// Without it kappa_b = 0: Akinci's boundary term, kappa_i once. KAPPA_B reads the pass's Kappa block.
+#ifdef RANRYU_BOUNDARY_ROWS
+#define KAPPA_B(b, s) kappa[sph.particle_count + 2u * (b) + (s)]
+#else
+#define KAPPA_B(b, s) 0.0
+#endif
+
+// A listed row's entry in BoundaryList: the boundary particle's index, and this bit when it was not a
+// row the step before (its kept kappa_b is stale, and its solve starts from none).
+const uint kFreshRow = 0x80000000u;

@@ -12,7 +12,7 @@ layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Warm { vec2 warm[]; };
-layout(std430) writeonly buffer Kappa { float kappa[]; };
+layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
 layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source
 
 #include "../fluid/neighbours.glsl"
@@ -27,7 +27,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
 void visit_boundary(uint b, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     rate_ += boundary[b].w * dot(vi_, g);
-    a_ -= kappa_i_ * boundary[b].w * g;
+    a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * g;
 }
 
 void main() {
