@@ -37,7 +37,7 @@ struct PassRow {
 
 // What an SPH simulation did over the timed frames, from the StepState records that came back.
 struct SimulationSummary {
-    std::string solver;                        // dfsph | wcsph
+    std::string solver;                        // dfsph | wcsph | pbf
     std::uint64_t frames = 0, steps = 0;
     double start_time = 0.0;                   // simulated time when the timed frames began (s)
     double simulated_seconds = 0.0;            // over those frames

@@ -77,7 +77,8 @@ public:
     std::size_t boundary_count() const { return boundary_count_; }
     const gpu::SphParams& params() const { return params_; }
     // Live settings (run's panel): the kinematic viscosity (m^2/s) and the Courant number of the time
-    // step, written into the SphParams block between frames; every later dispatch reads them.
+    // step, written into the SphParams block between frames; every later dispatch reads them. A fixed
+    // step (cfl 0: PBF) keeps no Courant number.
     void set_viscosity_and_cfl(float viscosity, float cfl);
     const gl::Buffer& positions() const { return position_[current_]; }
     const gl::Buffer& velocities() const { return velocity_[current_]; }

@@ -180,6 +180,23 @@ RANRYU_STRUCT_END(SolveState, 32)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
 // ---- end DFSPH
 
+// ---- PBF (engine/sim/solvers/pbf.h, glsl/sim/pbf/; docs/PBF.md) ----
+#define RANRYU_UBO_PBF 9   // PbfParams
+
+// The PBF passes' constants (std140), written once at start, in SI units.
+RANRYU_STRUCT(PbfParams) {
+    float epsilon;        // epsilon of (P4): the constraint's relaxation (1/m^2)
+    float s_corr_scale;   // k dx^2 of (P5) (m^2)
+    float s_corr_n;       // n of (P5)
+    float inv_w_dq;       // 1 / W(|dq|) of (P5) (m^3)
+    float xsph;           // c of (P7)
+    float vorticity;      // epsilon of (P8) (m/s)
+    uint iterations;      // constraint iterations a substep
+    uint pad0;
+}
+RANRYU_STRUCT_END(PbfParams, 32)
+// ---- end PBF
+
 // Tests only: one of each member kind, to pin the layout rules both sides rely on.
 RANRYU_STRUCT(LayoutProbe) {
     mat4 m;

@@ -164,6 +164,15 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.error_sum", {offsetof(gpu::SolveState, error_sum), GL_UNSIGNED_INT}},
         {"solve.groups_done", {offsetof(gpu::SolveState, groups_done), GL_UNSIGNED_INT}},
         {"solve.solve", {offsetof(gpu::SolveState, solve), GL_UNSIGNED_INT}},
+
+        {"pbf.epsilon", {offsetof(gpu::PbfParams, epsilon), GL_FLOAT}},
+        {"pbf.s_corr_scale", {offsetof(gpu::PbfParams, s_corr_scale), GL_FLOAT}},
+        {"pbf.s_corr_n", {offsetof(gpu::PbfParams, s_corr_n), GL_FLOAT}},
+        {"pbf.inv_w_dq", {offsetof(gpu::PbfParams, inv_w_dq), GL_FLOAT}},
+        {"pbf.xsph", {offsetof(gpu::PbfParams, xsph), GL_FLOAT}},
+        {"pbf.vorticity", {offsetof(gpu::PbfParams, vorticity), GL_FLOAT}},
+        {"pbf.iterations", {offsetof(gpu::PbfParams, iterations), GL_UNSIGNED_INT}},
+        {"pbf.pad0", {offsetof(gpu::PbfParams, pad0), GL_UNSIGNED_INT}},
     };
     return table;
 }
@@ -192,6 +201,7 @@ const Block kBlocks[] = {
     {"SubparticleStateBlock", "subs.", sizeof(gpu::SubparticleState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
     {"DfsphBlock", "dfsph.", sizeof(gpu::DfsphParams), RANRYU_UBO_DFSPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"Solve", "solve.", sizeof(gpu::SolveState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"PbfBlock", "pbf.", sizeof(gpu::PbfParams), RANRYU_UBO_PBF, GL_UNIFORM_BLOCK, GL_UNIFORM},
 };
 
 // The shared macros in the order of kMacros in probe_layout.comp.
@@ -219,6 +229,7 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SUBPARTICLE_SPLAT_SCALE", std::uint32_t(RANRYU_SUBPARTICLE_SPLAT_SCALE)},
     {"RANRYU_UBO_DFSPH", RANRYU_UBO_DFSPH},
     {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
+    {"RANRYU_UBO_PBF", RANRYU_UBO_PBF},
 };
 
 const Program& probe() {
@@ -421,6 +432,10 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     ss.dispatch = d.u4();
     for (std::uint32_t* u : {&ss.iterations, &ss.error_sum, &ss.groups_done, &ss.solve}) *u = d.u();
 
+    gpu::PbfParams bp{};
+    for (float* f : {&bp.epsilon, &bp.s_corr_scale, &bp.s_corr_n, &bp.inv_w_dq, &bp.xsph, &bp.vorticity}) *f = d.f();
+    for (std::uint32_t* u : {&bp.iterations, &bp.pad0}) *u = d.u();
+
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
     expect.put(lp.u0); expect.put(lp.u1);
@@ -464,6 +479,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve);
     const std::size_t solve_end = expect.w.size();
+    expect.put(bp.epsilon); expect.put(bp.s_corr_scale); expect.put(bp.s_corr_n); expect.put(bp.inv_w_dq);
+    expect.put(bp.xsph); expect.put(bp.vorticity); expect.put(bp.iterations); expect.put(bp.pad0);
+    const std::size_t pbf_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.
     REQUIRE(probe_end == 28);
@@ -476,6 +494,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     REQUIRE(subs_end - subp_end == sizeof(gpu::SubparticleState) / 4);
     REQUIRE(dfsph_end - subs_end == sizeof(gpu::DfsphParams) / 4);
     REQUIRE(solve_end - dfsph_end == sizeof(gpu::SolveState) / 4);
+    REQUIRE(pbf_end - solve_end == sizeof(gpu::PbfParams) / 4);
 
     // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
     // keep it, so the shader wrote exactly expect.w.size() words.
@@ -493,6 +512,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     Buffer ssbo_subs(sizeof ps, GL_DYNAMIC_DRAW, &ps, "probe.SubparticleState");
     Buffer ubo_dfsph(sizeof dp, GL_DYNAMIC_DRAW, &dp, "probe.DfsphParams");
     Buffer ssbo_solve(sizeof ss, GL_DYNAMIC_DRAW, &ss, "probe.SolveState");
+    Buffer ubo_pbf(sizeof bp, GL_DYNAMIC_DRAW, &bp, "probe.PbfParams");
+    ubo_pbf.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PBF);
     ubo_subp.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
     ubo_dfsph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
     ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
@@ -516,7 +537,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         if (i < subs_end) return "SubparticleState word " + std::to_string(i - subp_end);
         if (i < dfsph_end) return "DfsphParams word " + std::to_string(i - subs_end);
         if (i < solve_end) return "SolveState word " + std::to_string(i - dfsph_end);
-        if (i < expect.w.size()) return kMacros[i - solve_end].first;
+        if (i < pbf_end) return "PbfParams word " + std::to_string(i - solve_end);
+        if (i < expect.w.size()) return kMacros[i - pbf_end].first;
         return "past the end, word " + std::to_string(i);
     };
     for (std::size_t i = 0; i < total; ++i) {

@@ -15,6 +15,7 @@
 #include "shader/source.h"
 #include "sim/simulation.h"
 #include "sim/solvers/dfsph.h"
+#include "sim/solvers/pbf.h"
 #include "sim/solvers/wcsph.h"
 #include "support/gl_fixture.h"
 
@@ -32,6 +33,7 @@ struct SphRig {
     // The solver, for tests that drive its stages one by one; the scene must have chosen it.
     sim::Wcsph& wcsph() { return solver<sim::Wcsph>("wcsph"); }
     sim::Dfsph& dfsph() { return solver<sim::Dfsph>("dfsph"); }
+    sim::Pbf& pbf() { return solver<sim::Pbf>("pbf"); }
 
     // One whole frame: begin, the substeps the fluid plans, end; then collect arrived records.
     void frame(std::uint64_t index) {
