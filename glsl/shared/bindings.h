@@ -132,7 +132,8 @@ RANRYU_STRUCT(StepState) {
     uint frame;               // frame number these findings belong to
     uint steps;               // substeps since the start
     uint pad0;
-    // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH).
+    // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH; PBF,
+    // docs/PBF.md: its fixed iterations in x and z, the rest zero).
     // Solve 0 is the density solve, 1 the divergence solve.
     uvec4 iterations;         // xy: iterations this frame of solve 0, 1 (summed over its steps); zw: the most in one step
     uvec4 unconverged;        // xy: steps this frame whose solve 0, 1 stopped at the issued cap above its bound

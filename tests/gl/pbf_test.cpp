@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -50,6 +51,12 @@ std::vector<dvec3> d3(const std::vector<glm::vec4>& v) {
     return out;
 }
 double vec_error(const glm::vec4& got, const dvec3& want) { return glm::length(d3(got) - want); }
+
+std::uint32_t flags_of(const glm::vec4& d) {
+    std::uint32_t f;
+    std::memcpy(&f, &d.w, sizeof f);
+    return f;
+}
 
 struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& pbf = "") : SphRig(scene_json(pbf), "pbf_test") {}
@@ -170,16 +177,47 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     return s;
 }
 
+// The fluid neighbours the GPU's passes after the first λ pass visit (neighbours.glsl, docs/PBF.md
+// "A step"): a particle whose neighbour masks are complete (the first pass's flag kMasksComplete)
+// visits the set N found on x*; the others walk the cells around their sorted cell, that of x*, and
+// take the particles within h at the pass's positions.
+pb::Regather gpu_rule(const Rig& rig, const std::vector<glm::vec4>& xstar, const std::vector<glm::vec4>& density1) {
+    const ranryu::sim::GridLayout& g = rig.fluid.grid().layout();
+    const std::size_t N = xstar.size();
+    std::vector<glm::ivec3> cell(N);
+    std::vector<bool> masked(N);
+    for (std::size_t i = 0; i < N; ++i) {
+        const glm::ivec3 c(glm::floor((glm::vec3(xstar[i]) - g.origin) / g.cell));   // grid.glsl's grid_cell, in float
+        cell[i] = glm::clamp(c, glm::ivec3(0), glm::ivec3(g.dims) - 1);
+        masked[i] = (flags_of(density1[i]) & 1u) != 0u;
+    }
+    const double h = 2.0 * double(rig.scene.spacing);
+    return [cell, masked, h](const std::vector<dvec3>& x, const pb::Neighbours& fixed) {
+        pb::Neighbours n(x.size());
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            if (masked[i]) {
+                n[i] = fixed[i];
+                continue;
+            }
+            for (std::size_t j = 0; j < x.size(); ++j) {
+                const glm::ivec3 d = glm::abs(cell[i] - cell[j]);
+                if (j == i || (d.x <= 1 && d.y <= 1 && d.z <= 1 && glm::length(x[i] - x[j]) < h)) n[i].push_back(std::uint32_t(j));
+            }
+        }
+        return n;
+    };
+}
+
 // (P2)-(P4) at positions x with the GPU's density and lambda: returns how many particles were
 // compressed (C > 0). `rho_in` are the GPU's densities.
-int check_lambda(const std::vector<dvec3>& x, const pb::Neighbours& n, const std::vector<dvec3>& xb, const std::vector<double>& psi,
+int check_lambda(const char* what, const std::vector<dvec3>& x, const pb::Neighbours& n, const std::vector<dvec3>& xb, const std::vector<double>& psi,
                  const ref::Params& p, const pb::Settings& set, const std::vector<glm::vec4>& density, const std::vector<double>& lambda) {
     const pb::Lambdas want = pb::lambdas(x, n, xb, psi, p, set);
     const Magnitudes m = magnitudes(x, n, xb, psi, p);
     const double rho2 = p.rest_density * p.rest_density;
     int compressed = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        INFO("particle " << i << " at " << x[i].x << " " << x[i].y << " " << x[i].z);
+        INFO(what << ", particle " << i << " at " << x[i].x << " " << x[i].y << " " << x[i].z << ", flags " << flags_of(density[i]));
         const double terms = double(m.terms[i]) + 1.0 + kC;
         // (P2): a sum of positive terms, ρ itself their magnitude.
         const double e_rho = terms * kU * want.density[i];
@@ -200,14 +238,14 @@ int check_lambda(const std::vector<dvec3>& x, const pb::Neighbours& n, const std
 }
 
 // (P5), (P6): x_next = x + Δx(x, λ) with the GPU's λ; returns the largest bound used.
-double check_correction(const std::vector<dvec3>& x, const std::vector<glm::vec4>& x_next, const std::vector<double>& lambda,
+double check_correction(const char* what, const std::vector<dvec3>& x, const std::vector<glm::vec4>& x_next, const std::vector<double>& lambda,
                         const pb::Neighbours& n, const std::vector<dvec3>& xb, const std::vector<double>& psi, const ref::Params& p,
                         const pb::Settings& set) {
     const std::vector<dvec3> dx = pb::corrections(x, lambda, n, xb, psi, p, set);
     const ref::CubicKernel k{p.h};
     double largest = 0.0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        INFO("particle " << i);
+        INFO(what << ", particle " << i);
         // Σ m(|λ_i| + |λ_j| + |s_corr|)|∇W|/ρ0 + Σ psi|λ_i||∇W|/ρ0, each term c·u (pow's rounding
         // scaled by n is in c), then the addition to x.
         double size = 0.0;
@@ -259,11 +297,11 @@ TEST_CASE("pbf: the prediction, lambda and the position correction of both itera
     // The first iteration on x*, with the neighbour sets found there; the second on the moved positions
     // with the same sets.
     const std::vector<dvec3> xstar = d3(s.xstar), x1 = d3(s.x1);
-    const pb::Neighbours n = ref::neighbours(xstar, p.h);
-    const int compressed = check_lambda(xstar, n, xb, psi, p, set, s.density1, s.lambda1);
-    check_correction(xstar, s.x1, s.lambda1, n, xb, psi, p, set);
-    check_lambda(x1, n, xb, psi, p, set, s.density2, s.lambda2);
-    check_correction(x1, s.x2, s.lambda2, n, xb, psi, p, set);
+    const pb::Neighbours n = ref::neighbours(xstar, p.h), n1 = gpu_rule(rig, s.xstar, s.density1)(x1, n);
+    const int compressed = check_lambda("first iteration", xstar, n, xb, psi, p, set, s.density1, s.lambda1);
+    check_correction("first iteration", xstar, s.x1, s.lambda1, n, xb, psi, p, set);
+    check_lambda("second iteration", x1, n1, xb, psi, p, set, s.density2, s.lambda2);
+    check_correction("second iteration", x1, s.x2, s.lambda2, n1, xb, psi, p, set);
     // (P9): p = −ρ0 Σλ/dt², summed in float over the two iterations.
     for (std::size_t i = 0; i < N; ++i) {
         const double p1 = -p.rest_density * s.lambda1[i] / (dtd * dtd), p2 = p1 - p.rest_density * s.lambda2[i] / (dtd * dtd);
@@ -296,7 +334,7 @@ TEST_CASE("pbf: the step's velocities, XSPH and vorticity confinement match the 
     const double dtd = double(s.dt);
     const std::size_t N = s.start.size();
     const std::vector<dvec3> xs = d3(s.xproj), vs = d3(s.vstep);
-    const pb::Neighbours n = ref::neighbours(d3(s.xstar), p.h);
+    const pb::Neighbours n = gpu_rule(rig, s.xstar, s.density1)(xs, ref::neighbours(d3(s.xstar), p.h));
     std::vector<double> rho(N);
     for (std::size_t i = 0; i < N; ++i) rho[i] = double(s.density2[i].x);
     // (P7): v = (x − x_n)/dt, the block in mid-tank far from every wall (no projection).
@@ -374,7 +412,7 @@ TEST_CASE("pbf: one whole step matches the reference step", "[pbf]") {
     rig.boundary(xb, psi);
     // The reference from the step's start as the GPU sorted it (bit copies of the uploaded state).
     pb::State st{d3(s.start), d3(s.v0)};
-    pb::step(st, xb, psi, p, set, double(s.dt), 2);
+    pb::step(st, xb, psi, p, set, double(s.dt), 2, gpu_rule(rig, s.xstar, s.density1));
     // The bound: each iteration's correction is off by at most its stage bound e (check_correction);
     // an error δ in the positions an iteration starts from changes its correction by at most L·δ,
     // L = |∂Δx/∂x| ≤ 1 for a projection onto the constraint (a Jacobi step moves a particle no further
@@ -383,8 +421,8 @@ TEST_CASE("pbf: one whole step matches the reference step", "[pbf]") {
     // over dt, and XSPH's own (c ≤ 1 keeps the smoothing a contraction).
     const std::vector<dvec3> xstar = d3(s.xstar), x1 = d3(s.x1);
     const pb::Neighbours n = ref::neighbours(xstar, p.h);
-    const double e1 = check_correction(xstar, s.x1, s.lambda1, n, xb, psi, p, set);
-    const double e2 = check_correction(x1, s.x2, s.lambda2, n, xb, psi, p, set);
+    const double e1 = check_correction("first iteration", xstar, s.x1, s.lambda1, n, xb, psi, p, set);
+    const double e2 = check_correction("second iteration", x1, s.x2, s.lambda2, gpu_rule(rig, s.xstar, s.density1)(x1, n), xb, psi, p, set);
     const double e_x = 2.0 * (e1 + e2) + 4.0 * kU * 0.3;   // |x| ≤ 0.3 m in this tank
     double worst_x = 0.0, worst_v = 0.0;
     for (std::size_t i = 0; i < st.x.size(); ++i) {
@@ -399,13 +437,13 @@ TEST_CASE("pbf: one whole step matches the reference step", "[pbf]") {
 
 TEST_CASE("pbf: a resting column settles within the stated density deviation, in the scene's substeps", "[pbf]") {
     // A column 8 x 16 x 8 particles (0.24 x 0.48 x 0.24 m at 0.03 m) filling the floor of its tank, at
-    // the default 4 substeps and 4 iterations a frame, run 1.5 s from rest on its lattice.
+    // the default 4 substeps and 4 iterations a frame, run 2 s from rest on its lattice.
     ranryu::test::SphRig rig(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.24, 0.6, 0.24]},
         "sph": {"solver": "pbf"},
         "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.48, 0.24]}]}})",
                              "pbf_rest");
     REQUIRE(rig.fluid.count() == 1024);
-    const int frames = 90;
+    const int frames = 120;
     for (int f = 0; f < frames; ++f) rig.frame(std::uint64_t(f));
     rig.finish();
     const gpu::StepState st = rig.step();
@@ -424,18 +462,27 @@ TEST_CASE("pbf: a resting column settles within the stated density deviation, in
     const ref::Params p = ref::Params::from_spacing(double(sp.spacing), double(sp.rest_density), 0.0, 0.0, dvec3(glm::vec3(sp.gravity)));
     // The densities of the final positions, computed independently of the GPU's (docs/SPH.md (2)).
     const std::vector<double> rho = ref::densities(x, xb, psi, p);
-    double mean = 0.0, worst = 0.0, speed = 0.0;
+    double mean = 0.0, worst = 0.0, fastest = 0.0, mean_speed = 0.0;
     for (std::size_t i = 0; i < x.size(); ++i) {
         const double e = std::max(rho[i] / p.rest_density - 1.0, 0.0);
         mean += e / double(x.size());
         worst = std::max(worst, e);
-        speed = std::max(speed, double(glm::length(glm::vec3(vg[i]))));
+        const double speed = double(glm::length(glm::vec3(vg[i])));
+        fastest = std::max(fastest, speed);
+        mean_speed += speed / double(x.size());
     }
-    INFO("mean compression " << mean << ", largest " << worst << ", fastest particle " << speed << " m/s");
-    // The bounds (docs/PBF.md "Accuracy"): PBF's Jacobi iterations leave the column compressed where a
-    // fixed number of them cannot carry the weight down 16 layers; measured 
-    CHECK(mean <= 0.02);
-    CHECK(worst <= 0.1);
-    CHECK(speed <= 0.1);
+    INFO("mean compression " << mean << ", largest " << worst << ", mean speed " << mean_speed << " m/s, fastest " << fastest << " m/s");
+    // The bounds (docs/PBF.md "Accuracy and cost"). Density: the mean compression (the sweep's
+    // mean_density_deviation) within 1 %, the density variation WCSPH is designed for (docs/SPH.md (3),
+    // c = 10 v_max), and no particle beyond 5 %; a fixed 4 Jacobi iterations a substep cannot carry the
+    // weight of 16 layers to the floor exactly, so the bottom rests compressed (measured on llvmpipe:
+    // 0.57 % mean, 2.1 % largest, steady from 0.5 s on). Settled: the mean speed within 1 % of the
+    // column's free-fall speed sqrt(2 g H) = 3.1 m/s, no particle beyond 5 % (measured at 2 s: 0.018
+    // and 0.07 m/s; XSPH's light damping leaves a slow sloshing that halves in about a second).
+    const double fall = std::sqrt(2.0 * 9.81 * 0.48);
+    CHECK(mean <= 0.01);
+    CHECK(worst <= 0.05);
+    CHECK(mean_speed <= 0.01 * fall);
+    CHECK(fastest <= 0.05 * fall);
     ranryu::test::require_no_gl_errors();
 }

@@ -105,12 +105,14 @@ std::vector<dvec3> confine_vorticity(const std::vector<dvec3>& x, const std::vec
 }
 
 StepResult step(State& state, const std::vector<dvec3>& boundary, const std::vector<double>& psi, const Params& p, const Settings& s,
-                double dt, int iterations) {
+                double dt, int iterations, const Regather& regather) {
     std::vector<dvec3> x = state.x;
     for (std::size_t i = 0; i < x.size(); ++i) x[i] += dt * (state.v[i] + dt * p.gravity);   // (P1)
-    const Neighbours n = neighbours(x, p.h);
+    const Neighbours fixed = neighbours(x, p.h);
+    auto sets = [&](int pass) { return pass == 0 || !regather ? fixed : regather(x, fixed); };
     StepResult r{std::vector<double>(x.size()), std::vector<double>(x.size(), 0.0)};
     for (int it = 0; it < iterations; ++it) {
+        const Neighbours n = sets(it);
         const Lambdas l = lambdas(x, n, boundary, psi, p, s);
         const std::vector<dvec3> dx = corrections(x, l.lambda, n, boundary, psi, p, s);
         for (std::size_t i = 0; i < x.size(); ++i) {
@@ -121,6 +123,7 @@ StepResult step(State& state, const std::vector<dvec3>& boundary, const std::vec
     }
     std::vector<dvec3> v(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - state.x[i]) / dt;   // (P7)
+    const Neighbours n = sets(iterations);
     const std::vector<dvec3> omega = vorticities(x, v, r.density, n, p);   // of the velocities before XSPH
     v = xsph(x, v, r.density, n, p, s);
     if (s.vorticity > 0.0) v = confine_vorticity(x, v, omega, r.density, n, p, s, dt);

@@ -16,6 +16,7 @@
 // (i included), evaluated at the current positions (W and ∇W vanish beyond h); the boundary
 // particles are every one, evaluated at the current positions.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -68,8 +69,13 @@ struct StepResult {
     std::vector<double> density;    // ρ_i of the last λ pass
     std::vector<double> pressure;   // (P9): −(ρ0/dt²) Σ λ_i over the iterations
 };
+// The fluid neighbours of the passes after the first λ pass, given their positions and the sets N
+// found on x*: N itself by default (Macklin & Müller's scheme); the GPU's particles without complete
+// neighbour masks find theirs again at each pass's positions, which a test replicates with this.
+using Regather = std::function<Neighbours(const std::vector<glm::dvec3>& x, const Neighbours& fixed)>;
+
 // One whole step (the header's), without the last-resort projection.
 StepResult step(State& state, const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi, const Params& p,
-                const Settings& s, double dt, int iterations);
+                const Settings& s, double dt, int iterations, const Regather& regather = {});
 
 }  // namespace ranryu::reference::pbf

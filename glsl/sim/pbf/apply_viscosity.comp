@@ -37,7 +37,7 @@ void main() {
         vi_ = pbf_velocity[i].xyz;
         smooth_ = curl_ = vec3(0.0);
         // The walls add nothing to XSPH: their flag is cleared so the walk skips them.
-        for_each_neighbour(i, x, floatBitsToUint(density[i].w) & ~kBoundaryNear);
+        for_each_neighbour_around(i, x, sorted_cell(i), floatBitsToUint(density[i].w) & ~kBoundaryNear);
         vec3 v = vi_ + pbf.xsph * smooth_;
         velocity[i] = vec4(v, 0.0);
 #ifdef RANRYU_PBF_VORTICITY

@@ -9,8 +9,10 @@
 // With RANRYU_PBF_WALK (the step's first iteration, on the positions the grid was built on) the
 // walk tests every candidate and records the flags and neighbour masks (density_walk.glsl), and the
 // non-pressure accelerations of (P1) restart as gravity in this cell order. Without it (the later
-// iterations) the neighbours are those the walk found (neighbours.glsl), at the moved positions.
-// Guard: the frame's largest rho/rho0.
+// iterations) the fluid neighbours are those the walk found (neighbours.glsl), at the moved positions,
+// and the boundary particles are those around the particle's sorted cell (walk_flags, pbf.glsl).
+// Guard: the frame's largest rho/rho0. The walk also counts the step's iterations into StepState
+// (iterations.x summed over the frame, .z the most in one step), as an iterative solver's record.
 #include "pbf.glsl"
 
 layout(local_size_x = 128) in;
@@ -57,11 +59,15 @@ void main() {
         uint flags = walk_neighbours(i, xi, count);
         float p = 0.0;
         accel[i] = vec4(sph.gravity.xyz, 0.0);
+        if (i == 0u) {   // one invocation: nothing else writes these this pass
+            step.iterations.x += pbf.iterations;
+            step.iterations.z = max(step.iterations.z, pbf.iterations);
+        }
 #else
         vec4 last = density[i];
         uint flags = floatBitsToUint(last.w);
         sum_w_ = sph.mass * kernel_w(0.0, sph.h);
-        for_each_neighbour(i, xi, flags);
+        for_each_neighbour_around(i, xi, sorted_cell(i), walk_flags(i, flags));
         float p = last.y;
 #endif
         float rho = sum_w_;

@@ -31,7 +31,7 @@ void main() {
         vec4 omega = vorticity[i];
         size_i_ = omega.w;
         eta_ = vec3(0.0);
-        for_each_neighbour(i, x, floatBitsToUint(density[i].w) & ~kBoundaryNear);
+        for_each_neighbour_around(i, x, sorted_cell(i), floatBitsToUint(density[i].w) & ~kBoundaryNear);
         float n = length(eta_);
         vec3 v = velocity[i].xyz;
         if (n > 0.0) v += step.dt * pbf.vorticity * cross(eta_ / n, omega.xyz);

@@ -4,7 +4,8 @@
 //     dx_i = (1/rho0) [Σ_j m (lambda_i + lambda_j + s_corr(|x_ij|)) ∇W_ij + Σ_b psi_b lambda_i ∇W_ib],
 //     s_corr(r) = −k dx² (W(r) / W(|dq|))^n,
 // so the new positions go to the fluid's other buffer (NextPositions); the Pbf swaps them after.
-// The neighbours are those of the step's first lambda pass.
+// The fluid neighbours are those of the step's first lambda pass, the boundary particles those around
+// the particle's sorted cell (walk_flags, pbf.glsl).
 #include "pbf.glsl"
 
 layout(local_size_x = 128) in;
@@ -30,6 +31,6 @@ void main() {
     vec4 x = position[i];
     lambda_i_ = lambda[i];
     fluid_ = wall_ = vec3(0.0);
-    for_each_neighbour(i, x.xyz, floatBitsToUint(density[i].w));
+    for_each_neighbour_around(i, x.xyz, sorted_cell(i), walk_flags(i, floatBitsToUint(density[i].w)));
     next_position[i] = vec4(x.xyz + (sph.mass * fluid_ + lambda_i_ * wall_) / sph.rest_density, x.w);
 }
