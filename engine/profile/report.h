@@ -23,7 +23,7 @@ struct RunInfo {
     int width = 0, height = 0;
     int frames = 0;         // frames timed (after warm-up)
     int warmup = 0;
-    int substeps = 0;       // per frame; 0: adaptive (SPH: the substeps are chosen on the GPU)
+    int substeps = 0;       // per frame; 0: adaptive (SPH but PBF: the substeps are chosen on the GPU)
     double frame_dt = 0.0;  // simulated seconds per frame
 };
 

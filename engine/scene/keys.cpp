@@ -143,7 +143,7 @@ std::vector<Key> make_keys() {
                "PBF: the constraint's relaxation ε of (P4), in units of 1/Δx² (a full neighbourhood's Σ|∇C|² is about 0.42/Δx²)."),
         number("sph.pbf.s_corr_k", "", h.pbf.s_corr_k, 0.0, 10.0, "PBF: k of the tensile-instability term s_corr (P5); 0: none."),
         integer("sph.pbf.s_corr_n", "", h.pbf.s_corr_n, 1, 16, "PBF: the exponent n of s_corr (P5)."),
-        number("sph.pbf.s_corr_dq", "h", h.pbf.s_corr_dq, 0.01, 0.99, "PBF: |Δq| of s_corr (P5), in units of h."),
+        number("sph.pbf.s_corr_dq", "h", h.pbf.s_corr_dq, 0.01, 0.99, "PBF: the distance Δq at which s_corr (P5) is k, in units of h."),
         number("sph.pbf.xsph", "", h.pbf.xsph, 0.0, 1.0, "PBF: the XSPH viscosity's c (P7); 0: none (`sph.viscosity` is not PBF's)."),
         number("sph.pbf.vorticity", "m/s", h.pbf.vorticity, 0.0, 100.0, "PBF: the vorticity confinement's ε (P8); 0: off."),
 

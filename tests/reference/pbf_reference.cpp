@@ -40,7 +40,7 @@ Lambdas lambdas(const std::vector<dvec3>& x, const Neighbours& n, const std::vec
         const double sum = (glm::dot(grad, grad) + squares) / (p.rest_density * p.rest_density);   // (P4)
         out.density[i] = rho;
         out.gradient_squares[i] = sum;
-        out.lambda[i] = -c / (sum + s.epsilon);
+        out.lambda[i] = c > 0.0 ? -c / (sum + s.epsilon) : 0.0;
     }
     return out;
 }

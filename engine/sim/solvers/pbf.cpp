@@ -93,7 +93,7 @@ void Pbf::step(Fluid& fluid, StepHooks& hooks) {
     predict(fluid);
     fluid.rebuild_grid();
     for (int k = 0; k < iterations(); ++k) {
-        compute_lambda(fluid, k == 0);
+        compute_lambda(fluid, k == 0, k == iterations() - 1);
         if (k == 0) {
             hooks.after_density(fluid);
             hooks.add_accelerations(fluid);
@@ -110,9 +110,11 @@ void Pbf::predict(Fluid& fluid) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void Pbf::compute_lambda(Fluid& fluid, bool first) {
+void Pbf::compute_lambda(Fluid& fluid, bool first, bool last) {
     auto pass = timer_.scope(lambda_pass_);
-    (first ? lambda_walk_ : lambda_program_).bind(state(fluid)).dispatch(fluid.count());
+    const shader::Program& program = first ? lambda_walk_ : lambda_program_;
+    glProgramUniform1ui(program.id(), RANRYU_LOC_AUX, last ? 1u : 0u);
+    program.bind(state(fluid)).dispatch(fluid.count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (first) fluid.set_neighbour_masks_current(true);
 }

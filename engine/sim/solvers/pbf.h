@@ -37,7 +37,9 @@ public:
     // A step's stages, public for tests that compare each with the CPU reference; step() runs them in
     // this order, the hooks after the first compute_lambda().
     void predict(Fluid& fluid);                          // "pbf.predict"
-    void compute_lambda(Fluid& fluid, bool first);       // "pbf.lambda"; `first`: the walk that records the masks
+    // "pbf.lambda"; `first`: the walk that records the masks; `last`: the iteration whose densities the
+    // guard records.
+    void compute_lambda(Fluid& fluid, bool first, bool last);
     void correct_positions(Fluid& fluid);                // "pbf.correct", then the swap
     void update_velocities(Fluid& fluid);                // "pbf.velocity"
     void apply_viscosity(Fluid& fluid);                  // "pbf.viscosity" and, when on, "pbf.vorticity"

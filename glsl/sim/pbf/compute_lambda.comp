@@ -11,11 +11,14 @@
 // non-pressure accelerations of (P1) restart as gravity in this cell order. Without it (the later
 // iterations) the fluid neighbours are those the walk found (neighbours.glsl), at the moved positions,
 // and the boundary particles are those around the particle's sorted cell (walk_flags, pbf.glsl).
-// Guard: the frame's largest rho/rho0. The walk also counts the step's iterations into StepState
+// Guard: the frame's largest rho/rho0, in the step's last iteration only (`last`): the densities the
+// last correction starts from, not those of the prediction (P1), which a fast flow compresses far more
+// before the iterations undo it. The walk also counts the step's iterations into StepState
 // (iterations.x summed over the frame, .z the most in one step), as an iterative solver's record.
 #include "pbf.glsl"
 
 layout(local_size_x = 128) in;
+layout(location = RANRYU_LOC_AUX) uniform uint last;   // 1 in the step's last iteration
 layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) writeonly buffer Lambda { float lambda[]; };
 #ifdef RANRYU_PBF_WALK
@@ -74,11 +77,13 @@ void main() {
         ratio = rho / sph.rest_density;
         float c = max(ratio - 1.0, 0.0);
         float s = (dot(grad_, grad_) + squares_) / (sph.rest_density * sph.rest_density);
-        float l = -c / (s + pbf.epsilon);
+        float l = c > 0.0 ? -c / (s + pbf.epsilon) : 0.0;   // C = 0 with no neighbours (S = 0) and epsilon = 0: 0, not 0/0
         p -= sph.rest_density * l / (step.dt * step.dt);
         density[i] = vec4(rho, p, l, uintBitsToFloat(flags));
         lambda[i] = l;
     }
-    uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
-    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) step.density_index = m.y;
+    if (last != 0u) {   // dynamically uniform: workgroup_max()'s barriers are met by every invocation
+        uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
+        if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) step.density_index = m.y;
+    }
 }
