@@ -9,6 +9,7 @@
 // (N + c)·u·Σ|t_k| (Higham 2002 §4.2, first order), c = 16 for a kernel value or gradient times a
 // few products. Each check names the sum it bounds.
 #include "support/gl_fixture.h"
+#include "support/reference_compare.h"
 #include "support/sph_rig.h"
 
 #include <algorithm>
@@ -33,8 +34,11 @@ namespace pb = ranryu::reference::pbf;
 namespace gpu = ranryu::gpu;
 using glm::dvec3;
 
-constexpr double kU = std::numeric_limits<float>::epsilon() / 2.0;
-constexpr double kC = 16.0;   // relative error of one term, in units of u (see the header)
+using ranryu::test::d3;
+using ranryu::test::flags_of;
+using ranryu::test::kC;   // relative error of one term, in units of u (see the header)
+using ranryu::test::kU;
+using ranryu::test::vec_error;
 
 // 512 fluid particles (an 8x8x8 block at spacing 0.03 m) in a cubic tank of side 0.3 m, PBF with two
 // iterations a step and a strong XSPH (so its sum is well above rounding); `pbf` adds keys to "sph.pbf".
@@ -44,19 +48,6 @@ std::string scene_json(const std::string& pbf = "") {
                "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
 }
 
-dvec3 d3(const glm::vec4& v) { return dvec3(glm::vec3(v)); }
-std::vector<dvec3> d3(const std::vector<glm::vec4>& v) {
-    std::vector<dvec3> out(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) out[i] = d3(v[i]);
-    return out;
-}
-double vec_error(const glm::vec4& got, const dvec3& want) { return glm::length(d3(got) - want); }
-
-std::uint32_t flags_of(const glm::vec4& d) {
-    std::uint32_t f;
-    std::memcpy(&f, &d.w, sizeof f);
-    return f;
-}
 
 struct Rig : ranryu::test::SphRig {
     explicit Rig(const std::string& pbf = "") : SphRig(scene_json(pbf), "pbf_test") {}
@@ -68,13 +59,6 @@ struct Rig : ranryu::test::SphRig {
     pb::Settings settings() const {
         const ranryu::scene::PbfSettings& s = scene.sph.pbf;
         return pb::Settings::from_keys(params(), s.relaxation, s.s_corr_k, s.s_corr_n, s.s_corr_dq, s.xsph, s.vorticity);
-    }
-    void boundary(std::vector<dvec3>& xb, std::vector<double>& psi) const {
-        xb.clear(), psi.clear();
-        for (const glm::vec4& b : fluid.boundary().read<glm::vec4>(fluid.boundary_count())) {
-            xb.push_back(d3(b));
-            psi.push_back(double(b.w));
-        }
     }
     std::vector<double> read_doubles(const ranryu::gl::Buffer& b) const {
         const std::vector<float> f = b.read<float>(fluid.count());
@@ -210,6 +194,17 @@ pb::Regather gpu_rule(const Rig& rig, const std::vector<glm::vec4>& xstar, const
     };
 }
 
+// One step of 2 ms on a fresh block at `corner`, a lattice of pitch `ratio`·dx jittered by ±0.15 dx,
+// velocities in ±0.5 m/s (compressed where ratio < 1, moving a sixth of a spacing a step).
+Stages random_step(ranryu::test::Random& rng, Rig& rig, glm::vec3 corner, float ratio) {
+    const float dt = 2e-3f;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, corner, ratio, 0.15f, 0.5f, dt, x, v);
+    Stages s = run_stages(rig, x, v, dt);
+    REQUIRE(double(s.dt) == Approx(double(dt)).epsilon(1e-6));
+    return s;
+}
+
 // (P2)-(P4) at positions x with the GPU's density and lambda: returns how many particles were
 // compressed (C > 0). `rho_in` are the GPU's densities.
 int check_lambda(const char* what, const std::vector<dvec3>& x, const pb::Neighbours& n, const std::vector<dvec3>& xb, const std::vector<double>& psi,
@@ -278,11 +273,7 @@ TEST_CASE("pbf: the prediction, lambda and the position correction of both itera
     const glm::vec3 corner = GENERATE(glm::vec3(0.0f), glm::vec3(0.02f, 0.03f, 0.025f));
     INFO("block at " << corner.x << " " << corner.y << " " << corner.z);
     Rig rig;
-    const float dt = 2e-3f;
-    std::vector<glm::vec4> x, v;
-    block_state(rng, rig, corner, 0.95f, 0.15f, 0.5f, dt, x, v);
-    const Stages s = run_stages(rig, x, v, dt);
-    REQUIRE(double(s.dt) == Approx(double(dt)).epsilon(1e-6));
+    const Stages s = random_step(rng, rig, corner, 0.95f);
 
     const ref::Params p = rig.params();
     const pb::Settings set = rig.settings();
@@ -331,10 +322,7 @@ TEST_CASE("pbf: the step's velocities, XSPH and vorticity confinement match the 
     const bool vorticity = GENERATE(false, true);
     INFO("vorticity confinement " << (vorticity ? "on" : "off"));
     Rig rig(vorticity ? R"("vorticity": 2.0)" : "");
-    const float dt = 2e-3f;
-    std::vector<glm::vec4> x, v;
-    block_state(rng, rig, glm::vec3(0.02f, 0.03f, 0.025f), 0.97f, 0.15f, 0.5f, dt, x, v);
-    const Stages s = run_stages(rig, x, v, dt);
+    const Stages s = random_step(rng, rig, glm::vec3(0.02f, 0.03f, 0.025f), 0.97f);
 
     const ref::Params p = rig.params();
     const pb::Settings set = rig.settings();
@@ -409,10 +397,7 @@ TEST_CASE("pbf: one whole step matches the reference step", "[pbf]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     Rig rig;
-    const float dt = 2e-3f;
-    std::vector<glm::vec4> x, v;
-    block_state(rng, rig, glm::vec3(0.02f, 0.03f, 0.025f), 0.95f, 0.15f, 0.5f, dt, x, v);
-    const Stages s = run_stages(rig, x, v, dt);
+    const Stages s = random_step(rng, rig, glm::vec3(0.02f, 0.03f, 0.025f), 0.95f);
     const ref::Params p = rig.params();
     const pb::Settings set = rig.settings();
     std::vector<dvec3> xb;
@@ -465,7 +450,7 @@ TEST_CASE("pbf: a resting column settles within the stated density deviation, in
     const std::vector<dvec3> x = d3(xg);
     std::vector<dvec3> xb;
     std::vector<double> psi;
-    for (const glm::vec4& b : rig.fluid.boundary().read<glm::vec4>(rig.fluid.boundary_count())) xb.push_back(d3(b)), psi.push_back(double(b.w));
+    rig.boundary(xb, psi);
     const gpu::SphParams& sp = rig.fluid.params();
     const ref::Params p = ref::Params::from_spacing(double(sp.spacing), double(sp.rest_density), 0.0, 0.0, dvec3(glm::vec3(sp.gravity)));
     // The densities of the final positions, computed independently of the GPU's (docs/SPH.md (2)).

@@ -48,6 +48,14 @@ struct SphRig {
         fluid.drain_records();
     }
     std::vector<glm::vec4> read(const gl::Buffer& b) const { return b.read<glm::vec4>(fluid.count()); }
+    // The boundary particles and their psi_b, as the GPU computed them.
+    void boundary(std::vector<glm::dvec3>& xb, std::vector<double>& psi) const {
+        xb.clear(), psi.clear();
+        for (const glm::vec4& b : fluid.boundary().read<glm::vec4>(fluid.boundary_count())) {
+            xb.emplace_back(glm::vec3(b));
+            psi.push_back(double(b.w));
+        }
+    }
     gpu::StepState step() const { return fluid.step_state().read<gpu::StepState>(1)[0]; }
 
 private:
