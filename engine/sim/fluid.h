@@ -128,9 +128,11 @@ public:
     void poll_records() { readback_.poll(); }   // collects what has arrived (never waits)
     void drain_records() { readback_.drain(); } // waits for every queued one (end of a run)
 
-    // ---- tests
-    // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows.
+    // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows: PBF's fixed step
+    // (docs/PBF.md (P1)), and tests that need a known dt.
     void set_fixed_dt(float dt) { fixed_dt_ = dt; }
+
+    // ---- tests
     // Replaces the fluid state (count() positions and velocities, any order); the next
     // rebuild_grid() sorts it into cell order.
     void upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v);

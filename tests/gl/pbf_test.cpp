@@ -2,7 +2,8 @@
 // reference of docs/PBF.md (tests/reference/pbf_reference.h), on fresh random states: jittered,
 // compressed lattices with random velocities, uploaded and read back after each stage. The reference
 // starts every stage from what the GPU read back, so each difference is the float rounding of the
-// stage under test.
+// stage under test; one whole step is also compared from its start. Last, a resting column run two
+// seconds at the defaults must settle within stated density and speed bounds.
 //
 // Tolerances, as in dfsph_test.cpp: the GPU works in float (unit roundoff u = 2^-24), the reference
 // in double. A sum of N terms t_k, each computed with relative error at most c·u, is off by at most
