@@ -42,16 +42,18 @@ using ranryu::test::kU;
 using ranryu::test::vec_error;
 
 // 512 fluid particles (an 8x8x8 block at spacing 0.03 m) in a cubic tank of side 0.3 m, PBF with two
-// iterations a step and a strong XSPH (so its sum is well above rounding); `pbf` adds keys to "sph.pbf".
-std::string scene_json(const std::string& pbf = "") {
+// iterations a step and a strong XSPH (so its sum is well above rounding); `pbf` adds keys to "sph.pbf",
+// `sph` to "sph".
+std::string scene_json(const std::string& pbf = "", const std::string& sph = "") {
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
-               "sph": {"solver": "pbf", "pbf": {"substeps": 4, "iterations": 2, "xsph": 0.1)" + (pbf.empty() ? "" : ", " + pbf) + R"(}},
+               "sph": {"solver": "pbf", )" + (sph.empty() ? "" : sph + ", ") + R"("pbf": {"substeps": 4, "iterations": 2, "xsph": 0.1)" +
+           (pbf.empty() ? "" : ", " + pbf) + R"(}},
                "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
 }
 
 
 struct Rig : ranryu::test::SphRig {
-    explicit Rig(const std::string& pbf = "") : SphRig(scene_json(pbf), "pbf_test") {}
+    explicit Rig(const std::string& pbf = "", const std::string& sph = "") : SphRig(scene_json(pbf, sph), "pbf_test") {}
     ref::Params params() const {
         const gpu::SphParams& p = fluid.params();
         return ref::Params::from_spacing(double(p.spacing), double(p.rest_density), 0.0, double(p.viscosity),
@@ -273,7 +275,13 @@ TEST_CASE("pbf: the prediction, lambda and the position correction of both itera
     // A compressed block against the floor and two walls (boundary terms), another in mid-tank.
     const glm::vec3 corner = GENERATE(glm::vec3(0.0f), glm::vec3(0.02f, 0.03f, 0.025f));
     INFO("block at " << corner.x << " " << corner.y << " " << corner.z);
-    Rig rig;
+    // The neighbour grid's variants: with masks every particle with a complete mask keeps the first
+    // pass's set and the rest walk around their sorted cell; with Morton keys that cell comes from
+    // key_cell()'s decoding; without masks every particle walks, from its sorted cell, in every pass.
+    const std::string grid = GENERATE(std::string(), std::string(R"("neighbour_keys": "morton")"),
+                                      std::string(R"("neighbour_masks": false)"));
+    INFO("grid: " << (grid.empty() ? "linear keys, masks" : grid));
+    Rig rig("", grid);
     const Stages s = random_step(rng, rig, corner, 0.95f);
 
     const ref::Params p = rig.params();
