@@ -35,11 +35,7 @@ namespace pb = ranryu::reference::pbf;
 namespace gpu = ranryu::gpu;
 using glm::dvec3;
 
-using ranryu::test::d3;
-using ranryu::test::flags_of;
-using ranryu::test::kC;   // relative error of one term, in units of u (see the header)
-using ranryu::test::kU;
-using ranryu::test::vec_error;
+using namespace ranryu::test;   // kU, kC (see the header), d3, vec_error, flags_of: support/reference_compare.h
 
 // 512 fluid particles (an 8x8x8 block at spacing 0.03 m) in a cubic tank of side 0.3 m, PBF with two
 // iterations a step and a strong XSPH (so its sum is well above rounding); `pbf` adds keys to "sph.pbf",
