@@ -10,7 +10,7 @@
 #    GPU ms a frame (pbf.lambda, pbf.correct, ... as `ranryu profile` names them), and whether the
 #    guard fired (the impact on the far wall comes at t = 0.4 s: frame 24, within the default frames).
 # 2. Every bundled SPH scene for 10 simulated seconds at about 250k particles with pbf at
-#    PBF_SCENE_VARIANT (10x8, what the rule asks at 250k; each a copy of media/scenes/SCENE.json with
+#    PBF_SCENE_VARIANT (10x8, what the rule asks at 250k; each a copy of the bundled scene with
 #    "sph.pbf" set and the spacing that fills its blocks with 250k particles), the guard watching:
 #    no guard may fire. RUN_TIMEOUT bounds each run (560 s).
 # Reports go to $OUT (or ./bench-out); $OUT/pbf-summary.txt holds the tables. For a look on a small
