@@ -146,7 +146,7 @@ Options parse(const std::vector<std::string>& args) {
                 throw InputError("--spacing " + value + ": expected a particle spacing in metres in [0.0001, 1]");
             o.spacing = dx;
         } else if (opt == "--solver") {
-            if (value != "dfsph" && value != "wcsph") throw InputError("--solver " + value + ": expected dfsph or wcsph");
+            if (value != "dfsph" && value != "wcsph" && value != "pbf") throw InputError("--solver " + value + ": expected dfsph, wcsph or pbf");
             o.solver = value;
         } else if (opt == "--out") o.out = value;
         else if (opt == "--force") o.force = true;
@@ -171,12 +171,12 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--cases" || opt == "--solvers") {
             std::vector<std::string>& names = opt == "--cases" ? o.cases : o.solvers;
             const std::set<std::string> known = opt == "--cases" ? std::set<std::string>{"dam-break", "hydrostatic", "standing-wave"}
-                                                                 : std::set<std::string>{"dfsph", "wcsph"};
+                                                                 : std::set<std::string>{"dfsph", "wcsph", "pbf"};
             names = split_list(opt, value);
             for (const std::string& n : names)
                 if (!known.count(n))
                     throw InputError(opt + " " + value + ": unknown " + (opt == "--cases" ? "case \"" : "solver \"") + n + "\" (" +
-                                     (opt == "--cases" ? "dam-break, hydrostatic, standing-wave" : "dfsph, wcsph") + ")");
+                                     (opt == "--cases" ? "dam-break, hydrostatic, standing-wave" : "dfsph, wcsph, pbf") + ")");
         } else if (opt == "--spacings" || opt == "--factors") {
             std::vector<float>& numbers = opt == "--spacings" ? o.spacings : o.factors;
             numbers.clear();
@@ -242,8 +242,8 @@ exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output f
 std::string command_help(const std::string& cmd) {
     const std::string common = R"(  --scene NAME|FILE   bundled scene name or path to a scene .json (default dam-break)
   --spacing DX        particle spacing in metres: the scene at another resolution
-  --solver NAME       dfsph | wcsph: the SPH pressure solver (default: the scene's, dfsph unless it
-                      says otherwise; docs/DFSPH.md, docs/SPH.md)
+  --solver NAME       dfsph | wcsph | pbf: the SPH pressure solver (default: the scene's, dfsph unless
+                      it says otherwise; docs/DFSPH.md, docs/SPH.md, docs/PBF.md)
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
   --shading MODE      phong | gouraud | fresnel | particles: how the liquid is drawn (default:
                       fresnel for SPH scenes, particles for ballistic ones; the surface modes mesh
@@ -268,7 +268,7 @@ std::string command_help(const std::string& cmd) {
                         FRAME wheel N             N notches of the wheel (zoom)
                         FRAME panel ACTION [ARG]  the panel's widgets: pause on|off, step, reset,
                                                   screenshot, quit, panel on|off, shading MODE,
-                                                  scene NAME, solver dfsph|wcsph,
+                                                  scene NAME, solver dfsph|wcsph|pbf,
                                                   turbulence on|off, amplitude A (1/m),
                                                   viscosity NU (m^2/s), cfl C
                       a mistake is reported as FILE:LINE (exit 2); the script does not end the run:
@@ -327,7 +327,7 @@ Run a case headless and print the simulation next to its reference, with the err
   --scene FILE        the case's scene from a file instead of the bundled one of its name (to vary
                       its settings, e.g. "sph": {"boundary_viscosity": 1e-3} for no-slip walls)
   --spacing DX        particle spacing in metres (default: the scene's)
-  --solver NAME       dfsph | wcsph (default: the scene's)
+  --solver NAME       dfsph | wcsph | pbf (default: the scene's)
   --json FILE         also write the series and errors as JSON
   --quiet             no progress line on stderr
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
@@ -348,11 +348,13 @@ Charts: scripts/sweep-charts.py DIR --out CHARTS (accuracy against cost, and the
   --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and
                       0.025 m, factors 1 and 10 (wcsph at 10 goes unstable): a first look in a minute
   --cases LIST        dam-break,hydrostatic,standing-wave (default all three)
-  --solvers LIST      dfsph,wcsph (default both)
+  --solvers LIST      dfsph,wcsph,pbf (default all three; --quick: dfsph,wcsph)
   --spacings LIST     spacings in metres (default: each case's own spacing and half of it)
   --factors LIST      time-step factors: each multiplies every bound on the step, the Courant number
                       sph.cfl, the force condition's sph.force_factor and the largest step
-                      sph.max_time_step (docs/SPH.md (7), docs/DFSPH.md (D8)); default 0.5,1,1.5,2
+                      sph.max_time_step (docs/SPH.md (7), docs/DFSPH.md (D8)); for pbf, whose step
+                      is fixed, the substeps a frame are divided by it (docs/SWEEP.md); default
+                      0.5,1,1.5,2
   --shard I/N         run only rows k with k mod N = I - 1 (k counts from 0 in the order --list
                       prints): one shard a job of a Slurm array or GNU parallel, each with its own --out
   --list              print the rows (and which are done) without running any

@@ -12,7 +12,7 @@ struct Options {
     std::string command;          // run | record | profile | scenes | validate | export-field | help | version
     std::string case_name;        // validate: dam-break | hydrostatic
     std::optional<float> spacing; // particle spacing (m): the scene at another resolution
-    std::string solver;           // run/record/profile/validate: dfsph | wcsph; empty: the scene's
+    std::string solver;           // run/record/profile/validate: dfsph | wcsph | pbf; empty: the scene's
     bool help = false;            // COMMAND --help
 
     std::string scene = "dam-break";

@@ -68,7 +68,8 @@ profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int
     info.height = p.target().height();
     info.frames = frames;
     info.warmup = warmup;
-    info.substeps = p.scene().model == scene::Model::sph ? 0 : p.scene().substeps();
+    const scene::Scene& s = p.scene();
+    info.substeps = s.model != scene::Model::sph ? s.substeps() : s.sph.solver == scene::Solver::pbf ? s.sph.pbf.substeps : 0;
     info.frame_dt = p.scene().frame_dt;
     return info;
 }

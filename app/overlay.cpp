@@ -17,7 +17,7 @@ namespace {
 constexpr render::Shading kShadings[] = {render::Shading::fresnel, render::Shading::phong, render::Shading::gouraud,
                                          render::Shading::particles};
 constexpr const char* kShadingNames[] = {"fresnel", "phong", "gouraud", "particles"};
-constexpr const char* kSolverNames[] = {"dfsph", "wcsph"};
+constexpr const char* kSolverNames[] = {"dfsph", "wcsph", "pbf"};   // scene::Solver's order
 }  // namespace
 
 Overlay::Overlay(GLFWwindow* window) {
@@ -119,9 +119,9 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         }, &scenes_, int(scenes_.size())))
         push({.kind = input::Kind::scene, .index = scene_index});
     if (sim) {
-        int solver = scene.sph.solver == scene::Solver::dfsph ? 0 : 1;
+        int solver = int(scene.sph.solver);
         if (ImGui::Combo("solver", &solver, kSolverNames, IM_ARRAYSIZE(kSolverNames)))
-            push({.kind = input::Kind::solver, .solver = solver == 0 ? scene::Solver::dfsph : scene::Solver::wcsph});
+            push({.kind = input::Kind::solver, .solver = scene::Solver(solver)});
         // Live: they act from the next frame on, without a restart.
         float nu = st.viscosity, cfl = st.cfl, amplitude = st.amplitude;
         bool turbulence = st.turbulence;

@@ -2,6 +2,7 @@
 // time-step factor, one row a run, for the speed/accuracy chart and the stability map
 // (scripts/sweep-charts.py). Rows are written after every run and a second invocation skips the
 // rows its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -42,9 +43,10 @@ std::vector<Row> grid(const Options& o) {
         if (cases.empty()) cases = {"dam-break", "hydrostatic"};
         if (spacings.empty()) spacings = {0.04f, 0.025f};
         if (factors.empty()) factors = {1.0f, 10.0f};   // WCSPH at 10 leaves the tank within a frame
+        if (solvers.empty()) solvers = {"dfsph", "wcsph"};
     }
     if (cases.empty()) cases = {"dam-break", "hydrostatic", "standing-wave"};
-    if (solvers.empty()) solvers = {"dfsph", "wcsph"};
+    if (solvers.empty()) solvers = {"dfsph", "wcsph", "pbf"};
     if (factors.empty()) factors = {0.5f, 1.0f, 1.5f, 2.0f};
     std::vector<Row> rows;
     for (const std::string& c : cases) {
@@ -128,8 +130,13 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
     scene.sph.cfl *= row.factor;             // every bound on the step scales (the frame's length stays one)
     scene.sph.force_factor *= row.factor;
     scene.sph.max_time_step *= row.factor;
+    // PBF's step is fixed, frame_dt / substeps (docs/PBF.md (P1)): the factor multiplies it, so the
+    // substeps a frame are divided by it (at least one), and the iterations a substep stay.
+    scene::PbfSettings& pbf = scene.sph.pbf;
+    pbf.substeps = std::max(1, int(std::lround(double(pbf.substeps) / double(row.factor))));
     nlohmann::json j = {{"key", row.key()}, {"case", row.case_name}, {"solver", row.solver}, {"spacing", row.spacing},
                         {"factor", row.factor}, {"cfl", scene.sph.cfl}, {"force_factor", scene.sph.force_factor}, {"max_time_step", scene.sph.max_time_step}, {"device", device}, {"date", profile::utc_now_iso8601()}};
+    if (scene.sph.solver == scene::Solver::pbf) j.update({{"pbf_substeps", pbf.substeps}, {"pbf_iterations", pbf.iterations}});
     frame::Progress progress = make_progress(o, "ranryu sweep " + row.key());
     try {
         if (row.case_name == "dam-break") {

@@ -5,8 +5,6 @@
 #include "core/error.h"
 #include "gl/faults.h"
 #include "sim/fluid.h"
-#include "sim/solvers/dfsph.h"
-#include "sim/solvers/wcsph.h"
 #include "turbulence/force.h"
 
 namespace ranryu::frame {
@@ -43,7 +41,7 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
         e.parts.push_back({"particles, boundary, grid and sort", sim::Fluid::bytes_for(s, n, e.boundary)});
         e.transient = sim::Fluid::transient_bytes(e.boundary);
         e.parts.push_back({std::string("solver ") + scene::solver_name(s.sph.solver),
-                           s.sph.solver == scene::Solver::dfsph ? sim::Dfsph::bytes_for(n, e.boundary, s.sph.boundary_rows) : sim::Wcsph::bytes_for(n)});
+                           sim::solver_bytes(s, n)});
         if (s.turbulence.enabled()) e.parts.push_back({"turbulence", turbulence::TurbulenceForce::bytes_for(n)});
         if (s.turbulence.subparticles.enabled())
             e.parts.push_back({"sub-particles", turbulence::Subparticles::bytes_for(s.turbulence.subparticles, n)});
@@ -105,8 +103,10 @@ std::vector<SkippedStage> Pipeline::skipped_stages() const {
     if (!sph_) {
         out.push_back({"hash, sort.*, reorder, the pressure solver's passes", "the scene uses the ballistic model, no SPH"});
     } else {
-        if (scene_.sph.solver == scene::Solver::dfsph) out.push_back({"density, forces, integrate: WCSPH's", "the solver is dfsph"});
-        else out.push_back({"dfsph.*", "the solver is wcsph"});
+        const std::string solver = std::string("the solver is ") + scene::solver_name(scene_.sph.solver);
+        if (scene_.sph.solver != scene::Solver::wcsph) out.push_back({"density, forces, integrate: WCSPH's", solver});
+        if (scene_.sph.solver != scene::Solver::dfsph) out.push_back({"dfsph.*", solver});
+        if (scene_.sph.solver != scene::Solver::pbf) out.push_back({"pbf.*", solver});
         if (scene_.sph.sort == "radix") out.push_back({"sort.bitonic_local, sort.bitonic_global", "sph.sort is radix"});
         else out.push_back({"sort.count, sort.scan, sort.scatter", "sph.sort is bitonic"});
         if (!sph_->turbulence()) out.push_back({"wavelet, turbulence-force", "turbulence.amplitude is 0"});

@@ -70,8 +70,8 @@ Command panel(const std::vector<std::string>& w) {
                             (a == "viscosity" ? "m^2/s in [0, 10]" : a == "cfl" ? "a Courant number in [0.01, 1]" : "1/m in (0, 10000]")};
     } else if (a == "solver") {
         arity(w, 4, "panel solver NAME");
-        if (w[3] != "dfsph" && w[3] != "wcsph") throw LineError{"panel solver " + w[3] + ": expected dfsph or wcsph"};
-        c.kind = Kind::solver, c.solver = w[3] == "dfsph" ? scene::Solver::dfsph : scene::Solver::wcsph;
+        if (w[3] != "dfsph" && w[3] != "wcsph" && w[3] != "pbf") throw LineError{"panel solver " + w[3] + ": expected dfsph, wcsph or pbf"};
+        c.kind = Kind::solver, c.solver = scene::parse_solver(w[3], "panel solver");
     } else {
         throw LineError{"panel " + a + ": no such action (pause, step, reset, screenshot, quit, panel, shading, scene, solver, "
                         "turbulence, amplitude, viscosity, cfl)"};

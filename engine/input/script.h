@@ -7,7 +7,7 @@
 //     FRAME drag DX DY          a mouse drag of (DX, DY) pixels on the picture (orbits the camera)
 //     FRAME wheel N             N notches of the mouse wheel (zoom)
 //     FRAME panel ACTION [ARG]  a widget of the panel: pause on|off, step, reset, screenshot, quit,
-//                               panel on|off, shading MODE, scene NAME, solver dfsph|wcsph,
+//                               panel on|off, shading MODE, scene NAME, solver dfsph|wcsph|pbf,
 //                               turbulence on|off, amplitude A, viscosity NU, cfl C
 //
 // FRAME is the number of the frame (from 0, counted over the whole run, restarts included) before

@@ -135,6 +135,9 @@ std::string table(const Report& r) {
                           s->divergence_iterations, s->most_divergence_iterations,
                           static_cast<unsigned long long>(s->unconverged_divergence), 100.0 * s->divergence_error);
             out << line;
+        } else if (s->solver == "pbf") {
+            std::snprintf(line, sizeof line, "  position solve: %.2f iterations/step (fixed, sph.pbf.iterations)\n", s->iterations);
+            out << line;
         }
     }
     std::snprintf(line, sizeof line, "%.1f fps and real-time factor %.3f by the GPU's frame spans", r.fps_gpu(),

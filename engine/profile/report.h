@@ -23,7 +23,7 @@ struct RunInfo {
     int width = 0, height = 0;
     int frames = 0;         // frames timed (after warm-up)
     int warmup = 0;
-    int substeps = 0;       // per frame; 0: adaptive (SPH: the substeps are chosen on the GPU)
+    int substeps = 0;       // per frame; 0: adaptive (SPH but PBF: the substeps are chosen on the GPU)
     double frame_dt = 0.0;  // simulated seconds per frame
 };
 
@@ -37,7 +37,7 @@ struct PassRow {
 
 // What an SPH simulation did over the timed frames, from the StepState records that came back.
 struct SimulationSummary {
-    std::string solver;                        // dfsph | wcsph
+    std::string solver;                        // dfsph | wcsph | pbf
     std::uint64_t frames = 0, steps = 0;
     double start_time = 0.0;                   // simulated time when the timed frames began (s)
     double simulated_seconds = 0.0;            // over those frames

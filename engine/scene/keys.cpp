@@ -104,8 +104,8 @@ std::vector<Key> make_keys() {
 
         // SPH (docs/SPH.md, docs/DFSPH.md). New keys go at the end of this group.
         object("sph", "The SPH model's settings (`\"model\": \"sph\"`; docs/SPH.md, docs/DFSPH.md)."),
-        string("sph.solver", solver_name(h.solver), {"dfsph", "wcsph"},
-               "The pressure solver: DFSPH (docs/DFSPH.md) or WCSPH (docs/SPH.md (3)); `--solver` overrides it."),
+        string("sph.solver", solver_name(h.solver), {"dfsph", "wcsph", "pbf"},
+               "The pressure solver: DFSPH (docs/DFSPH.md), WCSPH (docs/SPH.md (3)) or PBF (docs/PBF.md); `--solver` overrides it."),
         number("sph.rest_density", "kg/m³", h.rest_density, 1.0, 1e5, "Rest density ρ0."),
         number("sph.viscosity", "m²/s", h.viscosity, 0.0, 10.0, "Kinematic viscosity ν (docs/SPH.md (5))."),
         number("sph.speed_of_sound", "m/s", h.speed_of_sound, 0.0, 1e4,
@@ -138,6 +138,16 @@ std::vector<Key> make_keys() {
         number("sph.density_limit", "", h.density_limit, 1.01, 100.0, "The guard: the largest ρ/ρ0 before the run is stopped as unstable."),
         number("sph.speed_limit", "m/s", h.speed_limit, 0.0, 1e5,
                "The guard: the largest speed; 0: 5·(sqrt(2 g H_tank) + the largest initial speed)."),
+        object("sph.pbf", "PBF's settings (`\"solver\": \"pbf\"`, docs/PBF.md): a fixed number of substeps and iterations, so a frame's cost is known."),
+        integer("sph.pbf.substeps", "", h.pbf.substeps, 1, 1000, "PBF: substeps a frame, each of frame_dt / substeps (docs/PBF.md (P1))."),
+        integer("sph.pbf.iterations", "", h.pbf.iterations, 1, 1000, "PBF: constraint iterations a substep, (P3)–(P6) each."),
+        number("sph.pbf.relaxation", "1/dx²", h.pbf.relaxation, 0.0, 100.0,
+               "PBF: the constraint's relaxation ε of (P4), in units of 1/Δx² (a full neighbourhood's Σ|∇C|² is about 0.42/Δx²)."),
+        number("sph.pbf.s_corr_k", "", h.pbf.s_corr_k, 0.0, 10.0, "PBF: k of the tensile-instability term s_corr (P5); 0: none."),
+        integer("sph.pbf.s_corr_n", "", h.pbf.s_corr_n, 1, 16, "PBF: the exponent n of s_corr (P5)."),
+        number("sph.pbf.s_corr_dq", "h", h.pbf.s_corr_dq, 0.01, 0.99, "PBF: the distance Δq at which s_corr (P5) is k, in units of h."),
+        number("sph.pbf.xsph", "", h.pbf.xsph, 0.0, 1.0, "PBF: the XSPH viscosity's c (P7); 0: none (`sph.viscosity` is not PBF's)."),
+        number("sph.pbf.vorticity", "m/s", h.pbf.vorticity, 0.0, 100.0, "PBF: the vorticity confinement's ε (P8); 0: off."),
 
         object("turbulence", "The wavelet turbulence force (docs/METHOD.md §5, docs/TURBULENCE.md): off unless `amplitude` > 0."),
         number("turbulence.amplitude", "1/m", u.amplitude, 0.0, 1e4, "A: the force per unit mass is A·ê·y (engine/turbulence/force.h); 0: off."),

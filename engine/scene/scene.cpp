@@ -270,12 +270,20 @@ std::vector<glm::vec4> Scene::initial_velocities() const {
     return v;
 }
 
-const char* solver_name(Solver s) { return s == Solver::wcsph ? "wcsph" : "dfsph"; }
+const char* solver_name(Solver s) {
+    switch (s) {
+        case Solver::wcsph: return "wcsph";
+        case Solver::pbf: return "pbf";
+        case Solver::dfsph: break;
+    }
+    return "dfsph";
+}
 
 Solver parse_solver(const std::string& name, const std::string& what) {
     if (name == "dfsph") return Solver::dfsph;
     if (name == "wcsph") return Solver::wcsph;
-    throw InputError(what + " = \"" + name + "\" is not one of \"dfsph\", \"wcsph\"");
+    if (name == "pbf") return Solver::pbf;
+    throw InputError(what + " = \"" + name + "\" is not one of \"dfsph\", \"wcsph\", \"pbf\"");
 }
 
 std::vector<float> Scene::initial_pressures() const {
@@ -431,6 +439,19 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.neighbour_masks = p.boolean("neighbour_masks");
         h.density_limit = float(p.number("density_limit"));
         h.speed_limit = float(p.number("speed_limit"));
+        {
+            Reader b = p.object("pbf");
+            PbfSettings& q = h.pbf;
+            q.substeps = b.integer("substeps");
+            q.iterations = b.integer("iterations");
+            q.relaxation = float(b.number("relaxation"));
+            q.s_corr_k = float(b.number("s_corr_k"));
+            q.s_corr_n = b.integer("s_corr_n");
+            q.s_corr_dq = float(b.number("s_corr_dq"));
+            q.xsph = float(b.number("xsph"));
+            q.vorticity = float(b.number("vorticity"));
+            b.finish();
+        }
         p.finish();
     }
     {

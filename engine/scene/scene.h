@@ -30,10 +30,23 @@ struct Obstacle {
 // example, docs/METHOD.md §0) or "sph" (docs/SPH.md).
 enum class Model { ballistic, sph };
 
-// The pressure solver (sim/solver.h): DFSPH (docs/DFSPH.md) or WCSPH (docs/SPH.md (3)).
-enum class Solver { dfsph, wcsph };
+// The pressure solver (sim/solver.h): DFSPH (docs/DFSPH.md), WCSPH (docs/SPH.md (3)) or PBF (docs/PBF.md).
+enum class Solver { dfsph, wcsph, pbf };
 const char* solver_name(Solver s);
 Solver parse_solver(const std::string& name, const std::string& what);   // throws InputError naming `what`
+
+// Position Based Fluids (docs/PBF.md; Macklin & Müller 2013): a fixed number of substeps a frame and
+// of constraint iterations a substep, so a frame's cost is known before it runs.
+struct PbfSettings {
+    int substeps = 4;               // a frame (dt = frame_dt / substeps)
+    int iterations = 4;             // constraint iterations a substep, (P3)-(P6) each
+    float relaxation = 0.1f;        // epsilon of (P4), in units of 1/dx^2
+    float s_corr_k = 0.1f;          // k of (P5), the tensile-instability term
+    int s_corr_n = 4;               // n of (P5)
+    float s_corr_dq = 0.2f;         // |dq| of (P5), in units of h
+    float xsph = 0.01f;             // c of (P7)
+    float vorticity = 0.0f;         // epsilon of (P8) (m/s); 0: no vorticity confinement
+};
 
 struct SphSettings {
     Solver solver = Solver::dfsph;
@@ -64,6 +77,7 @@ struct SphSettings {
     int max_substeps = 2000;        // per frame, the most the CPU will issue (a runaway bound; the guard's dt floor stops collapse)
     float density_limit = 1.5f;     // guard: rho/rho0 bound
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
+    PbfSettings pbf;
 };
 
 // Sub-particles (docs/METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches

@@ -95,6 +95,10 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     p.cfl = s.sph.cfl;
     p.force_factor = s.sph.force_factor;
     p.dt_max = std::min(s.sph.max_time_step, s.frame_dt);
+    if (s.sph.solver == scene::Solver::pbf) {   // docs/PBF.md (P1): the fixed step, no CFL or force condition
+        p.cfl = p.force_factor = 0.0f;
+        p.dt_max = s.frame_dt / float(s.sph.pbf.substeps);
+    }
     p.dt_floor = guard_limits(s).dt_floor;
     p.density_limit = s.sph.density_limit;
     p.speed_limit = guard_limits(s).speed;
@@ -312,6 +316,7 @@ void Fluid::integrate() {
 }
 
 void Fluid::set_viscosity_and_cfl(float viscosity, float cfl) {
+    if (params_.cfl == 0.0f) cfl = 0.0f;   // a fixed step (PBF, docs/PBF.md (P1)) stays fixed
     if (params_.viscosity == viscosity && params_.cfl == cfl) return;
     params_.viscosity = viscosity;
     params_.cfl = cfl;

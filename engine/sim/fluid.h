@@ -77,7 +77,8 @@ public:
     std::size_t boundary_count() const { return boundary_count_; }
     const gpu::SphParams& params() const { return params_; }
     // Live settings (run's panel): the kinematic viscosity (m^2/s) and the Courant number of the time
-    // step, written into the SphParams block between frames; every later dispatch reads them.
+    // step, written into the SphParams block between frames; every later dispatch reads them. A fixed
+    // step (cfl 0: PBF) keeps no Courant number.
     void set_viscosity_and_cfl(float viscosity, float cfl);
     const gl::Buffer& positions() const { return position_[current_]; }
     const gl::Buffer& velocities() const { return velocity_[current_]; }
@@ -127,9 +128,11 @@ public:
     void poll_records() { readback_.poll(); }   // collects what has arrived (never waits)
     void drain_records() { readback_.drain(); } // waits for every queued one (end of a run)
 
-    // ---- tests
-    // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows.
+    // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows: PBF's fixed step
+    // (docs/PBF.md (P1)), and tests that need a known dt.
     void set_fixed_dt(float dt) { fixed_dt_ = dt; }
+
+    // ---- tests
     // Replaces the fluid state (count() positions and velocities, any order); the next
     // rebuild_grid() sorts it into cell order.
     void upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v);

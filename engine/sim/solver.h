@@ -2,7 +2,8 @@
 // A pressure solver (docs/METHOD.md §2): the algorithm that advances the fluid's state (sim/fluid.h)
 // by one step. The solvers are siblings over one state, as in SPlisHSPlasH: WCSPH (docs/SPH.md) and
 // DFSPH (docs/DFSPH.md) in sim/solvers/; the turbulence, the surface and the frame loop see only the
-// state and this interface, so a solver is added without touching them.
+// state and this interface, so a solver is added without touching them. PBF (docs/PBF.md) is the
+// third: it corrects positions instead of solving for a pressure, in the same slots of the step.
 //
 // A step is, for every solver:
 //
@@ -13,6 +14,7 @@
 //     the non-pressure accelerations      into fluid.accelerations()
 //     hooks.add_accelerations(fluid)      passes that add to them (the turbulence force)
 //     the pressure and the integration    positions and velocities of the step's end
+#include <cstddef>
 #include <memory>
 #include <string_view>
 
@@ -44,5 +46,7 @@ public:
 // The scene's solver (scene.sph.solver), its programs built (start-up) and its arrays allocated for `fluid`.
 std::unique_ptr<Solver> make_solver(const shader::FileSource& shaders, profile::GpuTimer& timer,
                                     const scene::Scene& scene, Fluid& fluid);
+// Device memory the scene's solver allocates for `count` particles (frame/memory.h).
+std::size_t solver_bytes(const scene::Scene& scene, std::size_t count);
 
 }  // namespace ranryu::sim

@@ -132,7 +132,8 @@ RANRYU_STRUCT(StepState) {
     uint frame;               // frame number these findings belong to
     uint steps;               // substeps since the start
     uint pad0;
-    // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH).
+    // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH; PBF,
+    // docs/PBF.md: its fixed iterations in x and z, the rest zero).
     // Solve 0 is the density solve, 1 the divergence solve.
     uvec4 iterations;         // xy: iterations this frame of solve 0, 1 (summed over its steps); zw: the most in one step
     uvec4 unconverged;        // xy: steps this frame whose solve 0, 1 stopped at the issued cap above its bound
@@ -192,6 +193,23 @@ RANRYU_STRUCT(BoundaryRowsState) {
 }
 RANRYU_STRUCT_END(BoundaryRowsState, 32)
 // ---- end DFSPH
+
+// ---- PBF (engine/sim/solvers/pbf.h, glsl/sim/pbf/; docs/PBF.md) ----
+#define RANRYU_UBO_PBF 9   // PbfParams
+
+// The PBF passes' constants (std140), written once at start, in SI units.
+RANRYU_STRUCT(PbfParams) {
+    float epsilon;        // epsilon of (P4): the constraint's relaxation (1/m^2)
+    float s_corr_scale;   // k dx^2 of (P5) (m^2)
+    float s_corr_n;       // n of (P5)
+    float inv_w_dq;       // 1 / W(|dq|) of (P5) (m^3)
+    float xsph;           // c of (P7)
+    float vorticity;      // epsilon of (P8) (m/s)
+    uint iterations;      // constraint iterations a substep
+    uint pad0;
+}
+RANRYU_STRUCT_END(PbfParams, 32)
+// ---- end PBF
 
 // Tests only: one of each member kind, to pin the layout rules both sides rely on.
 RANRYU_STRUCT(LayoutProbe) {

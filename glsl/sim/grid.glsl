@@ -19,6 +19,15 @@ uint spread_bits(uint v) {   // 10 bits -> every third of 30
     return v;
 }
 
+uint compact_bits(uint v) {   // every third of 30 -> 10 bits: spread_bits' inverse
+    v &= 0x09249249u;
+    v = (v | (v >> 2)) & 0x030C30C3u;
+    v = (v | (v >> 4)) & 0x0300F00Fu;
+    v = (v | (v >> 8)) & 0x030000FFu;
+    v = (v | (v >> 16)) & 0x3FFu;
+    return v;
+}
+
 uint cell_key(ivec3 c) {
     uvec3 u = uvec3(c);
     if (grid.morton != 0u) return spread_bits(u.x) | (spread_bits(u.y) << 1) | (spread_bits(u.z) << 2);
@@ -26,3 +35,10 @@ uint cell_key(ivec3 c) {
 }
 
 bool cell_inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(grid.dims.xyz))); }
+
+// The cell of a key: cell_key's inverse.
+ivec3 key_cell(uint key) {
+    if (grid.morton != 0u) return ivec3(compact_bits(key), compact_bits(key >> 1), compact_bits(key >> 2));
+    uint nx = grid.dims.x, ny = grid.dims.y;
+    return ivec3(key % nx, (key / nx) % ny, key / (nx * ny));
+}

@@ -19,7 +19,8 @@
 //   DfsphParams:  its 16 scalars in order                                            16 words
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               23 words
+//   PbfParams:    its 8 scalars in order                                              8 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               24 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -35,9 +36,10 @@ layout(std430) readonly buffer SubparticleStateBlock { SubparticleState subs; };
 layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsph; };
 layout(std430) readonly buffer Solve { SolveState solve; };
 layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
+layout(std140, binding = RANRYU_UBO_PBF) uniform PbfBlock { PbfParams pbf; };
 layout(std430) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[23] = uint[23](
+const uint kMacros[24] = uint[24](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
     RANRYU_UBO_SURFACE, RANRYU_UBO_NOISE,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
@@ -45,7 +47,7 @@ const uint kMacros[23] = uint[23](
     RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
     RANRYU_UBO_SUBPARTICLES, RANRYU_LOC_SUBPARTICLE_GROUP,
     RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE),
-    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE);
+    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF);
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }
@@ -94,6 +96,8 @@ void main() {
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
+    put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);
+    put(pbf.xsph); put(pbf.vorticity); put(pbf.iterations); put(pbf.pad0);
 
     for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
 }

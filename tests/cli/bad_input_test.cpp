@@ -61,6 +61,18 @@ TEST_CASE("bad input: an out-of-range value in a scene", "[cli][bad-input]") {
     check_bad_scene(path, {path, "tank.restitution", "1.5", "out of range"});
 }
 
+TEST_CASE("bad input: PBF's iterations or substeps below one are refused by name", "[cli][bad-input][pbf]") {
+    TempDir tmp;
+    const auto [key, value] = GENERATE(std::pair<std::string, std::string>{"iterations", "0"}, std::pair<std::string, std::string>{"iterations", "-3"},
+                                       std::pair<std::string, std::string>{"substeps", "0"});
+    const fs::path path = tmp / "pbf.json";
+    write_file(path, R"({"model": "sph", "sph": {"solver": "pbf", "pbf": {")" + key + "\": " + value +
+                         R"(}}, "particles": {"blocks": [{"max": [0.2, 0.2, 0.2]}]}})");
+    check_bad_scene(path.string(), {path.string(), "sph.pbf." + key, value, "out of range"});
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--solver", "pbd", "--frames", "1", "--out", tmp.str("out")});
+    check_bad_input(r, {"--solver pbd", "dfsph, wcsph or pbf"});
+}
+
 // ---- options ----
 
 TEST_CASE("bad input: --spacing outside [0.0001, 1] m or one that leaves no particle", "[cli][bad-input]") {

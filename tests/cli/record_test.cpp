@@ -181,3 +181,23 @@ TEST_CASE("ranryu record without --out writes to out/SCENE in the working folder
     CHECK(img.width == 64);
     CHECK(img.height == 48);
 }
+
+TEST_CASE("ranryu record --solver pbf runs a bundled scene: the scene's substeps, every PBF pass timed, no guard", "[cli][record][pbf]") {
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--solver", "pbf", "--shading", "particles", "--size",
+                                             "64x48", "--frames", "3", "--out", tmp.str("out")});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("wrote 3 frames (64x48)"));
+    CHECK_THAT(r.err, !Contains("GL error"));
+    const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "out" / "run.json"));
+    INFO(j.dump(2));
+    CHECK(j["substeps_per_frame"] == 4);   // sph.pbf.substeps' default: fixed, whatever the flow does
+    std::vector<std::string> names;
+    for (const auto& p : j["passes"]) names.push_back(p.at("name").get<std::string>());
+    for (const char* pass : {"pbf.predict", "pbf.lambda", "pbf.correct", "pbf.velocity", "pbf.viscosity"}) {
+        INFO("pass " << pass);
+        CHECK(std::find(names.begin(), names.end(), pass) != names.end());
+    }
+    CHECK(std::find(names.begin(), names.end(), "dfsph.density") == names.end());
+}

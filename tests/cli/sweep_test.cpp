@@ -3,6 +3,7 @@
 // bad input, and the charts' files with their labels.
 #include <catch2/catch.hpp>
 
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -174,4 +175,33 @@ TEST_CASE("sweep: bad input is refused with one line naming it, and a foreign sw
     CHECK_THAT(r.err, Contains((out / "sweep.json").string()));
     CHECK(read_file(out / "sweep.json") == "{\"not\": \"a sweep\"}");
     CHECK_FALSE(fs::exists(out / "sweep.csv"));
+}
+
+TEST_CASE("sweep: a PBF row's factor divides its fixed substeps and keeps its iterations", "[sweep][pbf]") {
+    TempDir dir;
+    const fs::path out = dir.path() / "sw";
+    RunOptions slow;
+    slow.timeout = std::chrono::seconds(400);
+    const Result r = run_ranryu(dir.path(), {"sweep", "--cases", "dam-break", "--solvers", "pbf", "--spacings", "0.04", "--factors",
+                                             "0.5,1,2", "--quiet", "--out", out.string()}, slow);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+    REQUIRE(j["rows"].size() == 3);
+    std::map<double, nlohmann::json> by_factor;
+    for (const auto& row : j["rows"]) by_factor[row["factor"].get<double>()] = row;
+    // docs/SWEEP.md "PBF and the factor": the defaults' 4 substeps become round(4 / f).
+    const std::map<double, int> substeps = {{0.5, 8}, {1.0, 4}, {2.0, 2}};
+    for (const auto& [factor, want] : substeps) {
+        const nlohmann::json& row = by_factor.at(factor);
+        INFO(row.dump());
+        CHECK(row["solver"] == "pbf");
+        CHECK(row["pbf_substeps"] == want);
+        CHECK(row["pbf_iterations"] == 4);
+        CHECK(row["status"] == "stable");
+    }
+    // The work follows: the steps a run took scale with the substeps (the same simulated time).
+    const auto steps = [&](double f) { return by_factor.at(f)["steps"].get<double>(); };
+    CHECK(steps(0.5) == Approx(2.0 * steps(1.0)).epsilon(0.02));
+    CHECK(steps(1.0) == Approx(2.0 * steps(2.0)).epsilon(0.02));
 }

@@ -10,6 +10,7 @@
 // (Higham 2002 §4.2, first order); we take c = 16 for a kernel gradient times a few products. Each
 // check names the sum it bounds; a term computed from an input carrying an error E adds |∂t/∂input|·E.
 #include "support/gl_fixture.h"
+#include "support/reference_compare.h"
 #include "support/sph_rig.h"
 
 #include <algorithm>
@@ -34,8 +35,11 @@ namespace df = ranryu::reference::dfsph;
 namespace gpu = ranryu::gpu;
 using glm::dvec3;
 
-constexpr double kU = std::numeric_limits<float>::epsilon() / 2.0;
-constexpr double kC = 16.0;   // relative error of one term, in units of u (see the header)
+using ranryu::test::d3;
+using ranryu::test::flags_of;
+using ranryu::test::kC;   // relative error of one term, in units of u (see the header)
+using ranryu::test::kU;
+using ranryu::test::vec_error;
 
 // 512 fluid particles (an 8x8x8 block at spacing 0.03 m) in a cubic tank of side 0.3 m, DFSPH;
 // `sph` adds keys to the "sph" object.
@@ -43,13 +47,6 @@ std::string scene_json(const std::string& sph = "") {
     return R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
                "sph": {"solver": "dfsph", "viscosity": 1e-3)" + (sph.empty() ? "" : ", " + sph) + R"(},
                "particles": {"spacing": 0.03, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})";
-}
-
-dvec3 d3(const glm::vec4& v) { return dvec3(glm::vec3(v)); }
-std::vector<dvec3> d3(const std::vector<glm::vec4>& v) {
-    std::vector<dvec3> out(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) out[i] = d3(v[i]);
-    return out;
 }
 
 struct Rig : ranryu::test::SphRig {
@@ -72,14 +69,6 @@ struct Rig : ranryu::test::SphRig {
         s.deficient_neighbours = int(p.deficient_neighbours);
         s.boundary_viscosity = double(p.boundary_viscosity);
         return s;
-    }
-    // The boundary particles and their psi_b, as the GPU computed them.
-    void boundary(std::vector<dvec3>& xb, std::vector<double>& psi) const {
-        xb.clear(), psi.clear();
-        for (const glm::vec4& b : fluid.boundary().read<glm::vec4>(fluid.boundary_count())) {
-            xb.push_back(d3(b));
-            psi.push_back(double(b.w));
-        }
     }
     std::vector<float> read_floats(const ranryu::gl::Buffer& b) const { return b.read<float>(fluid.count()); }
     std::vector<glm::vec2> warm() { return dfsph().warm_start().read<glm::vec2>(fluid.count()); }
@@ -128,8 +117,6 @@ Magnitudes magnitudes(const std::vector<dvec3>& x, const std::vector<dvec3>& xb,
     return m;
 }
 
-double vec_error(const glm::vec4& got, const dvec3& want) { return glm::length(d3(got) - want); }
-
 // Runs the stages of one step on the state (x, v, warm), reading everything back after each.
 struct Stages {
     std::vector<glm::vec4> x, v, density, accel, kappa_v0_accel, v_after_divergence, predict, x_end, v_end, density_end;
@@ -175,12 +162,6 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     rig.timer.end_frame();
     rig.finish();
     return s;
-}
-
-std::uint32_t flags_of(const glm::vec4& d) {
-    std::uint32_t f;
-    std::memcpy(&f, &d.w, sizeof f);
-    return f;
 }
 
 }  // namespace

@@ -170,6 +170,14 @@ const std::map<std::string, Member>& cpp_members() {
         {"rows.count", {offsetof(gpu::BoundaryRowsState, count), GL_UNSIGNED_INT}},
         {"rows.epoch", {offsetof(gpu::BoundaryRowsState, epoch), GL_UNSIGNED_INT}},
         {"rows.pad0", {offsetof(gpu::BoundaryRowsState, pad0), GL_UNSIGNED_INT}},
+        {"pbf.epsilon", {offsetof(gpu::PbfParams, epsilon), GL_FLOAT}},
+        {"pbf.s_corr_scale", {offsetof(gpu::PbfParams, s_corr_scale), GL_FLOAT}},
+        {"pbf.s_corr_n", {offsetof(gpu::PbfParams, s_corr_n), GL_FLOAT}},
+        {"pbf.inv_w_dq", {offsetof(gpu::PbfParams, inv_w_dq), GL_FLOAT}},
+        {"pbf.xsph", {offsetof(gpu::PbfParams, xsph), GL_FLOAT}},
+        {"pbf.vorticity", {offsetof(gpu::PbfParams, vorticity), GL_FLOAT}},
+        {"pbf.iterations", {offsetof(gpu::PbfParams, iterations), GL_UNSIGNED_INT}},
+        {"pbf.pad0", {offsetof(gpu::PbfParams, pad0), GL_UNSIGNED_INT}},
     };
     return table;
 }
@@ -199,6 +207,7 @@ const Block kBlocks[] = {
     {"DfsphBlock", "dfsph.", sizeof(gpu::DfsphParams), RANRYU_UBO_DFSPH, GL_UNIFORM_BLOCK, GL_UNIFORM},
     {"Solve", "solve.", sizeof(gpu::SolveState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
     {"BoundaryRows", "rows.", sizeof(gpu::BoundaryRowsState), kByName, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE},
+    {"PbfBlock", "pbf.", sizeof(gpu::PbfParams), RANRYU_UBO_PBF, GL_UNIFORM_BLOCK, GL_UNIFORM},
 };
 
 // The shared macros in the order of kMacros in probe_layout.comp.
@@ -226,6 +235,7 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SUBPARTICLE_SPLAT_SCALE", std::uint32_t(RANRYU_SUBPARTICLE_SPLAT_SCALE)},
     {"RANRYU_UBO_DFSPH", RANRYU_UBO_DFSPH},
     {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
+    {"RANRYU_UBO_PBF", RANRYU_UBO_PBF},
 };
 
 const Program& probe() {
@@ -432,6 +442,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     gpu::BoundaryRowsState rs{};
     rs.dispatch = d.u4();
     for (std::uint32_t* u : {&rs.rows, &rs.count, &rs.epoch, &rs.pad0}) *u = d.u();
+    gpu::PbfParams bp{};
+    for (float* f : {&bp.epsilon, &bp.s_corr_scale, &bp.s_corr_n, &bp.inv_w_dq, &bp.xsph, &bp.vorticity}) *f = d.f();
+    for (std::uint32_t* u : {&bp.iterations, &bp.pad0}) *u = d.u();
 
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
@@ -478,6 +491,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     const std::size_t solve_end = expect.w.size();
     expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
     const std::size_t rows_end = expect.w.size();
+    expect.put(bp.epsilon); expect.put(bp.s_corr_scale); expect.put(bp.s_corr_n); expect.put(bp.inv_w_dq);
+    expect.put(bp.xsph); expect.put(bp.vorticity); expect.put(bp.iterations); expect.put(bp.pad0);
+    const std::size_t pbf_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.
     REQUIRE(probe_end == 28);
@@ -491,6 +507,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     REQUIRE(dfsph_end - subs_end == sizeof(gpu::DfsphParams) / 4);
     REQUIRE(solve_end - dfsph_end == sizeof(gpu::SolveState) / 4);
     REQUIRE(rows_end - solve_end == sizeof(gpu::BoundaryRowsState) / 4);
+    REQUIRE(pbf_end - rows_end == sizeof(gpu::PbfParams) / 4);
 
     // The output is pre-filled with a sentinel and is longer than the probe writes: the tail must
     // keep it, so the shader wrote exactly expect.w.size() words.
@@ -509,6 +526,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     Buffer ubo_dfsph(sizeof dp, GL_DYNAMIC_DRAW, &dp, "probe.DfsphParams");
     Buffer ssbo_solve(sizeof ss, GL_DYNAMIC_DRAW, &ss, "probe.SolveState");
     Buffer ssbo_rows(sizeof rs, GL_DYNAMIC_DRAW, &rs, "probe.BoundaryRowsState");
+    Buffer ubo_pbf(sizeof bp, GL_DYNAMIC_DRAW, &bp, "probe.PbfParams");
+    ubo_pbf.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PBF);
     ubo_subp.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SUBPARTICLES);
     ubo_dfsph.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
     ubo_probe.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_PROBE);
@@ -533,7 +552,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         if (i < dfsph_end) return "DfsphParams word " + std::to_string(i - subs_end);
         if (i < solve_end) return "SolveState word " + std::to_string(i - dfsph_end);
         if (i < rows_end) return "BoundaryRowsState word " + std::to_string(i - solve_end);
-        if (i < expect.w.size()) return kMacros[i - rows_end].first;
+        if (i < pbf_end) return "PbfParams word " + std::to_string(i - rows_end);
+        if (i < expect.w.size()) return kMacros[i - pbf_end].first;
         return "past the end, word " + std::to_string(i);
     };
     for (std::size_t i = 0; i < total; ++i) {

@@ -15,6 +15,7 @@
 #include "shader/source.h"
 #include "sim/simulation.h"
 #include "sim/solvers/dfsph.h"
+#include "sim/solvers/pbf.h"
 #include "sim/solvers/wcsph.h"
 #include "support/gl_fixture.h"
 
@@ -32,6 +33,7 @@ struct SphRig {
     // The solver, for tests that drive its stages one by one; the scene must have chosen it.
     sim::Wcsph& wcsph() { return solver<sim::Wcsph>("wcsph"); }
     sim::Dfsph& dfsph() { return solver<sim::Dfsph>("dfsph"); }
+    sim::Pbf& pbf() { return solver<sim::Pbf>("pbf"); }
 
     // One whole frame: begin, the substeps the fluid plans, end; then collect arrived records.
     void frame(std::uint64_t index) {
@@ -46,6 +48,14 @@ struct SphRig {
         fluid.drain_records();
     }
     std::vector<glm::vec4> read(const gl::Buffer& b) const { return b.read<glm::vec4>(fluid.count()); }
+    // The boundary particles and their psi_b, as the GPU computed them.
+    void boundary(std::vector<glm::dvec3>& xb, std::vector<double>& psi) const {
+        xb.clear(), psi.clear();
+        for (const glm::vec4& b : fluid.boundary().read<glm::vec4>(fluid.boundary_count())) {
+            xb.emplace_back(glm::vec3(b));
+            psi.push_back(double(b.w));
+        }
+    }
     gpu::StepState step() const { return fluid.step_state().read<gpu::StepState>(1)[0]; }
 
 private:

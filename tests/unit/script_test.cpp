@@ -88,7 +88,7 @@ TEST_CASE("a bad run script is one InputError naming the script and the line", "
         {"0 panel\n", "s.txt:1: panel: name an action"},
         {"0 panel shading toon\n", "s.txt:1: panel shading toon: expected one of"},
         {"0 panel scene nowhere\n", "s.txt:1: panel scene nowhere: no bundled scene of that name"},
-        {"0 panel solver sph\n", "s.txt:1: panel solver sph: expected dfsph or wcsph"},
+        {"0 panel solver sph\n", "s.txt:1: panel solver sph: expected dfsph, wcsph or pbf"},
         {"0 panel pause maybe\n", "s.txt:1: panel pause: expected on or off"},
         {"0 panel step now\n", "s.txt:1: expected \"FRAME panel step\""},
         {"0 panel fly\n", "s.txt:1: panel fly: no such action"},
