@@ -11,7 +11,7 @@
 //     C_i = Σ w_ij d dᵀ / Σ w_ij - m mᵀ                                          (S3)
 // then C_i = A diag(σ_1 ≥ σ_2 ≥ σ_3) Aᵀ by cyclic Jacobi rotations (S4), and the stretches (S5):
 //     s_k = min(k_s · max(σ_k, σ_1/k_r), s_max)   if N_i >= N_ε,   s_k = k_n otherwise.
-// engine/surface/anisotropy.h is the double-precision CPU reference (tests/gl/surface_anisotropy_test.cpp).
+// engine/surface/anisotropy.h is the double-precision CPU reference (tests/gl/surface_test.cpp).
 // Dispatch: one invocation per particle along x.
 #include "../shared/bindings.h"
 

@@ -71,35 +71,43 @@ TEST_CASE("anisotropy: the stretches follow the neighbourhood's shape", "[surfac
     const auto a = rs::AnisotropySettings::for_spacing(dx);
     INFO("dx " << dx);
     CHECK(a.radius == Approx(2.0 * dx));
-    const glm::vec3 corner(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    // Within a few spacings of the origin: the lattice's float coordinates are then exact to 2^-24
+    // of 10 Δx, and the expectations below hold to 1e-5.
+    const glm::vec3 corner = dx * glm::vec3(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5));
     const auto block = lattice(glm::ivec3(7), dx, corner);
     const auto at = [&](int i, int j, int k) { return std::size_t(i + 7 * (j + 7 * k)); };
 
     // Bulk (S5): k_s = 1/σ_bulk makes a full neighbourhood's kernel the isotropic one, centre unmoved.
     const auto bulk = rs::anisotropy_cpu(block, at(3, 3, 3), a);
-    CHECK(bulk.neighbours == 27);   // |d|² in {0, 1, 2, 3} dx² (4 dx² is at r, weight 0)
+    // |d|² in {0, 1, 2, 3} dx²; the 6 at 4 dx² lie at r (weight 0), counted or not as the float
+    // lattice rounds their distance.
+    CHECK(bulk.neighbours >= 27);
+    CHECK(bulk.neighbours <= 33);
     for (int k = 0; k < 3; ++k) CHECK(bulk.stretch[k] == Approx(1.0).epsilon(1e-5));
-    CHECK(glm::length(bulk.centre - glm::dvec3(glm::vec3(block[at(3, 3, 3)]))) < 1e-6 * dx);
+    // (The float lattice is symmetric to the coordinates' rounding, 2^-24 of |x|.)
+    CHECK(glm::length(bulk.centre - glm::dvec3(glm::vec3(block[at(3, 3, 3)]))) < 1e-6 * (glm::length(corner) + dx));
 
     // Flat top (the middle of the top face): the shortest axis is vertical, the centre moves down,
     // the two others are equal by the lattice's symmetry and longer.
     const auto top = rs::anisotropy_cpu(block, at(3, 6, 3), a);
     CHECK(std::abs(top.axes[2].y) == Approx(1.0).epsilon(1e-9));
     CHECK(top.stretch[2] < 0.9 * top.stretch[1]);
-    CHECK(top.stretch[0] == Approx(top.stretch[1]).epsilon(1e-9));
+    CHECK(top.stretch[0] == Approx(top.stretch[1]).epsilon(1e-5));   // the float lattice: 1e-7 asymmetry
     CHECK(top.centre.y < double(block[at(3, 6, 3)].y) - 0.1 * dx);
 
-    // A one-particle sheet (9 neighbours >= N_ε): thin along its normal, s_3 = s_1 / k_r at most.
+    // A one-particle sheet (9 neighbours, 13 with those at r: >= N_ε): thin along its normal, s_3 = s_1 / k_r.
     const auto sheet = lattice(glm::ivec3(7, 1, 7), dx, corner);
     const auto s = rs::anisotropy_cpu(sheet, 3 + 7 * 3, a);
-    CHECK(s.neighbours == 9);
+    CHECK(s.neighbours >= 9);
+    CHECK(s.neighbours <= 13);
     CHECK(std::abs(s.axes[2].y) == Approx(1.0).epsilon(1e-9));
     CHECK(s.stretch[2] == Approx(s.stretch[0] / a.k_r).epsilon(1e-9));   // σ_3 = 0, clamped (S5)
 
-    // A lone particle and a filament (3 neighbours < N_ε): k_n, isotropic.
+    // A lone particle and a filament (3 neighbours, 5 with those at r: < N_ε): k_n, isotropic.
     const auto line = lattice(glm::ivec3(7, 1, 1), dx, corner);
     const auto l = rs::anisotropy_cpu(line, 3, a);
-    CHECK(l.neighbours == 3);
+    CHECK(l.neighbours >= 3);
+    CHECK(l.neighbours <= 5);
     CHECK(l.stretch == glm::dvec3(a.k_n));
     const std::vector<glm::vec4> lone{glm::vec4(corner, 0.0f)};
     CHECK(rs::anisotropy_cpu(lone, 0, a).stretch == glm::dvec3(a.k_n));
@@ -142,7 +150,7 @@ TEST_CASE("level set: a node budget bounds the grid's nodes", "[surface]") {
             CHECK(g.spacing >= spacing_for(1.0) * (1.0 - 1e-4));
             CHECK(g.spacing <= spacing_for(3.0) * (1.0 + 1e-4));
         }
-        CHECK(glm::all(glm::lessThanEqual(g.origin, lo - reach)));
+        CHECK(glm::all(glm::lessThanEqual(g.origin, lo - reach + 1e-5f * g.spacing)));   // h·floor(x/h) rounds
         CHECK(glm::all(glm::greaterThanEqual(g.node(g.dims - 1u), hi + reach - 1e-6f)));
     }
 }
