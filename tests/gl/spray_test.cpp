@@ -23,22 +23,13 @@
 #include "render/spray.h"
 #include "scene/scene.h"
 #include "shader/source.h"
+#include "support/read_pixels.h"
 
 namespace {
 
 namespace render = ranryu::render;
 namespace gpu = ranryu::gpu;
 constexpr int kWidth = 160, kHeight = 120;
-
-std::vector<std::uint8_t> read_rgba(const ranryu::gl::RenderTarget& target) {
-    std::vector<std::uint8_t> rgba(std::size_t(kWidth) * kHeight * 4);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer());
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    return rgba;
-}
 
 struct Sprite {
     glm::vec2 window;   // the centre's projection (pixels)
@@ -101,12 +92,12 @@ TEST_CASE("spray: sub-particles are white discs of the CPU's size and opacity, a
     timer.begin_frame();
     renderer.draw(target, positions, velocities, 0);
     timer.end_frame();
-    const auto before = read_rgba(target);   // turbulence off: no sub-particles
+    const auto before = ranryu::test::read_rgba(target);   // turbulence off: no sub-particles
     timer.begin_frame();
     renderer.draw(target, positions, velocities, 0);
     renderer.draw_spray(target, sub);
     timer.end_frame();
-    const auto after = read_rgba(target);
+    const auto after = ranryu::test::read_rgba(target);
     timer.drain();
 
     std::size_t outside_changed = 0, inside = 0, inside_bad = 0, changed = 0;
