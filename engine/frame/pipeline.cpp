@@ -1,5 +1,6 @@
 #include "frame/pipeline.h"
 
+#include <cmath>
 #include <cstdlib>
 
 #include "core/error.h"
@@ -24,10 +25,15 @@ surface::LevelSetSettings level_set_settings(const scene::Scene& s) {
     ls.node_spacing = s.surface.node_spacing * s.spacing;
     ls.max_dims = glm::uvec3(std::uint32_t(s.surface.max_dims));
     ls.subparticle_levels = s.turbulence.subparticles.enabled() ? s.turbulence.subparticles.levels : 0;
+    ls.max_nodes = std::uint32_t(s.surface.max_nodes);
+    ls.anisotropic = s.surface.anisotropic;
+    ls.particle_capacity = s.particle_count();
     return ls;
 }
 surface::MeshCapacity mesh_capacity(const scene::Scene& s) {
-    return surface::MeshCapacity{glm::uvec3(std::uint32_t(s.surface.max_dims)), std::size_t(s.surface.max_vertices)};
+    surface::MeshCapacity c{glm::uvec3(std::uint32_t(s.surface.max_dims)), std::size_t(s.surface.max_vertices)};
+    c.max_nodes = std::size_t(s.surface.max_nodes);
+    return c;
 }
 }  // namespace
 
@@ -80,6 +86,8 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
             level_set_ = std::make_unique<surface::LevelSet>(shaders, timer_, level_set_settings(scene_));
             mc_ = std::make_unique<surface::MarchingCubes>(shaders, timer_, mesh_capacity(scene_));
             renderer_->set_absorption(scene_.surface.absorption);
+            if (sub_)   // spray.vert: the sub-particles' least energy, e_th·2^(−2β)
+                renderer_->set_spray_energy(scene_.turbulence.subparticles.threshold * std::exp2(-2.0f * scene_.turbulence.beta));
         }
     } else {
         ballistic_ = std::make_unique<sim::Particles>(shaders, timer_);
@@ -111,7 +119,11 @@ std::vector<SkippedStage> Pipeline::skipped_stages() const {
         else out.push_back({"sort.count, sort.scan, sort.scatter", "sph.sort is bitonic"});
         if (!sph_->turbulence()) out.push_back({"wavelet, turbulence-force", "turbulence.amplitude is 0"});
         if (!sub_) out.push_back({"subparticles.*", sph_->turbulence() ? "turbulence.subparticles is off" : "turbulence is off"});
-        if (!level_set_) out.push_back({"surface.bounds, level-set, mc.*, draw-surface", renderer_ ? "the shading draws particles" : "nothing is drawn"});
+        if (!level_set_)
+            out.push_back({"surface.anisotropy, surface.bounds, level-set.splat, level-set, mc.*, draw-surface",
+                           renderer_ ? "the shading draws particles" : "nothing is drawn"});
+        else if (!scene_.surface.anisotropic)
+            out.push_back({"surface.anisotropy, level-set.splat", "surface.anisotropic is false"});
     }
     if (!renderer_) out.push_back({"clear, draw-*", "nothing is drawn: a validation run"});
     else if (level_set_) out.push_back({"draw-particles", std::string("the shading draws the surface: ") + render::shading_name(shading_)});
@@ -146,6 +158,9 @@ void Pipeline::draw() {
     if (mc_) {
         const render::SurfaceMesh mesh{mc_->vertices(), mc_->state(), surface::MarchingCubes::draw_offset};
         renderer_->draw(target_, positions(), velocities(), particle_count(), &mesh);
+        if (sub_)
+            renderer_->draw_spray(target_, render::SubparticleDraw{sub_->levels(), sub_->positions(), sub_->velocities(),
+                                                                   sub_->state(), turbulence::Subparticles::draw_offset});
     } else if (sub_) {
         const render::SubparticleDraw sub{sub_->levels(), sub_->positions(), sub_->velocities(), sub_->state(),
                                           turbulence::Subparticles::draw_offset};

@@ -5,11 +5,13 @@
 //     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: sim/simulation.h, then, with
 //                                 // sub-particles (turbulence/subparticles.h) "subparticles.classify",
 //                                 // "subparticles.budget", "subparticles.spawn"; then, when the
-//                                 // shading draws a surface, "surface.bounds", ("subparticles.splat"),
-//                                 // "level-set" and "mc.classify", "mc.compact", "mc.emit"
+//                                 // shading draws a surface, ("surface.anisotropy"), "surface.bounds",
+//                                 // ("subparticles.splat"), ("level-set.splat"), "level-set" and
+//                                 // "mc.classify", "mc.compact", "mc.emit"
 //                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
 //     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
-//                                 // sub-particles, coloured by level) or "draw-surface"
+//                                 // sub-particles, coloured by level) or "draw-surface" (then, with
+//                                 // sub-particles, "draw-spray": render/renderer.h)
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "render/shading.h"
+#include "render/spray.h"
 #include "scene/scene.h"
 
 namespace ranryu::render {
@@ -117,7 +118,41 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         glBindVertexArray(0);
         gl::label(GL_VERTEX_ARRAY, mesh_vao_.id(), "surface.vao");
         set_absorption(glm::vec3(0.0f));
+        if (subparticles) {
+            spray_pass_ = timer.pass("draw-spray");
+            spray_ = shader::Program::graphics(shaders, "render/spray.vert", "render/spray.frag");
+            set_spray_energy(1.0f);
+        }
     }
+}
+
+void Renderer::set_spray_energy(float e_min) {
+    if (spray_.id()) glProgramUniform4f(spray_.id(), RANRYU_LOC_SPRAY, e_min, 0.0f, 0.0f, 0.0f);
+}
+
+void Renderer::draw_spray(const gl::RenderTarget& target, const SubparticleDraw& sub) {
+    if (!spray_.id()) throw Error("Renderer::draw_spray: a renderer built without sub-particles or without a surface shading");
+    auto pass = timer_.scope(spray_pass_);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, target.width(), target.height());
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    spray_.use();
+    glBindVertexArray(particle_vao_.id());
+    glBindVertexBuffer(0, sub.positions.id(), 0, sizeof(glm::vec4));
+    glBindVertexBuffer(1, sub.velocities.id(), 0, sizeof(glm::vec4));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, sub.indirect.id());
+    glDrawArraysIndirect(GL_TRIANGLE_STRIP, reinterpret_cast<const void*>(sub.draw_offset));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void Renderer::set_absorption(glm::vec3 sigma) {

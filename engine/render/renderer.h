@@ -78,11 +78,20 @@ public:
     void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
               std::size_t count, const SurfaceMesh* surface = nullptr, const SubparticleDraw* sub = nullptr);
 
+    // Spray and foam over a drawn frame (renderers built with subparticles and a surface shading):
+    // pass "draw-spray", the sub-particles as white discs of radius r/2^level and opacity rising with
+    // their energy above e_min (glsl/render/spray.vert), blended and depth-tested against what
+    // draw() left in `target`; glDrawArraysIndirect of sub.indirect, no readback.
+    void draw_spray(const gl::RenderTarget& target, const SubparticleDraw& sub);
+    // e_min (m²/s²): the sub-particles' least energy, e_th·2^(−2β) (spray.vert).
+    void set_spray_energy(float e_min);
+    bool draws_spray() const { return spray_.id() != 0; }
+
 private:
     profile::GpuTimer& timer_;
     Shading shading_;
-    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{};
-    shader::Program floor_, tank_, impostor_, surface_, impostor_levels_;
+    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{}, spray_pass_{};
+    shader::Program floor_, tank_, impostor_, surface_, impostor_levels_, spray_;
     gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, parent_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};

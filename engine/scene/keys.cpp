@@ -170,6 +170,11 @@ std::vector<Key> make_keys() {
         object("surface", "The liquid's surface (a level set meshed by marching cubes), used by the surface shadings."),
         number("surface.node_spacing", "spacing", f.node_spacing, 0.1, 4.0, "The level set grid's node spacing, in particle spacings."),
         integer("surface.max_dims", "", f.max_dims, 4, 512, "The most grid nodes a side (a larger box coarsens the grid)."),
+        integer("surface.max_nodes", "", f.max_nodes, 64, 1 << 27,
+                "The most grid nodes in all: the grid coarsens to fit, bounding the surface's cost (docs/SURFACE.md (S9))."),
+        boolean("surface.anisotropic", f.anisotropic,
+                "Anisotropic kernels (Yu & Turk 2013, docs/SURFACE.md): flat surfaces read flat and thin sheets stay sheets; false: "
+                "spherical kernels."),
         integer("surface.max_vertices", "", f.max_vertices, 3, 1 << 26, "The mesh's capacity, 3 a triangle (more are dropped)."),
         vec3("surface.absorption", "1/m", f.absorption, 0.0, 1e3, "Fresnel shading: the water's Beer-Lambert absorption per colour channel."),
 

@@ -487,6 +487,8 @@ Scene parse(const std::string& text, const std::string& origin) {
         SurfaceSettings& u = s.surface;
         u.node_spacing = float(f.number("node_spacing"));
         u.max_dims = f.integer("max_dims");
+        u.max_nodes = f.integer("max_nodes");
+        u.anisotropic = f.boolean("anisotropic");
         u.max_vertices = f.integer("max_vertices");
         u.absorption = f.vec3("absorption");
         f.finish();

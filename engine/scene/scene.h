@@ -109,7 +109,9 @@ struct TurbulenceSettings {
 // absorption in the Fresnel shading mode. Used only when the shading draws a surface.
 struct SurfaceSettings {
     float node_spacing = 0.5f;           // φ-grid node spacing, in particle spacings
-    int max_dims = 160;                  // most φ-grid nodes per axis (a larger box coarsens the grid)
+    int max_dims = 512;                  // most φ-grid nodes per axis (a larger box coarsens the grid)
+    int max_nodes = 1 << 23;             // most φ-grid nodes in all (docs/SURFACE.md (S9))
+    bool anisotropic = true;             // Yu & Turk's anisotropic kernels (docs/SURFACE.md)
     int max_vertices = 1 << 22;          // mesh capacity (3 per triangle; more are dropped)
     glm::vec3 absorption{1.5f, 0.4f, 0.25f};   // Beer-Lambert sigma per channel (1/m): red fades first
 };

@@ -18,6 +18,7 @@ LevelSetSettings LevelSetSettings::for_spacing(float dx) {
     s.node_spacing = 0.5f * dx;
     s.max_dims = glm::uvec3(160u);
     s.search_margin = 0.5f * dx;
+    s.anisotropy = AnisotropySettings::for_spacing(dx);
     return s;
 }
 
@@ -43,7 +44,11 @@ gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particl
     p.iso = s.iso;
     p.particle_count = std::uint32_t(particle_count);
     p.search_margin = s.search_margin;
-    p.bounds_margin = subparticle_bounds_margin(s);
+    p.bounds_margin = grid_margin(s);
+    p.max_nodes = s.max_nodes;
+    const AnisotropySettings& a = s.anisotropy;
+    p.anisotropy = glm::vec4(a.radius, a.lambda, a.k_s, a.k_r);
+    p.anisotropy_limits = glm::vec4(a.k_n, float(a.n_eps), a.max_stretch, 0.0f);
     return p;
 }
 
@@ -65,6 +70,16 @@ float subparticle_bounds_margin(const LevelSetSettings& s) {
     return margin;
 }
 
+float grid_margin(const LevelSetSettings& s) {
+    const float sub = subparticle_bounds_margin(s);
+    return s.anisotropic ? std::max(sub, (s.anisotropy.max_stretch - 1.0f) * s.kernel_radius) : sub;
+}
+
+float grid_nodes(glm::vec3 lo, glm::vec3 hi, float h, glm::uvec3 max_dims) {   // place_grid.comp
+    const glm::vec3 n = glm::min(glm::ceil((hi - h * glm::floor(lo / h)) / h) + 1.0f, glm::vec3(max_dims));
+    return n.x * n.y * n.z;
+}
+
 std::uint32_t ordered_bits(float f) {
     std::uint32_t u;
     std::memcpy(&u, &f, sizeof u);
@@ -79,11 +94,22 @@ float from_ordered_bits(std::uint32_t u) {
 }
 
 PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s) {   // place_grid.comp
-    const float reach = s.kernel_radius + subparticle_bounds_margin(s);
+    const float reach = s.kernel_radius + grid_margin(s);
     lo -= reach;
     hi += reach;
     const glm::vec3 fit = (hi - lo) / (glm::vec3(s.max_dims) - 3.0f);
-    const float h = std::max(s.node_spacing, std::max(fit.x, std::max(fit.y, fit.z)));
+    float h = std::max(s.node_spacing, std::max(fit.x, std::max(fit.y, fit.z)));
+    const float budget = float(s.max_nodes);
+    if (s.max_nodes > 0 && grid_nodes(lo, hi, h, s.max_dims) > budget) {   // (S9)
+        float small = h, big = 2.0f * h;
+        for (int k = 0; k < 40 && grid_nodes(lo, hi, big, s.max_dims) > budget; ++k) big *= 2.0f;
+        for (int k = 0; k < 20; ++k) {
+            const float mid = 0.5f * (small + big);
+            if (grid_nodes(lo, hi, mid, s.max_dims) > budget) small = mid;
+            else big = mid;
+        }
+        h = big;
+    }
     PhiGrid g;
     g.spacing = h;
     g.origin = h * glm::floor(lo / h);
@@ -135,10 +161,43 @@ void level_set_cpu(std::span<const glm::vec4> positions, std::span<const std::ui
     for (std::size_t i = 0; i < sum.size(); ++i) grid.phi[i] = float(double(grid.phi[i]) + sum[i]);
 }
 
+void level_set_cpu(std::span<const ParticleAnisotropy> kernels, const LevelSetSettings& s, PhiGrid& grid) {
+    const double R = s.kernel_radius, V = double(s.particle_spacing) * s.particle_spacing * s.particle_spacing;
+    const double h = grid.spacing, floor_s = RANRYU_SUBPARTICLE_KERNEL_FLOOR * h / R;
+    std::vector<double> sum(grid.nodes(), 0.0);
+    for (const ParticleAnisotropy& k : kernels) {
+        const glm::dvec3 st = glm::max(k.stretch, glm::dvec3(floor_s));
+        const glm::dmat3 g = kernel_matrix(k.axes, k.stretch, floor_s);   // (S6)
+        const double w = V / (st.x * st.y * st.z);
+        // The nodes of the box around the ellipsoid (any box holding it gives the same sum), inner nodes only.
+        const double reach = R * std::max(st.x, std::max(st.y, st.z));
+        const glm::dvec3 rel = (k.centre - glm::dvec3(grid.origin)) / h;
+        const glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(rel - reach / h)) - 1, glm::ivec3(1));
+        const glm::ivec3 hi = glm::min(glm::ivec3(glm::ceil(rel + reach / h)) + 1, glm::ivec3(grid.dims) - 2);
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x) {
+                    const glm::uvec3 n(x, y, z);
+                    const double r = glm::length(g * (glm::dvec3(grid.node(n)) - k.centre));
+                    if (r < R) sum[grid.index(n)] += w * kernel_w(r, R);   // (S7)
+                }
+    }
+    grid.phi.resize(grid.nodes());
+    for (std::size_t i = 0; i < sum.size(); ++i) grid.phi[i] = float(sum[i] - double(s.iso));
+}
+
+namespace {
+std::size_t node_capacity(const LevelSetSettings& s) {
+    const std::size_t dims = std::size_t(s.max_dims.x) * s.max_dims.y * s.max_dims.z;
+    return s.max_nodes > 0 ? std::min<std::size_t>(dims, s.max_nodes) : dims;
+}
+}  // namespace
+
 std::size_t LevelSet::bytes_for(const LevelSetSettings& s) {
-    const std::size_t nodes = std::size_t(s.max_dims.x) * s.max_dims.y * s.max_dims.z;
+    const std::size_t nodes = node_capacity(s);
     return sizeof(gpu::SurfaceParams) + sizeof(gpu::SurfaceGrid) + nodes * sizeof(float) +
-           (s.subparticle_levels > 0 ? nodes * sizeof(std::uint32_t) : 0);   // phi, the splat grid
+           (s.subparticle_levels > 0 || s.anisotropic ? nodes * sizeof(std::uint32_t) : 0) +   // phi, the splat grid
+           (s.anisotropic ? 3 * s.particle_capacity * sizeof(glm::vec4) : 0);                   // centres, axes
 }
 
 LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings)
@@ -148,9 +207,10 @@ LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, 
       find_bounds_(shader::Program::compute(shaders, "surface/find_bounds.comp")),
       place_grid_(shader::Program::compute(shaders, "surface/place_grid.comp")),
       compute_(shader::Program::compute(shaders, "surface/compute_level_set.comp",
-                                        settings.subparticle_levels > 0 ? "#define RANRYU_SUBPARTICLES 1\n" : "")),
+                                        std::string(settings.subparticle_levels > 0 ? "#define RANRYU_SUBPARTICLES 1\n" : "") +
+                                            (settings.anisotropic ? "#define RANRYU_SPLATTED 1\n" : ""))),
       settings_(settings),
-      max_nodes_(std::size_t(settings.max_dims.x) * settings.max_dims.y * settings.max_dims.z) {
+      max_nodes_(node_capacity(settings)) {
     const auto& s = settings;
     if (!(s.particle_spacing > 0.0f) || !(s.kernel_radius > 0.0f) || !(s.node_spacing > 0.0f) || !std::isfinite(s.iso) ||
         !(s.search_margin >= 0.0f))
@@ -160,18 +220,35 @@ LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         throw InputError("surface: the level set grid needs 4 to 1024^3 nodes in all, at least 4 per axis (max dims " +
                          std::to_string(s.max_dims.x) + "x" + std::to_string(s.max_dims.y) + "x" +
                          std::to_string(s.max_dims.z) + ")");
+    if (s.max_nodes != 0 && s.max_nodes < 64) throw InputError("surface: a node budget needs at least 64 nodes");
+    const AnisotropySettings& a = s.anisotropy;
+    if (s.anisotropic && (s.particle_capacity == 0 || !(a.radius > 0.0f) || !(a.lambda >= 0.0f && a.lambda <= 1.0f) ||
+                          !(a.k_s > 0.0f) || !(a.k_r >= 1.0f) || !(a.k_n > 0.0f) || !(a.max_stretch >= 1.0f)))
+        throw InputError("surface: anisotropic kernels need a particle capacity, r > 0, λ in [0, 1], k_s > 0, k_r >= 1, "
+                         "k_n > 0 and s_max >= 1");
     params_ = gl::Buffer(sizeof(gpu::SurfaceParams), GL_DYNAMIC_DRAW, nullptr, "SurfaceParams");
     const gpu::SurfaceGrid empty{};
     grid_ = gl::Buffer(sizeof(gpu::SurfaceGrid), GL_DYNAMIC_COPY, &empty, "surface.grid");
     phi_ = gl::Buffer(max_nodes_ * sizeof(float), GL_DYNAMIC_COPY, nullptr, "surface.phi");
     const auto group = compute_.local_size();
     glProgramUniform4ui(place_grid_.id(), RANRYU_LOC_SURFACE_GROUP, group[0], group[1], group[2], 0u);
+    if (s.anisotropic) {
+        anisotropy_pass_ = timer.pass("surface.anisotropy");
+        particle_splat_pass_ = timer.pass("level-set.splat");
+        anisotropy_ = shader::Program::compute(shaders, "surface/compute_anisotropy.comp");
+        particle_splat_ = shader::Program::compute(shaders, "surface/splat_particles.comp",
+                                                   s.subparticle_levels > 0 ? "#define RANRYU_SUBPARTICLES 1\n" : "");
+        centres_ = gl::Buffer(s.particle_capacity * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "surface.centres");
+        axes_ = gl::Buffer(2 * s.particle_capacity * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "surface.axes");
+    }
     if (s.subparticle_levels > 0) {
         splat_pass_ = timer.pass("subparticles.splat");
         splat_ = shader::Program::compute(shaders, "surface/splat_subparticles.comp");
-        // All zero from here on: the gather sets every node it reads back to 0.
+    }
+    if (s.subparticle_levels > 0 || s.anisotropic) {
+        // All zero from here on: the level-set pass sets every node it reads back to 0.
         const std::vector<std::uint32_t> zero(max_nodes_, 0u);
-        splat_grid_ = gl::Buffer::from<std::uint32_t>(zero, GL_DYNAMIC_COPY, "surface.subparticle_splat");
+        splat_grid_ = gl::Buffer::from<std::uint32_t>(zero, GL_DYNAMIC_COPY, "surface.splat");
     }
 }
 
@@ -197,6 +274,15 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
                                {"SplatGrid", &splat_grid_}};
     if (sub)
         buffers.add("Subparticles", sub->state).add("SubparticlePositions", sub->positions).add("SubparticleLevels", sub->levels);
+    if (settings_.anisotropic) {
+        if (count > settings_.particle_capacity)
+            throw Error("LevelSet::compute: " + std::to_string(count) + " particles, more than the capacity " +
+                        std::to_string(settings_.particle_capacity));
+        buffers.add("SurfaceCentres", centres_).add("SurfaceAxes", axes_);
+        auto pass = timer_.scope(anisotropy_pass_);
+        anisotropy_.bind(buffers).dispatch(count);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     {
         auto pass = timer_.scope(bounds_pass_);
         // bounds_min = identity of min, bounds_max = identity of max (bytes 32..63 of SurfaceGrid).
@@ -208,7 +294,8 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
                              sizeof(glm::uvec4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        find_bounds_.bind(buffers).dispatch(count);
+        // With anisotropic kernels, the box of the smoothed centres (the kernels' centres).
+        find_bounds_.bind(settings_.anisotropic ? buffers.with("Positions", centres_) : buffers).dispatch(count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         place_grid_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
@@ -220,6 +307,11 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->state.id());
         glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    if (settings_.anisotropic) {
+        auto pass = timer_.scope(particle_splat_pass_);
+        particle_splat_.bind(buffers).dispatch(count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {

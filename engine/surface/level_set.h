@@ -57,6 +57,18 @@
 // displacement ½(dx/2^E)|ŷ_a| of their parent; the margin covers |ŷ_a| <= 4 (ŷ has unit rms, so a
 // component's rms is about 0.58: 7 standard deviations); a child beyond adds to the nodes the grid has.
 // Without sub-particles nothing of this is built and φ is bit for bit what it was.
+//
+// Anisotropic kernels (settings.anisotropic; docs/SURFACE.md, Yu & Turk 2013): each particle's kernel
+// is centred on its smoothed centre and stretched along the principal axes of its neighbourhood
+// (surface/anisotropy.h), and the kernels are splatted instead of gathered:
+//   "surface.anisotropy"  compute_anisotropy.comp   centres and axes, before the bounds (which then
+//                                        bound the centres, with a margin of (s_max - 1)·R more)
+//   "level-set.splat"     splat_particles.comp      each particle's kernel onto the nodes it covers,
+//                                        in the same fixed point as the sub-particles' splat
+//   "level-set"           compute_level_set.comp built with RANRYU_SPLATTED: φ = sum - iso, reset
+// In the bulk the kernel is the isotropic one above, so R, iso and the node spacing keep their meaning.
+// Node budget (settings.max_nodes > 0; docs/SURFACE.md (S9)): the grid coarsens to at most that many
+// nodes, so the passes' cost is bounded whatever the liquid's spread.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -69,6 +81,7 @@
 #include "shader/program.h"
 #include "shared/bindings.h"
 #include "sim/grid.h"
+#include "surface/anisotropy.h"
 #include "surface/phi_grid.h"
 
 namespace ranryu::surface {
@@ -83,6 +96,10 @@ struct LevelSetSettings {
                                       // sorted them (the gather searches R + margin; exact for any value
                                       // at least the largest displacement, slower for larger ones)
     int subparticle_levels = 0;       // L_max of the sub-particles φ includes; 0: none (nothing built)
+    std::uint32_t max_nodes = 0;      // node budget (S9): the grid coarsens to at most this many; 0: none
+    bool anisotropic = false;         // anisotropic kernels (above); needs particle_capacity
+    AnisotropySettings anisotropy;    // their constants (for_spacing: AnisotropySettings::for_spacing)
+    std::size_t particle_capacity = 0;   // most particles compute() is given (anisotropic: buffers per particle)
 
     // R = 1.5 dx, iso = iso_for_radius(dx, R, dx/2), nodes dx/2 apart, at most 160 per axis, margin
     // dx/2: R + margin = 2 dx = h, one SPH cell, so the search spans at most 3 cells per axis as it
@@ -110,12 +127,17 @@ gpu::SurfaceParams surface_params(const LevelSetSettings& s, std::size_t particl
 float subparticle_kernel_radius(float R, int level, float h);
 // How far beyond R the grid must reach for sub-particles up to subparticle_levels (0 without; above).
 float subparticle_bounds_margin(const LevelSetSettings& s);
+// How far beyond R the grid reaches: the sub-particles' margin and, with anisotropic kernels, (s_max - 1)·R.
+float grid_margin(const LevelSetSettings& s);
+// Nodes of the grid of spacing h around [lo, hi] (place_grid's rule, in float as place_grid.comp).
+float grid_nodes(glm::vec3 lo, glm::vec3 hi, float h, glm::uvec3 max_dims);
 
 // Order-preserving float bits, as glsl/surface/ordered_float.glsl.
 std::uint32_t ordered_bits(float f);
 float from_ordered_bits(std::uint32_t u);
 
-// CPU reference of place_grid.comp: the grid for particle centres in [lo, hi], phi left empty.
+// CPU reference of place_grid.comp: the grid for particle centres in [lo, hi], phi left empty (with a
+// node budget, h may differ from the GPU's by the float rounding of the bisection's steps).
 PhiGrid place_grid(glm::vec3 lo, glm::vec3 hi, const LevelSetSettings& s);
 // CPU reference of the level set: φ at every node of `grid` (already placed), a brute-force sum over
 // all particles in double. Slow: tests only.
@@ -124,6 +146,11 @@ void level_set_cpu(std::span<const glm::vec4> positions, const LevelSetSettings&
 // (xyz, w = E) adds (V/8^E)·W(|x - x_c|, R_E) on the grid's node spacing.
 void level_set_cpu(std::span<const glm::vec4> positions, std::span<const std::uint32_t> levels,
                    std::span<const glm::vec4> children, const LevelSetSettings& s, PhiGrid& grid);
+
+// CPU reference of the anisotropic level set (S7): φ on `grid` (placed) of the given kernels, each
+// V·det(G)·W(|G (x - x̄)|, R) with the stretches floored at 2h/R, summed in double on every node but
+// the grid's outermost, as splat_particles.comp does. Slow: tests only.
+void level_set_cpu(std::span<const ParticleAnisotropy> kernels, const LevelSetSettings& s, PhiGrid& grid);
 
 class LevelSet {
 public:
@@ -144,17 +171,20 @@ public:
     const gl::Buffer& phi() const { return phi_; }     // float[max nodes], first grid().dims.w used
     const gl::Buffer& grid() const { return grid_; }   // SurfaceGrid, written on the GPU
     const LevelSetSettings& settings() const { return settings_; }
+    // Anisotropic kernels (else empty): SurfaceCentres and SurfaceAxes of shared/bindings.h.
+    const gl::Buffer& centres() const { return centres_; }
+    const gl::Buffer& axes() const { return axes_; }
     std::size_t max_nodes() const { return max_nodes_; }
     // compute_level_set.comp's workgroup size: nodes per workgroup along x, y, z (tests).
     std::array<GLuint, 3> node_group() const { return compute_.local_size(); }
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId bounds_pass_, level_set_pass_, splat_pass_{};
-    shader::Program find_bounds_, place_grid_, compute_, splat_;
+    profile::PassId bounds_pass_, level_set_pass_, splat_pass_{}, anisotropy_pass_{}, particle_splat_pass_{};
+    shader::Program find_bounds_, place_grid_, compute_, splat_, anisotropy_, particle_splat_;
     LevelSetSettings settings_;
     std::size_t max_nodes_;
-    gl::Buffer params_, grid_, phi_, splat_grid_;
+    gl::Buffer params_, grid_, phi_, splat_grid_, centres_, axes_;
     std::size_t params_count_ = ~std::size_t(0);
 };
 

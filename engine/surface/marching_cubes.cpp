@@ -45,9 +45,13 @@ std::span<const int, 4096> mc_triangle_table() { return std::span<const int, 409
 std::span<const int, 24> mc_corner_table() { return std::span<const int, 24>(kCorners); }
 std::span<const int, 24> mc_edge_table() { return std::span<const int, 24>(kEdges); }
 
+std::size_t MeshCapacity::cells() const {
+    const std::size_t all = std::size_t(max_dims.x - 1) * (max_dims.y - 1) * (max_dims.z - 1);
+    return max_nodes > 0 ? std::min(all, max_nodes) : all;
+}
+
 std::size_t MarchingCubes::bytes_for(const MeshCapacity& capacity) {
-    const glm::uvec3 d = capacity.max_dims;
-    const std::size_t cells = std::size_t(d.x - 1) * (d.y - 1) * (d.z - 1), active = std::min(cells, capacity.max_vertices / 3);
+    const std::size_t cells = capacity.cells(), active = std::min(cells, capacity.max_vertices / 3);
     const std::size_t blocks = (cells + 255) / 256 + capacity.groups_x;   // mc_classify.comp's local size, 256
     return sizeof(gpu::MeshState) + cells * sizeof(std::uint32_t) + blocks * sizeof(glm::uvec2) +
            std::max<std::size_t>(active, 1) * sizeof(glm::uvec2) + capacity.max_vertices * sizeof(gpu::MeshVertex) +
@@ -67,7 +71,7 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
     const glm::uvec3 d = capacity.max_dims;
     if (glm::any(glm::lessThan(d, glm::uvec3(2u))) || capacity.max_vertices < 3)
         throw Error("marching cubes: capacity needs at least 2 nodes per axis and 3 vertices");
-    max_cells_ = std::size_t(d.x - 1) * (d.y - 1) * (d.z - 1);
+    max_cells_ = capacity.cells();
     max_vertices_ = capacity.max_vertices;
     max_active_ = std::min(max_cells_, max_vertices_ / 3);
     const std::size_t block = classify_.local_size()[0];

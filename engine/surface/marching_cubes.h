@@ -43,6 +43,9 @@ struct MeshCapacity {
     glm::uvec3 max_dims{160u};                      // most φ-grid nodes per axis (cells: one fewer)
     std::size_t max_vertices = std::size_t(1) << 22;   // 3 per triangle; more are dropped (MeshState.totals.z)
     std::uint32_t groups_x = 32768;   // workgroups a row of the cell passes' 2-D dispatches (tests narrow it)
+    std::size_t max_nodes = 0;        // the level set's node budget (cells fewer); 0: max_dims alone
+    // Cells the buffers hold: (max_dims - 1)³, or fewer than max_nodes when that is smaller.
+    std::size_t cells() const;
 };
 
 class MarchingCubes {

@@ -239,7 +239,10 @@ RANRYU_STRUCT_END(LayoutProbe, 112)
 // (uvec2[blocks]: active cells and vertices per classify workgroup, then their exclusive prefix sums),
 // ActiveCells (uvec2[]: compacted active cells, cell index and first vertex), MeshVertices
 // (MeshVertex[]: the mesh, non-indexed triangles), McTriangles (int[4096]: the triangle table of
-// surface/mc_tables.h, uploaded once).
+// surface/mc_tables.h, uploaded once). With anisotropic kernels (docs/SURFACE.md): SurfaceCentres
+// (vec4[particles], cell order: smoothed centre x̄_i, w the stretch s_3), SurfaceAxes (vec4[2·particles]:
+// unit axis a_1 and s_1, then a_2 and s_2; a_3 = a_1 × a_2) and SplatGrid (uint[nodes]: the kernels'
+// fixed-point sum).
 #define RANRYU_UBO_SURFACE 4             // SurfaceParams: the level set's constants
 #define RANRYU_LOC_SURFACE_CAPACITY 4    // uvec4 uniform: x vertices, y active cells, z cells (MC buffer capacities)
 #define RANRYU_LOC_SURFACE_GROUP 5       // uvec4 uniform: workgroup size of the pass whose indirect arguments this pass writes
@@ -255,9 +258,12 @@ RANRYU_STRUCT(SurfaceParams) {
     uint particle_count;
     float search_margin;   // (m): the gather also searches cells this much beyond R (particles moved since the sort)
     float bounds_margin;   // (m): the grid reaches this much beyond R around the particles (sub-particles' reach; else 0)
-    uint pad1;
+    uint max_nodes;        // node budget of the grid (docs/SURFACE.md (S9)); 0: max_dims alone bound it
+    // Anisotropic kernels (docs/SURFACE.md (S1)-(S8); used when the level set is built with them):
+    vec4 anisotropy;       // x: r, the neighbourhood radius (m); y: λ, centre smoothing; z: k_s (1/m²); w: k_r
+    vec4 anisotropy_limits;   // x: k_n; y: N_ε (neighbours, self included); z: s_max, the largest stretch; w: unused
 }
-RANRYU_STRUCT_END(SurfaceParams, 48)
+RANRYU_STRUCT_END(SurfaceParams, 80)
 
 // Where the φ grid lies (std430 SSBO). The level set writes it on the GPU each frame; any other
 // producer of φ fills origin and dims, which is all marching cubes reads.

@@ -15,6 +15,9 @@
 //     only if the sorted key at its start is the cell's own, as fluid_run() in sim/fluid/fluid.glsl.
 // Dispatch: glDispatchComputeIndirect with surface_grid.dispatch; one invocation per node.
 // Built with RANRYU_SUBPARTICLES (level_set.h), split parents are skipped and the children's splat added.
+// Built with RANRYU_SPLATTED (anisotropic kernels, docs/SURFACE.md (S7)), there is no gather: the
+// particles' kernels were splatted (splat_particles.comp, with the sub-particles' if any), and φ is
+// that fixed-point sum less iso; the sum is reset to 0 for the next frame.
 #include "../shared/bindings.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -26,27 +29,29 @@ layout(std430) readonly buffer CellEnd { uint cell_end[]; };
 layout(std430) readonly buffer SortedKeys { uint sorted_keys[]; };
 layout(std430) readonly buffer SurfaceGridState { SurfaceGrid surface_grid; };
 layout(std430) writeonly buffer Phi { float phi[]; };
-#ifdef RANRYU_SUBPARTICLES
+#if defined(RANRYU_SUBPARTICLES) || defined(RANRYU_SPLATTED)
+layout(std430) buffer SplatGrid { uint splat[]; };
+#endif
+#if defined(RANRYU_SUBPARTICLES) && !defined(RANRYU_SPLATTED)
 // Sub-particles (splat_subparticles.comp): parents split by the spawn pass are left out of the gather
 // (their children stand for them), and the children's fixed-point splat is added, then reset to 0.
 layout(std430) readonly buffer SubparticleLevels { uint sub_level[]; };
-layout(std430) buffer SplatGrid { uint splat[]; };
 #endif
 
 #include "../sim/grid.glsl"
 #include "../sim/kernel.glsl"
 
-// The particles of cell `key`: [start, end) of the sorted arrays, or empty when the entry is stale.
-uvec2 cell_run(uint key) {
-    uint s = cell_start[key];
-    if (s < surface.particle_count && sorted_keys[s] == key) return uvec2(s, cell_end[key]);
-    return uvec2(0u);
-}
+#include "cell_run.glsl"
 
 void main() {
     uvec3 node = gl_GlobalInvocationID;
     uvec3 dims = surface_grid.dims.xyz;
     if (any(greaterThanEqual(node, dims))) return;
+    uint index = node.x + dims.x * (node.y + dims.y * node.z);
+#ifdef RANRYU_SPLATTED
+    phi[index] = float(splat[index]) * (1.0 / RANRYU_SUBPARTICLE_SPLAT_SCALE) - surface.iso;
+    splat[index] = 0u;
+#else
     vec3 x = surface_grid.origin.xyz + surface_grid.origin.w * vec3(node);
     float r = surface.kernel_radius, reach = r + surface.search_margin;
     ivec3 lo = grid_cell(x - reach), hi = grid_cell(x + reach);
@@ -56,18 +61,18 @@ void main() {
             for (int cx = lo.x; cx <= hi.x; ++cx) {
                 uvec2 run = cell_run(cell_key(ivec3(cx, cy, cz)));
                 for (uint j = run.x; j < run.y; ++j) {
-#ifdef RANRYU_SUBPARTICLES
+#if defined(RANRYU_SUBPARTICLES)
                     if ((sub_level[j] >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) != 0u) continue;
 #endif
                     sum += kernel_w(length(x - sorted_position[j].xyz), r);
                 }
             }
-    uint index = node.x + dims.x * (node.y + dims.y * node.z);
 #ifdef RANRYU_SUBPARTICLES
     float children = float(splat[index]) * (1.0 / RANRYU_SUBPARTICLE_SPLAT_SCALE);
     splat[index] = 0u;
     phi[index] = (surface.volume * sum + children) - surface.iso;
 #else
     phi[index] = surface.volume * sum - surface.iso;
+#endif
 #endif
 }

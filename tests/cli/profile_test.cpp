@@ -253,7 +253,7 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     for (const char* line : {"not run: density, forces, integrate: WCSPH's, since the solver is dfsph",
                              "not run: wavelet, turbulence-force, since turbulence.amplitude is 0",
                              "not run: subparticles.*, since turbulence is off",
-                             "not run: surface.bounds, level-set, mc.*, draw-surface, since the shading draws particles"})
+                             "not run: surface.anisotropy, surface.bounds, level-set.splat, level-set, mc.*, draw-surface, since the shading draws particles"})
         CHECK_THAT(r.out, Contains(line));
     CHECK_THAT(r.out, !Contains("not run: dfsph"));
     const auto j = nlohmann::json::parse(read_file(tmp.path() / "p.json"));

@@ -3,6 +3,8 @@
 // builds neither; a bad mode, or a surface for a ballistic scene, is bad input (exit 2).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -22,8 +24,8 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const std::vector<std::string> kSurfacePasses = {"surface.bounds", "level-set", "mc.classify", "mc.compact", "mc.emit",
-                                                 "draw-surface"};
+const std::vector<std::string> kSurfacePasses = {"surface.anisotropy", "surface.bounds", "level-set.splat", "level-set",
+                                                 "mc.classify", "mc.compact", "mc.emit", "draw-surface"};
 
 // The pass names of the timing table on stdout (first word of each row after the "pass" header).
 std::vector<std::string> table_passes(const std::string& out) {
@@ -182,4 +184,44 @@ TEST_CASE("record and profile take a shading mode of phong, gouraud, fresnel or 
         CHECK(img.ok());
         CHECK(img.distinct_colours() > 10);
     }
+}
+
+TEST_CASE("A pool at rest: its surface normals within 1° rms of vertical, from the exported mesh") {
+    // A pool 10 particles deep in a 0.4 x 0.3 x 0.2 m tank (Δx = 0.02 m, 2000 particles), one frame
+    // simulated from rest, its mesh exported. The top's vertices (within Δx of the fill height H, more
+    // than 4Δx from the walls, where the surface turns down) must face up: the rms angle of their
+    // normals (−∇φ, docs/SURFACE.md (S8)) from +y within 1° with anisotropic kernels (the default),
+    // and below the spherical kernels' (whose bumps over the particles tilt the normals).
+    TempDir tmp;
+    const float dx = 0.02f, H = 0.2f;
+    double rms[2] = {0.0, 0.0};
+    for (const bool anisotropic : {true, false}) {
+        const std::string name = anisotropic ? "aniso" : "iso";
+        write_file(tmp / (name + ".json"), std::string(R"({"name": "pool", "model": "sph", "tank": {"min": [0, 0, 0], "max": [0.4, 0.3, 0.2]},
+            "particles": {"spacing": 0.02, "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.2, 0.2]}]},
+            "sph": {"viscosity": 1e-3}, "surface": {"anisotropic": )") + (anisotropic ? "true" : "false") + "}}");
+        const Result r = run_ranryu(tmp.path(), {"record", "--scene", name + ".json", "--frames", "1", "--size", "32x24",
+                                                 "--export-mesh", "--out", name});
+        INFO(r.describe());
+        REQUIRE(r.exit_code == 0);
+        std::size_t nv = 0;
+        const auto soup = read_ply_soup(tmp / (name + "/frame_00000.ply"), &nv);
+        double sum2 = 0.0, worst = 0.0;
+        std::size_t count = 0;
+        for (const auto& v : soup) {
+            const glm::vec3 p(v.position);
+            if (std::abs(p.y - H) > dx || p.x < 4 * dx || p.x > 0.4f - 4 * dx || p.z < 4 * dx || p.z > 0.2f - 4 * dx) continue;
+            const double deg = glm::degrees(std::acos(std::clamp(double(v.normal.y), -1.0, 1.0)));
+            sum2 += deg * deg;
+            worst = std::max(worst, deg);
+            ++count;
+        }
+        rms[anisotropic] = count ? std::sqrt(sum2 / double(count)) : 0.0;
+        INFO(name << ": " << count << " top vertices; normals off vertical by " << rms[anisotropic] << "° rms, " << worst
+                  << "° at worst");
+        REQUIRE(count > 100);
+        if (anisotropic) CHECK(rms[1] < 1.0);
+    }
+    INFO("rms " << rms[1] << "° anisotropic, " << rms[0] << "° spherical");
+    CHECK(rms[1] < rms[0]);
 }

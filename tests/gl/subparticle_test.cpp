@@ -45,6 +45,7 @@
 #include "surface/level_set.h"
 #include "turbulence/force.h"
 #include "turbulence/noise.h"
+#include "support/read_pixels.h"
 #include "turbulence/subparticles.h"
 
 namespace {
@@ -798,12 +799,7 @@ TEST_CASE("subparticles: drawn as particles, unsplit parents and sub-particles s
     timer.begin_frame();
     renderer.draw(target, px, pv, 2, nullptr, &sub);
     timer.end_frame();
-    std::vector<std::uint8_t> rgba(std::size_t(kW) * kH * 4);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer());
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    const std::vector<std::uint8_t> rgba = ranryu::test::read_rgba(target);
     timer.drain();
 
     // Every pixel clear of a silhouette (closest approach within 5 % of a radius), to 3/255.

@@ -3,7 +3,7 @@
 // root such as "shared/bindings.h", or a bare file name such as "force.h") must be a file or folder of
 // the repository, and a section cited in a document ("docs/METHOD.md §3", "docs/SPH.md eq. (4)",
 // "docs/DFSPH.md (D1)-(D8)", `docs/DFSPH.md "A step"`) must be a heading of that document: docs/METHOD.md's
-// headings carry "§n", docs/SPH.md's "(n)", docs/DFSPH.md's "(Dn)", docs/PBF.md's "(Pn)", and a quoted citation names a
+// headings carry "§n", docs/SPH.md's "(n)", docs/DFSPH.md's "(Dn)", docs/PBF.md's "(Pn)", docs/SURFACE.md's "(Sn)", and a quoted citation names a
 // heading's words. Inside docs/METHOD.md a bare "§n" is a section of itself.
 //
 // Scanned: *.cpp, *.h, *.glsl, *.comp, *.vert, *.frag (paths in comments; sections in comments and
@@ -400,7 +400,7 @@ private:
             return true;
         }
         if (literal("(")) {
-            const std::string prefix = literal("D") ? "D" : literal("P") ? "P" : "";
+            const std::string prefix = literal("D") ? "D" : literal("P") ? "P" : literal("S") ? "S" : "";
             const std::string a = digits();
             if (a.empty() || !literal(")")) return back_to(start);
             std::string b = a;
