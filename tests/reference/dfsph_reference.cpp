@@ -166,7 +166,7 @@ Rows row_sources(Solve which, const std::vector<dvec3>& x, const std::vector<dve
     Rows r{std::vector<double>(boundary.size(), 0.0), std::vector<double>(boundary.size(), 0.0)};
     for (size_t b = 0; b < boundary.size(); ++b) {
         if (!row[b]) continue;
-        double rho = 0.0, rate = 0.0, diagonal = 0.0;
+        double rho = 0.0, wall = 0.0, rate = 0.0, diagonal = 0.0;
         for (size_t j = 0; j < x.size(); ++j) {
             const double distance = glm::length(boundary[b] - x[j]);
             if (distance >= params.h) continue;
@@ -175,8 +175,8 @@ Rows row_sources(Solve which, const std::vector<dvec3>& x, const std::vector<dve
             rate -= params.mass * glm::dot(v[j], g);
             diagonal += glm::length(g) * u[j];
         }
-        for (size_t q = 0; q < boundary.size(); ++q) rho += psi[q] * kernel.W(glm::length(boundary[b] - boundary[q]));
-        r.source[b] = which == Solve::density ? params.rest_density - (rho + dt * rate) : -dt * rate;
+        for (size_t q = 0; q < boundary.size(); ++q) wall += psi[q] * kernel.W(glm::length(boundary[b] - boundary[q]));
+        r.source[b] = which == Solve::density ? std::max(params.rest_density, wall) - (rho + wall + dt * rate) : -dt * rate;
         r.diagonal[b] = psi[b] * diagonal;
     }
     return r;

@@ -87,7 +87,7 @@ std::vector<double> spreads(const std::vector<glm::dvec3>& x, const std::vector<
                             const std::vector<double>& psi, const Params& params);
 // Whether each boundary particle is a row: some fluid particle within h.
 std::vector<bool> boundary_rows(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary, const Params& params);
-// A solve's rows: s_b = ρ0 − ρ*_b (density; ρ*_b = Σ_j m W_bj + Σ_b' ψ_b' W_bb' + dt Σ_j m(0 − v_j)·∇W_bj)
+// A solve's rows: s_b = max(ρ0, Σ_b' ψ_b' W_bb') − ρ*_b (density; ρ*_b = Σ_j m W_bj + Σ_b' ψ_b' W_bb' + dt Σ_j m(0 − v_j)·∇W_bj)
 // or −dt Σ_j m(0 − v_j)·∇W_bj (divergence); D_b = ψ_b Σ_j |∇W_bj| u_j. 0 for both where b is no row.
 struct Rows {
     std::vector<double> source, diagonal;

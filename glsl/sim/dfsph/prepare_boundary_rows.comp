@@ -2,7 +2,11 @@
 // A solve's boundary rows, before its first pressure accelerations, "dfsph.boundary.prepare"
 // (docs/DFSPH.md (D9)), one invocation per row of the step (BoundaryList):
 //     rho*_b = Σ_j m W_bj + Σ_b' psi_b' W_bb' + dt Σ_j m (0 − v_j)·gradW_bj
-//     s_b    = rho0 − rho*_b (density solve) or −dt Σ_j m (0 − v_j)·gradW_bj (divergence solve)
+//     s_b    = max(rho0, Σ_b' psi_b' W_bb') − rho*_b (density solve)
+//            or −dt Σ_j m (0 − v_j)·gradW_bj (divergence solve)
+// The wall's own part can read a little above rho0 deep inside it (the lattice's kernel sum is not
+// exactly 1): no compression the fluid could relieve, and with a fluid neighbour at the edge of h
+// (D_b → 0) it would ask for an unbounded kappa_b. So the rest density is at least the wall's own.
 //     D_b    = psi_b Σ_j |gradW_bj| u_j            the l1 diagonal of (D9), u_j from the density pass
 // Row[k] = (s_b, 1/D_b or 0). The density solve's kept kappa_b becomes its warm start: w·kappa_b, or
 // none where the row is fresh (not a row the step before) or the particle separates from the wall
@@ -21,7 +25,7 @@ layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b 
 
 #include "boundary_rows.glsl"
 
-float rho_, rate_, diagonal_;
+float rho_, wall_, rate_, diagonal_;
 void visit_row_fluid(uint j, vec3 d, float r) {
     vec3 g = kernel_grad(d, r, sph.h);
     rho_ += sph.mass * kernel_w(r, sph.h);
@@ -34,7 +38,7 @@ void main() {
     if (k >= rows.rows) return;   // no barriers in this pass
     uint entry = boundary_list[k], b = entry & ~kFreshRow, s = solve.solve;
     vec3 xb = boundary[b].xyz;
-    rho_ = rate_ = diagonal_ = 0.0;
+    rho_ = wall_ = rate_ = diagonal_ = 0.0;
     for_each_fluid_near(xb);
     ivec3 c = grid_cell(xb);
     float h2 = sph.h * sph.h;
@@ -42,10 +46,10 @@ void main() {
         uvec2 run = NEIGHBOUR_RUN(c, false);
         for (uint q = run.x; q < run.y; ++q) {
             vec3 d = xb - boundary[q].xyz;
-            if (dot(d, d) < h2) rho_ += boundary[q].w * kernel_w(length(d), sph.h);
+            if (dot(d, d) < h2) wall_ += boundary[q].w * kernel_w(length(d), sph.h);
         }
     }
-    float source = s == 0u ? sph.rest_density - (rho_ + step.dt * rate_) : -step.dt * rate_;
+    float source = s == 0u ? max(sph.rest_density, wall_) - (rho_ + wall_ + step.dt * rate_) : -step.dt * rate_;
     float d_b = boundary[b].w * diagonal_;
     row[k] = vec2(source, d_b > 0.0 ? 1.0 / d_b : 0.0);
     bool drop = s == 1u || (entry & kFreshRow) != 0u || source > warm_start_drop();
