@@ -9,7 +9,10 @@
 //                                 // "level-set" and "mc.classify", "mc.compact", "mc.emit"
 //                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
 //     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
-//                                 // sub-particles, coloured by level) or "draw-surface"
+//                                 // sub-particles, coloured by level) or "draw-surface"; the water
+//                                 // shading: "shadow-map", "clear", "draw-sky", "draw-floor",
+//                                 // "draw-walls", "draw-tank", "liquid-thickness", "compose",
+//                                 // "draw-surface" (render/renderer.h)
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //

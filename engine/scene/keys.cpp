@@ -159,7 +159,7 @@ std::vector<Key> make_keys() {
         number("surface.node_spacing", "spacing", f.node_spacing, 0.1, 4.0, "The level set grid's node spacing, in particle spacings."),
         integer("surface.max_dims", "", f.max_dims, 4, 512, "The most grid nodes a side (a larger box coarsens the grid)."),
         integer("surface.max_vertices", "", f.max_vertices, 3, 1 << 26, "The mesh's capacity, 3 a triangle (more are dropped)."),
-        vec3("surface.absorption", "1/m", f.absorption, 0.0, 1e3, "Fresnel shading: the water's Beer-Lambert absorption per colour channel."),
+        vec3("surface.absorption", "1/m", f.absorption, 0.0, 1e3, "Fresnel and water shadings: the water's Beer-Lambert absorption per colour channel (default: pure water's x 12, docs/RENDERING.md (R6))."),
 
         object("camera", "Where the scene is seen from."),
         vec3("camera.eye", "m", d.camera_eye, -1e4, 1e4, "The camera's position."),
