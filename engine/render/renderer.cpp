@@ -229,6 +229,7 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
     frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
     {
         // (R8), (R10): every layer of the liquid, seen from the sun.
         auto pass = timer_.scope(shadow_pass_);

@@ -17,6 +17,12 @@
 // depth at which a pool or the sea reads as blue (docs/RENDERING.md (R6)).
 #define RANRYU_WATER_ABSORPTION_PURE 0.340, 0.0565, 0.0092
 #define RANRYU_WATER_ABSORPTION_SCALE 12.0
+// The procedural sky (sky(), glsl/common/frame.glsl; (R2)), linear: horizon, zenith and ground
+// colours, and the rate k (per unit of d_y) at which the ground below the horizon fades into its haze.
+#define RANRYU_SKY_HORIZON 0.80, 0.86, 0.92
+#define RANRYU_SKY_ZENITH 0.22, 0.42, 0.78
+#define RANRYU_SKY_GROUND 0.30, 0.28, 0.26
+#define RANRYU_SKY_HAZE 8.0
 // Sun highlight on the water, Blinn-Phong: k_s (in units of the sun's colour) and exponent (R4).
 #define RANRYU_WATER_SPECULAR 2.0
 #define RANRYU_WATER_SHININESS 400.0

@@ -32,9 +32,9 @@ vec3 sun_transmittance(vec3 x) {
                 sum += vec3(1.0);
                 continue;
             }
-            float near = texelFetch(t_shadow_near, p, 0).r;
+            float s_near = texelFetch(t_shadow_near, p, 0).r;
             float d = max(texelFetch(t_shadow_thickness, p, 0).r, 0.0);
-            sum += s > near + RANRYU_SHADOW_BIAS ? exp(-u_absorption.rgb * d) : vec3(1.0);
+            sum += s > s_near + RANRYU_SHADOW_BIAS ? exp(-u_absorption.rgb * d) : vec3(1.0);
         }
     const float taps = float((2 * RANRYU_SHADOW_PCF_RADIUS + 1) * (2 * RANRYU_SHADOW_PCF_RADIUS + 1));
     return sum / taps;
