@@ -23,6 +23,7 @@
 //     (the floor and walls whose shadow-map taps reach the box's outline seen from the sun), both grown
 //     by 2 px, and differ inside; their opaque scenes agree exactly outside the shadow and differ in it.
 #include "support/gl_fixture.h"
+#include "support/screen.h"
 
 #include <algorithm>
 #include <array>
@@ -196,21 +197,14 @@ Frame render_water(const Rig& r, bool with_liquid) {
 class Cpu {
 public:
     explicit Cpu(const Rig& r)
-        : r_(r), f_(r.fp), inv_(glm::inverse(glm::dmat4(r.fp.view_proj))), sun_(render::sun_view(r.fp)),
+        : r_(r), f_(r.fp), screen_{glm::dmat4(r.fp.view_proj), kWidth, kHeight}, sun_(render::sun_view(r.fp)),
           sun_inv_(glm::inverse(glm::dmat4(sun_.matrix))) {}
 
     glm::dvec3 eye() const { return glm::dvec3(f_.eye); }
     glm::dvec3 l() const { return glm::normalize(glm::dvec3(f_.light_dir)); }
 
-    glm::dvec3 ray(double x, double y) const {
-        const glm::dvec2 ndc(2.0 * x / kWidth - 1.0, 2.0 * y / kHeight - 1.0);
-        const glm::dvec4 a = inv_ * glm::dvec4(ndc, -1.0, 1.0), b = inv_ * glm::dvec4(ndc, 1.0, 1.0);
-        return glm::normalize(glm::dvec3(b) / b.w - glm::dvec3(a) / a.w);
-    }
-    glm::dvec2 window(glm::dvec3 p) const {
-        const glm::dvec4 c = glm::dmat4(f_.view_proj) * glm::dvec4(p, 1.0);
-        return {(0.5 * c.x / c.w + 0.5) * kWidth, (0.5 * c.y / c.w + 0.5) * kHeight};
-    }
+    glm::dvec3 ray(double x, double y) const { return screen_.ray(x, y); }
+    glm::dvec2 window(glm::dvec3 p) const { return screen_.window(p); }
 
     // What the opaque scene shows along a ray from the eye: kind 0 sky, 1 floor, 2..5 a wall; the
     // distance, point and normal, and the class of its albedo (for the edge checks).
@@ -378,7 +372,7 @@ public:
 private:
     const Rig& r_;
     const gpu::FrameParams& f_;
-    glm::dmat4 inv_;
+    ranryu::test::Screen screen_;
     render::SunView sun_;
     glm::dmat4 sun_inv_;
 };
@@ -389,15 +383,24 @@ std::string describe(glm::dvec3 c) {
     return s.str();
 }
 
+// A random rig, its CPU side and its frame (rendered with the liquid). Stays where it was built (cpu
+// refers to rig).
+struct Case {
+    Rig rig;
+    Cpu cpu;
+    Frame frame;
+    explicit Case(ranryu::test::Random& rng, bool sunk = false) : rig(random_rig(rng, sunk)), cpu(rig), frame(render_water(rig, true)) {}
+    Case(const Case&) = delete;
+};
+
 }  // namespace
 
 TEST_CASE("water: the opaque scene's sky, tiles and the liquid's coloured shadow match the CPU") {
     ranryu::test::context();
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    const Rig rig = random_rig(rng, false);
-    const Cpu cpu(rig);
-    const Frame f = render_water(rig, true);
+    const Case c(rng);
+    const auto& [rig, cpu, f] = c;
     int sky = 0, lit = 0, shadowed = 0, walls = 0, failures = 0;
     for (int j = 0; j < kHeight; ++j)
         for (int i = 0; i < kWidth; ++i) {
@@ -428,9 +431,8 @@ TEST_CASE("water: the liquid's thickness along each view ray is the box's chord 
     INFO("seed " << rng.seed());
     for (const bool sunk : {false, true}) {
         INFO((sunk ? "box sunk 5 cm into the floor" : "box above the floor"));
-        const Rig rig = random_rig(rng, sunk);
-        const Cpu cpu(rig);
-        const Frame f = render_water(rig, true);
+        const Case c(rng, sunk);
+        const auto& [rig, cpu, f] = c;
         int inside = 0, clipped = 0, outside = 0, failures = 0;
         for (int j = 0; j < kHeight; ++j)
             for (int i = 0; i < kWidth; ++i) {
@@ -465,9 +467,8 @@ TEST_CASE("water: the surface pixel is Fresnel-weighted sky reflection, absorbed
     ranryu::test::context();
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    const Rig rig = random_rig(rng, false);
-    const Cpu cpu(rig);
-    const Frame f = render_water(rig, true);
+    const Case c(rng);
+    const auto& [rig, cpu, f] = c;
     const auto& fp = rig.fp;
     const glm::dvec3 l(fp.light_dir), light(fp.light_color);
     const double n1 = RANRYU_IOR_AIR, n2 = RANRYU_IOR_WATER;
@@ -548,9 +549,9 @@ TEST_CASE("water: frames with and without the liquid differ only where the liqui
     ranryu::test::context();
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    const Rig rig = random_rig(rng, false);
-    const Cpu cpu(rig);
-    const Frame with = render_water(rig, true), without = render_water(rig, false);
+    const Case c(rng);
+    const auto& [rig, cpu, with] = c;
+    const Frame without = render_water(rig, false);
     // The masks, per pixel centre and corners, grown by 2 px.
     std::vector<char> liquid(std::size_t(kWidth) * kHeight, 0), shadow(liquid.size(), 0);
     for (int j = 0; j < kHeight; ++j)
