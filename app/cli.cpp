@@ -198,8 +198,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--markdown") o.markdown = true;
         else if (opt == "--shading") {
             // The names of render::Shading (engine/render/renderer.h); kept here so parsing needs no GL.
-            if (value != "phong" && value != "gouraud" && value != "fresnel" && value != "particles")
-                throw InputError("--shading " + value + ": expected one of phong, gouraud, fresnel, particles");
+            if (value != "water" && value != "fresnel" && value != "phong" && value != "gouraud" && value != "particles")
+                throw InputError("--shading " + value + ": expected one of water, fresnel, phong, gouraud, particles");
             o.shading = value;
         }
     }
@@ -245,9 +245,9 @@ std::string command_help(const std::string& cmd) {
   --solver NAME       dfsph | wcsph | pbf: the SPH pressure solver (default: the scene's, dfsph unless
                       it says otherwise; docs/DFSPH.md, docs/SPH.md, docs/PBF.md)
   --size WxH          image size in pixels, 16..8192 each (default: the scene's)
-  --shading MODE      phong | gouraud | fresnel | particles: how the liquid is drawn (default:
-                      fresnel for SPH scenes, particles for ballistic ones; the surface modes mesh
-                      the SPH liquid each frame)
+  --shading MODE      water | fresnel | phong | gouraud | particles: how the liquid is drawn
+                      (default: water for SPH scenes, particles for ballistic ones; the surface
+                      modes mesh the SPH liquid each frame; docs/RENDERING.md)
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages
 )";

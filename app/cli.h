@@ -29,7 +29,7 @@ struct Options {
     std::string records;          // record/profile: the simulation's per-frame records as CSV
     std::string shader_dir;       // read shaders from this folder instead of the embedded copies
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
-    std::string shading;          // run/record/profile: phong | gouraud | fresnel | particles; empty: the scene's default
+    std::string shading;          // run/record/profile: water | fresnel | phong | gouraud | particles; empty: the scene's default
     bool export_mesh = false;     // record: frame_NNNNN.ply of the surface beside each PNG
     std::string export_particles; // record: ply | vtp: particles_NNNNN.EXT of the particles each frame
     std::string video;            // record: FILE.mp4|.webm|.gif made by ffmpeg from the frames

@@ -148,7 +148,7 @@ int record(const Options& o) {
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
     frame::Progress progress = make_progress(o, "ranryu record");
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
-        throw InputError("--export-mesh: needs a surface (--shading phong, gouraud or fresnel of an SPH scene); scene " +
+        throw InputError("--export-mesh: needs a surface (--shading water, fresnel, phong or gouraud of an SPH scene); scene " +
                          scene.name + " is drawn as particles");
     const shader::FileSource shaders = shader_source(o);   // a bad --shader-dir, before the folder is made
     if (o.no_png && o.video.empty() && o.export_particles.empty() && !o.export_mesh)

@@ -14,9 +14,9 @@
 namespace ranryu::app {
 
 namespace {
-constexpr render::Shading kShadings[] = {render::Shading::fresnel, render::Shading::phong, render::Shading::gouraud,
-                                         render::Shading::particles};
-constexpr const char* kShadingNames[] = {"fresnel", "phong", "gouraud", "particles"};
+constexpr render::Shading kShadings[] = {render::Shading::water, render::Shading::fresnel, render::Shading::phong,
+                                         render::Shading::gouraud, render::Shading::particles};
+constexpr const char* kShadingNames[] = {"water", "fresnel", "phong", "gouraud", "particles"};
 constexpr const char* kSolverNames[] = {"dfsph", "wcsph", "pbf"};   // scene::Solver's order
 }  // namespace
 

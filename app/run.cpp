@@ -165,12 +165,12 @@ int run(const Options& o) {
                 }
                 render::Shading s = cmd.shading;
                 if (cmd.kind == input::Kind::next_shading) {
-                    constexpr render::Shading order[] = {render::Shading::fresnel, render::Shading::phong,
+                    constexpr render::Shading order[] = {render::Shading::water, render::Shading::fresnel, render::Shading::phong,
                                                          render::Shading::gouraud, render::Shading::particles};
                     const render::Shading now = c.shading.value_or(render::default_shading(scene));
                     std::size_t i = 0;
                     while (order[i] != now) ++i;
-                    s = order[(i + 1) % 4];
+                    s = order[(i + 1) % std::size(order)];
                 }
                 c.shading = s;
                 c.restart = true;

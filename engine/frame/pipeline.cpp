@@ -59,6 +59,9 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
         e.parts.push_back({"particles", sim::Particles::bytes_for(n)});
     }
     if (view.draw) e.parts.push_back({"render target", gl::RenderTarget::bytes_for(view.width, view.height)});
+    const render::Shading shading = view.shading.value_or(render::default_shading(s));
+    if (view.draw && shading == render::Shading::water)
+        e.parts.push_back({"water shading targets", render::Renderer::bytes_for(shading, view.width, view.height)});
     return e;
 }
 
@@ -76,6 +79,7 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     if (view.draw) {
         renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled());
         target_ = gl::RenderTarget(view.width, view.height, "frame");
+        renderer_->resize(view.width, view.height);
     }
     if (sph) {
         sph_ = std::make_unique<sim::Simulation>(shaders, timer_, scene_);

@@ -10,8 +10,11 @@
 //                                 // "mc.classify", "mc.compact", "mc.emit"
 //                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
 //     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
-//                                 // sub-particles, coloured by level) or "draw-surface" (then, with
-//                                 // sub-particles, "draw-spray": render/renderer.h)
+//                                 // sub-particles, coloured by level) or "draw-surface"; the water
+//                                 // shading: "shadow-map", "clear", "draw-sky", "draw-floor",
+//                                 // "draw-walls", "draw-tank", "liquid-thickness", "compose",
+//                                 // "draw-surface"; with sub-particles, "draw-spray"
+//                                 // after the surface (render/renderer.h)
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //

@@ -98,21 +98,31 @@ std::size_t RenderTarget::bytes_for(int width, int height) {
            (Texture2D::texel_bytes(kColorFormat) + Texture2D::texel_bytes(kDepthFormat));
 }
 
-RenderTarget::RenderTarget(int width, int height, std::string_view name)
-    : color_(kColorFormat, width, height, std::string(name) + ".color"),
-      depth_(kDepthFormat, width, height, std::string(name) + ".depth") {
+Framebuffer::Framebuffer(std::span<const Texture2D* const> colors, const Texture2D* depth, std::string_view name) {
     GLuint id = 0;
     glGenFramebuffers(1, &id);
-    fbo_ = Name<DeleteFramebuffer>(id);
+    name_ = Name<DeleteFramebuffer>(id);
     glBindFramebuffer(GL_FRAMEBUFFER, id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_.id(), 0);
+    std::vector<GLenum> buffers;
+    for (const Texture2D* c : colors) {
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(buffers.size());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, c->id(), 0);
+        buffers.push_back(attachment);
+    }
+    if (depth) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth->id(), 0);
+    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("render target " + std::string(name) + " is incomplete (status 0x" +
-                    std::to_string(status) + ")");
+        throw Error("framebuffer " + std::string(name) + " is incomplete (status 0x" + std::to_string(status) + ")");
     label(GL_FRAMEBUFFER, id, name);
+}
+
+RenderTarget::RenderTarget(int width, int height, std::string_view name)
+    : color_(kColorFormat, width, height, std::string(name) + ".color"),
+      depth_(kDepthFormat, width, height, std::string(name) + ".depth") {
+    const Texture2D* colors[] = {&color_};
+    fbo_ = Framebuffer(colors, &depth_, std::string(name));
 }
 
 VertexArray::VertexArray() {

@@ -144,6 +144,18 @@ private:
     TrackedBytes tracked_;
 };
 
+// A framebuffer of textures: colour attachments 0, 1, ... in the order given (all drawn to), and an
+// optional depth texture. Throws Error when the driver finds it incomplete.
+class Framebuffer {
+public:
+    Framebuffer() = default;
+    Framebuffer(std::span<const Texture2D* const> colors, const Texture2D* depth, std::string_view name = {});
+    GLuint id() const { return name_.id(); }
+
+private:
+    Name<DeleteFramebuffer> name_;
+};
+
 // A framebuffer with one RGBA8 colour and a 32-bit float depth attachment, both textures.
 class RenderTarget {
 public:
@@ -159,7 +171,7 @@ public:
 private:
     static constexpr GLenum kColorFormat = GL_RGBA8, kDepthFormat = GL_DEPTH_COMPONENT32F;
     Texture2D color_, depth_;
-    Name<DeleteFramebuffer> fbo_;
+    Framebuffer fbo_;
 };
 
 class VertexArray {

@@ -9,7 +9,7 @@ constexpr std::array<Key, 9> kKeys{{
     {"space", "pause / resume the simulation (the picture is still drawn)"},
     {"n", "single step: one frame of simulation while paused"},
     {"r", "reset: restart the scene from its first frame"},
-    {"m", "next shading mode: fresnel, phong, gouraud, particles (restarts the scene)"},
+    {"m", "next shading mode: water, fresnel, phong, gouraud, particles (restarts the scene)"},
     {"t", "turbulence force on / off (live where the scene has it, else a restart)"},
     {"1-9", "the bundled scene of that number, in `ranryu scenes` order (restarts)"},
     {"h", "hide / show the panel"},

@@ -25,7 +25,7 @@ enum class Kind : std::uint8_t {
     set_panel,      // on: show, off: hide
     screenshot,     // the window as it is shown, into the screenshot folder
     quit,
-    next_shading,   // cycle fresnel, phong, gouraud, particles (restarts the scene)
+    next_shading,   // cycle water, fresnel, phong, gouraud, particles (restarts the scene)
     shading,        // shading = `shading` (restarts the scene)
     scene,          // bundled scene number `index` (0-based, `ranryu scenes` order; restarts)
     solver,         // solver = `solver` (restarts; SPH scenes only)

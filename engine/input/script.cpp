@@ -45,7 +45,7 @@ Command panel(const std::vector<std::string>& w) {
     } else if (a == "shading") {
         arity(w, 4, "panel shading MODE");
         const auto s = render::parse_shading(w[3]);
-        if (!s) throw LineError{"panel shading " + w[3] + ": expected one of phong, gouraud, fresnel, particles"};
+        if (!s) throw LineError{"panel shading " + w[3] + ": expected one of water, fresnel, phong, gouraud, particles"};
         c.kind = Kind::shading, c.shading = *s;
     } else if (a == "scene") {
         arity(w, 4, "panel scene NAME");

@@ -1,5 +1,8 @@
 #include "render/renderer.h"
 
+#include <algorithm>
+#include <string>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
@@ -14,8 +17,11 @@ struct ShadingName {
     Shading shading;
     const char* name;
 };
-constexpr ShadingName kShadingNames[] = {
-    {Shading::particles, "particles"}, {Shading::phong, "phong"}, {Shading::gouraud, "gouraud"}, {Shading::fresnel, "fresnel"}};
+constexpr ShadingName kShadingNames[] = {{Shading::water, "water"},
+                                         {Shading::fresnel, "fresnel"},
+                                         {Shading::phong, "phong"},
+                                         {Shading::gouraud, "gouraud"},
+                                         {Shading::particles, "particles"}};
 
 shader::Program surface_program(const shader::FileSource& shaders, Shading s) {
     switch (s) {
@@ -23,6 +29,7 @@ shader::Program surface_program(const shader::FileSource& shaders, Shading s) {
         case Shading::gouraud:
             return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_gouraud.frag", "#define GOURAUD\n");
         case Shading::fresnel: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_fresnel.frag");
+        case Shading::water: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_water.frag");
         case Shading::particles: break;
     }
     return {};
@@ -41,7 +48,24 @@ const char* shading_name(Shading s) {
     return "?";
 }
 
-Shading default_shading(const scene::Scene& s) { return s.model == scene::Model::sph ? Shading::fresnel : Shading::particles; }
+const char* shading_names() { return "water, fresnel, phong, gouraud, particles"; }
+
+Shading default_shading(const scene::Scene& s) { return s.model == scene::Model::sph ? Shading::water : Shading::particles; }
+
+SunView sun_view(const gpu::FrameParams& p) {
+    // The floor quad (glsl/render/floor.vert: the tank's footprint grown by max(size.x, size.z)) up to
+    // twice the tank's height, where splashes of an open tank may fly.
+    const glm::vec3 lo(p.tank_min), hi(p.tank_max), size = hi - lo;
+    const float margin = std::max(size.x, size.z);
+    const glm::vec3 box_lo(lo.x - margin, lo.y, lo.z - margin), box_hi(hi.x + margin, hi.y + size.y, hi.z + margin);
+    const glm::vec3 centre = 0.5f * (box_lo + box_hi);
+    const float radius = 0.5f * glm::length(box_hi - box_lo);
+    const glm::vec3 l = glm::normalize(glm::vec3(p.light_dir));
+    const glm::vec3 up = std::abs(l.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::mat4 view = glm::lookAt(centre + radius * l, centre, up);
+    const glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, 0.0f, 2.0f * radius);
+    return SunView{proj * view, centre, radius};
+}
 
 Camera scene_camera(const scene::Scene& s) { return Camera{s.camera_eye, s.camera_target, s.fov_deg}; }
 
@@ -117,13 +141,56 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         glVertexAttribBinding(RANRYU_ATTR_MESH_NORMAL, 0);
         glBindVertexArray(0);
         gl::label(GL_VERTEX_ARRAY, mesh_vao_.id(), "surface.vao");
-        set_absorption(glm::vec3(0.0f));
         if (subparticles) {
             spray_pass_ = timer.pass("draw-spray");
             spray_ = shader::Program::graphics(shaders, "render/spray.vert", "render/spray.frag");
             set_spray_energy(1.0f);
         }
     }
+    if (shading_ == Shading::water) {
+        shadow_pass_ = timer.pass("shadow-map");
+        sky_pass_ = timer.pass("draw-sky");
+        walls_pass_ = timer.pass("draw-walls");
+        thickness_pass_ = timer.pass("liquid-thickness");
+        compose_pass_ = timer.pass("compose");
+        shadow_ = shader::Program::graphics(shaders, "render/shadow_map.vert", "render/shadow_map.frag");
+        sky_ = shader::Program::graphics(shaders, "render/sky.vert", "render/sky.frag");
+        tiles_floor_ = shader::Program::graphics(shaders, "render/floor.vert", "render/tiles.frag");
+        tiles_walls_ = shader::Program::graphics(shaders, "render/walls.vert", "render/tiles.frag", "#define WALLS\n");
+        thickness_prog_ = shader::Program::graphics(shaders, "render/surface.vert", "render/liquid_thickness.frag");
+        compose_ = shader::Program::graphics(shaders, "render/sky.vert", "render/compose.frag");
+        constexpr int n = RANRYU_SHADOW_MAP_SIZE;
+        shadow_near_ = gl::Texture2D(GL_R32F, n, n, "shadow.near");
+        shadow_thickness_ = gl::Texture2D(GL_R32F, n, n, "shadow.thickness");
+        const gl::Texture2D* maps[] = {&shadow_near_, &shadow_thickness_};
+        shadow_fbo_ = gl::Framebuffer(maps, nullptr, "shadow");
+    }
+    if (needs_surface(shading_)) set_absorption(glm::vec3(0.0f));
+}
+
+std::size_t Renderer::bytes_for(Shading s, int width, int height) {
+    if (s != Shading::water) return 0;
+    const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
+    return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) +
+                     gl::Texture2D::texel_bytes(GL_R32F)) +
+           2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
+}
+
+void Renderer::resize(int width, int height) {
+    if (shading_ != Shading::water) return;
+    if (scene_color_.width() == width && scene_color_.height() == height) return;
+    scene_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.color");
+    scene_depth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height, "scene.depth");
+    thickness_ = gl::Texture2D(GL_R32F, width, height, "liquid.thickness");
+    // The refraction's lookup may land on the border: clamp there.
+    glBindTexture(GL_TEXTURE_2D, scene_color_.id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    const gl::Texture2D* scene[] = {&scene_color_};
+    scene_fbo_ = gl::Framebuffer(scene, &scene_depth_, "scene");
+    const gl::Texture2D* thick[] = {&thickness_};
+    thickness_fbo_ = gl::Framebuffer(thick, nullptr, "liquid.thickness");
 }
 
 void Renderer::set_spray_energy(float e_min) {
@@ -156,16 +223,161 @@ void Renderer::draw_spray(const gl::RenderTarget& target, const SubparticleDraw&
 }
 
 void Renderer::set_absorption(glm::vec3 sigma) {
-    if (shading_ == Shading::fresnel) glProgramUniform4f(surface_.id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
+    if (shading_ == Shading::fresnel || shading_ == Shading::water)
+        glProgramUniform4f(surface_.id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
+    if (shading_ == Shading::water)
+        for (const shader::Program* p : {&tiles_floor_, &tiles_walls_})
+            glProgramUniform4f(p->id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
 }
 
 void Renderer::set_frame(const gpu::FrameParams& p) {
     frame_ = p;
     frame_ubo_.upload_value(frame_);
+    if (shading_ != Shading::water) return;
+    const SunView sun = sun_view(p);
+    for (const shader::Program* prog : {&shadow_, &tiles_floor_, &tiles_walls_}) {
+        glProgramUniformMatrix4fv(prog->id(), RANRYU_LOC_SHADOW_MATRIX, 1, GL_FALSE, &sun.matrix[0][0]);
+        glProgramUniform4f(prog->id(), RANRYU_LOC_SHADOW_ORIGIN, sun.origin.x, sun.origin.y, sun.origin.z, 0.0f);
+    }
+}
+
+void Renderer::draw_mesh(const SurfaceMesh& surface) {
+    glBindVertexArray(mesh_vao_.id());
+    glBindVertexBuffer(0, surface.vertices.id(), 0, sizeof(gpu::MeshVertex));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, surface.indirect.id());
+    glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(surface.draw_offset));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+namespace {
+void bind_texture(GLuint unit, const gl::Texture2D& t) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, t.id());
+}
+}  // namespace
+
+void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface) {
+    if (scene_color_.width() != target.width() || scene_color_.height() != target.height())
+        throw Error("Renderer::draw: the water mode's targets are " + std::to_string(scene_color_.width()) + "x" +
+                    std::to_string(scene_color_.height()) + ", the frame is " + std::to_string(target.width()) + "x" +
+                    std::to_string(target.height()) + " (Renderer::resize first)");
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    {
+        // (R8), (R10): every layer of the liquid, seen from the sun.
+        auto pass = timer_.scope(shadow_pass_);
+        glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.id());
+        glViewport(0, 0, shadow_near_.width(), shadow_near_.height());
+        const float far[4] = {1e30f, 0.0f, 0.0f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearBufferfv(GL_COLOR, 0, far);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        if (surface) {
+            shadow_.use();
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            glBlendEquationi(0, GL_MIN);
+            glBlendEquationi(1, GL_FUNC_ADD);
+            draw_mesh(*surface);
+            glBlendEquation(GL_FUNC_ADD);
+            glDisable(GL_BLEND);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_.id());
+    glViewport(0, 0, target.width(), target.height());
+    {
+        auto pass = timer_.scope(clear_pass_);
+        glDepthMask(GL_TRUE);
+        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        glClearBufferfv(GL_COLOR, 0, black);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+    }
+    glBindVertexArray(empty_vao_.id());
+    {
+        auto pass = timer_.scope(sky_pass_);
+        sky_.use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    bind_texture(RANRYU_TEX_SHADOW_NEAR, shadow_near_);
+    bind_texture(RANRYU_TEX_SHADOW_THICKNESS, shadow_thickness_);
+    {
+        auto pass = timer_.scope(floor_pass_);
+        tiles_floor_.use();
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    {
+        auto pass = timer_.scope(walls_pass_);
+        tiles_walls_.use();
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glDrawArrays(GL_TRIANGLES, 0, 24);
+        glDisable(GL_CULL_FACE);
+    }
+    {
+        auto pass = timer_.scope(tank_pass_);
+        tank_.use();
+        glDrawArrays(GL_LINES, 0, 24);
+    }
+    glDisable(GL_DEPTH_TEST);
+    bind_texture(RANRYU_TEX_SCENE_DEPTH, scene_depth_);
+    {
+        // (R5): the thickness of the liquid in front of the opaque scene.
+        auto pass = timer_.scope(thickness_pass_);
+        glBindFramebuffer(GL_FRAMEBUFFER, thickness_fbo_.id());
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearBufferfv(GL_COLOR, 0, zero);
+        if (surface) {
+            thickness_prog_.use();
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            glBlendEquation(GL_FUNC_ADD);
+            draw_mesh(*surface);
+            glDisable(GL_BLEND);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    bind_texture(RANRYU_TEX_SCENE_COLOR, scene_color_);
+    {
+        auto pass = timer_.scope(compose_pass_);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_TRUE);
+        compose_.use();
+        glBindVertexArray(empty_vao_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDepthFunc(GL_LESS);
+    }
+    if (surface) {
+        // (R1)-(R7): the front faces nearest the eye, over the opaque scene.
+        auto pass = timer_.scope(surface_pass_);
+        bind_texture(RANRYU_TEX_THICKNESS, thickness_);
+        surface_.use();
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        draw_mesh(*surface);
+        glDisable(GL_CULL_FACE);
+    }
+    for (GLuint unit : {RANRYU_TEX_SCENE_COLOR, RANRYU_TEX_SCENE_DEPTH, RANRYU_TEX_THICKNESS, RANRYU_TEX_SHADOW_NEAR,
+                        RANRYU_TEX_SHADOW_THICKNESS}) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
                     std::size_t count, const SurfaceMesh* surface, const SubparticleDraw* sub) {
+    if (shading_ == Shading::water) {
+        draw_water(target, surface);
+        return;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
     glViewport(0, 0, target.width(), target.height());
     frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
@@ -192,11 +404,7 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
     if (needs_surface(shading_) && surface) {
         auto pass = timer_.scope(surface_pass_);
         surface_.use();
-        glBindVertexArray(mesh_vao_.id());
-        glBindVertexBuffer(0, surface->vertices.id(), 0, sizeof(gpu::MeshVertex));
-        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, surface->indirect.id());
-        glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(surface->draw_offset));
-        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+        draw_mesh(*surface);
     } else if (sub) {
         if (!impostor_levels_.id()) throw Error("Renderer::draw: sub-particles given to a renderer built without them");
         auto pass = timer_.scope(particles_pass_);

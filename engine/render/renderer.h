@@ -18,11 +18,16 @@ namespace ranryu::render {
 
 // How the liquid is drawn. particles: sphere impostors (no surface is built). The others draw the
 // marching-cubes mesh: phong (per pixel, glsl/render/surface_phong.frag), gouraud (Phong per vertex,
-// interpolated), fresnel (reflection and refraction of the environment, surface_fresnel.frag).
-enum class Shading { particles, phong, gouraud, fresnel };
+// interpolated), fresnel (reflection and refraction of the environment, surface_fresnel.frag), water
+// (docs/RENDERING.md: the opaque scene of sky, tiled floor and walls drawn first, with the liquid's
+// shadow from the sun; the surface refracts it through the liquid's thickness with Beer-Lambert
+// absorption and reflects the sky by Fresnel, with a sun highlight; surface_water.frag).
+enum class Shading { particles, phong, gouraud, fresnel, water };
 std::optional<Shading> parse_shading(std::string_view name);
 const char* shading_name(Shading s);
-// particles for the ballistic model (no level set), fresnel for SPH.
+// The names of the modes, comma-separated, in the order the window's key cycles them.
+const char* shading_names();
+// particles for the ballistic model (no level set), water for SPH.
 Shading default_shading(const scene::Scene& s);
 inline bool needs_surface(Shading s) { return s != Shading::particles; }
 
@@ -55,6 +60,17 @@ Camera scene_camera(const scene::Scene& s);
 // FrameParams for a scene seen through `cam` at `width`×`height`. Pure math (tests use it).
 gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int width, int height);
 
+// The sun's orthographic view for the water mode's shadow map (docs/RENDERING.md (R8)): a cube of
+// half-side `radius` around `origin`, the centre of the box holding the floor quad and twice the
+// tank's height, looking along −light_dir. `matrix` takes world to its clip space; s(x) = (x −
+// origin)·(−l) is the sun depth. Pure math (tests use it).
+struct SunView {
+    glm::mat4 matrix;
+    glm::vec3 origin;
+    float radius;
+};
+SunView sun_view(const gpu::FrameParams& p);
+
 class Renderer {
 public:
     // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
@@ -63,15 +79,32 @@ public:
     Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
              bool subparticles = false);
 
-    void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO
+    void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO (and the sun's view)
     const gpu::FrameParams& frame() const { return frame_; }
-    // Fresnel mode: Beer-Lambert absorption coefficients of the water (1/m, per channel).
+    // Fresnel and water modes: Beer-Lambert absorption coefficients of the water (1/m, per channel).
     void set_absorption(glm::vec3 sigma);
     Shading shading() const { return shading_; }
+
+    // Water mode: allocates the targets of a width x height frame (the opaque scene's colour and
+    // depth, the liquid's thickness); draw() requires them at its target's size. Start-up or resize
+    // only: nothing is allocated while drawing. Other modes: nothing.
+    void resize(int width, int height);
+    // Device memory of the water mode's targets for a width x height frame (0 for the other modes).
+    static std::size_t bytes_for(Shading s, int width, int height);
+    // Water mode, for tests: the opaque scene (RGBA16F, linear; its depth), the liquid's thickness along each
+    // view ray (R32F, m), and the sun's map of the liquid: nearest sun depth and thickness (R32F, m).
+    const gl::Texture2D& scene_color() const { return scene_color_; }
+    const gl::Texture2D& scene_depth() const { return scene_depth_; }
+    const gl::Texture2D& thickness() const { return thickness_; }
+    const gl::Texture2D& shadow_near() const { return shadow_near_; }
+    const gl::Texture2D& shadow_thickness() const { return shadow_thickness_; }
 
     // Passes "clear", "draw-floor", "draw-tank", then "draw-particles" into `target` (`count`
     // particles whose positions and velocities are vec4 arrays) or, when the shading is not
     // particles and `surface` is given, "draw-surface": glDrawArraysIndirect of the mesh, no readback.
+    // Water mode: "shadow-map", "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank" (the
+    // opaque scene, offscreen), "liquid-thickness", "compose" (into `target`), "draw-surface"; without
+    // `surface`, the scene with no liquid.
     // With `sub` (particles shading, built with subparticles), "draw-particles" draws the parents
     // that were not split and then the sub-particles (glDrawArraysIndirect), coloured by level and of
     // radius r/2^level.
@@ -88,6 +121,9 @@ public:
     bool draws_spray() const { return spray_.id() != 0; }
 
 private:
+    void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
+    void draw_mesh(const SurfaceMesh& surface);
+
     profile::GpuTimer& timer_;
     Shading shading_;
     profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{}, spray_pass_{};
@@ -95,6 +131,11 @@ private:
     gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, parent_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};
+    // The water mode's passes, programs and targets (docs/RENDERING.md).
+    profile::PassId shadow_pass_{}, sky_pass_{}, walls_pass_{}, thickness_pass_{}, compose_pass_{};
+    shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_;
+    gl::Texture2D shadow_near_, shadow_thickness_, scene_color_, scene_depth_, thickness_;
+    gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;
 };
 
 }  // namespace ranryu::render

@@ -176,7 +176,7 @@ std::vector<Key> make_keys() {
                 "Anisotropic kernels (Yu & Turk 2013, docs/SURFACE.md): flat surfaces read flat and thin sheets stay sheets; false: "
                 "spherical kernels."),
         integer("surface.max_vertices", "", f.max_vertices, 3, 1 << 26, "The mesh's capacity, 3 a triangle (more are dropped)."),
-        vec3("surface.absorption", "1/m", f.absorption, 0.0, 1e3, "Fresnel shading: the water's Beer-Lambert absorption per colour channel."),
+        vec3("surface.absorption", "1/m", f.absorption, 0.0, 1e3, "Fresnel and water shadings: the water's Beer-Lambert absorption per colour channel (default: pure water's x 12, docs/RENDERING.md (R6))."),
 
         object("camera", "Where the scene is seen from."),
         vec3("camera.eye", "m", d.camera_eye, -1e4, 1e4, "The camera's position."),

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "render/shading.h"
+
 namespace ranryu::scene {
 
 // A box of particles on a cubic lattice: x = min + (i + ½)·spacing for every cell that fits.
@@ -106,14 +108,15 @@ struct TurbulenceSettings {
 };
 
 // The liquid surface (engine/surface/): the level set grid and the mesh capacity, and the water's
-// absorption in the Fresnel shading mode. Used only when the shading draws a surface.
+// absorption in the Fresnel and water shading modes. Used only when the shading draws a surface.
 struct SurfaceSettings {
     float node_spacing = 0.5f;           // φ-grid node spacing, in particle spacings
     int max_dims = 512;                  // most φ-grid nodes per axis (a larger box coarsens the grid)
     int max_nodes = 1 << 23;             // most φ-grid nodes in all (docs/SURFACE.md (S9))
     bool anisotropic = true;             // Yu & Turk's anisotropic kernels (docs/SURFACE.md)
     int max_vertices = 1 << 22;          // mesh capacity (3 per triangle; more are dropped)
-    glm::vec3 absorption{1.5f, 0.4f, 0.25f};   // Beer-Lambert sigma per channel (1/m): red fades first
+    // Beer-Lambert sigma per channel (1/m): pure water's, scaled (render/shading.h); red fades first.
+    glm::vec3 absorption = float(RANRYU_WATER_ABSORPTION_SCALE) * glm::vec3(RANRYU_WATER_ABSORPTION_PURE);
 };
 
 struct Scene {

@@ -30,13 +30,13 @@ vec3 floor_albedo(vec2 xz) {
     return ((cell.x + cell.y) & 1) == 0 ? vec3(0.62) : vec3(0.42);
 }
 
-// A procedural environment seen in direction d (unit, world space), linear: a sky gradient from the
-// horizon (0.80, 0.86, 0.92) to the zenith (0.22, 0.42, 0.78) with sqrt of the elevation, a dark
-// ground (0.30, 0.28, 0.26) below the horizon, and a sun in the light's direction, a lobe
-// 4·L·max(d·l, 0)^512. No texture file.
+// A procedural environment seen in direction d (unit, world space), linear (docs/RENDERING.md (R2)):
+// a sky gradient from the horizon to the zenith with sqrt of the elevation, below the horizon the
+// ground fading into the horizon's haze as exp(k·d_y), and a sun in the light's direction, a lobe
+// 4·L·max(d·l, 0)^512. Colours and k: render/shading.h. No texture file.
 vec3 sky(vec3 d) {
-    vec3 ground = vec3(0.30, 0.28, 0.26);
-    vec3 gradient = mix(vec3(0.80, 0.86, 0.92), vec3(0.22, 0.42, 0.78), sqrt(clamp(d.y, 0.0, 1.0)));
+    vec3 gradient = mix(vec3(RANRYU_SKY_HORIZON), vec3(RANRYU_SKY_ZENITH), sqrt(clamp(d.y, 0.0, 1.0)));
+    vec3 ground = mix(vec3(RANRYU_SKY_GROUND), vec3(RANRYU_SKY_HORIZON), exp(RANRYU_SKY_HAZE * min(d.y, 0.0)));
     vec3 base = d.y < 0.0 ? ground : gradient;
     return base + 4.0 * frame.light_color.rgb * pow(max(dot(d, frame.light_dir.xyz), 0.0), 512.0);
 }

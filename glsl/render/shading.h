@@ -1,5 +1,7 @@
-// Constants of the surface shading modes (glsl/render/surface_*.frag), shared by C++ and GLSL so that
-// the CPU references in tests/gl/surface_shading_test.cpp use the very same numbers.
+// Constants of the surface shading modes (glsl/render/surface_*.frag and the water mode's passes,
+// glsl/render/water.glsl), shared by C++ and GLSL so that the CPU references in
+// tests/gl/surface_shading_test.cpp and tests/gl/water_test.cpp use the very same numbers.
+// docs/RENDERING.md gives every equation these enter.
 #ifndef RANRYU_RENDER_SHADING_H
 #define RANRYU_RENDER_SHADING_H
 
@@ -7,12 +9,52 @@
 #define RANRYU_IOR_AIR 1.0
 #define RANRYU_IOR_WATER 1.333
 
+// ---- The water mode (Shading::water, docs/RENDERING.md (R1)-(R12)) ----
+// The sun is the scene's light (light.direction, FrameParams.light_dir, light_color).
+// Absorption of pure water (1/m) at ~650, 550 and 450 nm, the red, green and blue channels' middles
+// (Pope & Fry 1997: 0.340, 0.0565, 0.0092 at those wavelengths). The default surface.absorption is
+// RANRYU_WATER_ABSORPTION_SCALE times it: a 0.5 m tank then tints as ~6 m of clear water would, the
+// depth at which a pool or the sea reads as blue (docs/RENDERING.md (R6)).
+#define RANRYU_WATER_ABSORPTION_PURE 0.340, 0.0565, 0.0092
+#define RANRYU_WATER_ABSORPTION_SCALE 12.0
+// The procedural sky (sky(), glsl/common/frame.glsl; (R2)), linear: horizon, zenith and ground
+// colours, and the rate k (per unit of d_y) at which the ground below the horizon fades into its haze.
+#define RANRYU_SKY_HORIZON 0.80, 0.86, 0.92
+#define RANRYU_SKY_ZENITH 0.22, 0.42, 0.78
+#define RANRYU_SKY_GROUND 0.30, 0.28, 0.26
+#define RANRYU_SKY_HAZE 8.0
+// Sun highlight on the water, Blinn-Phong: k_s (in units of the sun's colour) and exponent (R4).
+#define RANRYU_WATER_SPECULAR 2.0
+#define RANRYU_WATER_SHININESS 400.0
+// Floor and walls (R9): square tiles of RANRYU_TILE_SIZE (m) with grout lines RANRYU_GROUT_WIDTH wide
+// at each tile's lower edges, inside the tank; the ground beyond the tank's footprint is plain.
+#define RANRYU_TILE_SIZE 0.05
+#define RANRYU_GROUT_WIDTH 0.004
+#define RANRYU_TILE_ALBEDO 0.70, 0.80, 0.82
+#define RANRYU_GROUT_ALBEDO 0.38, 0.40, 0.42
+#define RANRYU_GROUND_ALBEDO 0.42, 0.38, 0.33
+// The sun's shadow map of the liquid (R10): texels per side, the depth bias (m) and the PCF radius
+// in texels ((2r + 1)^2 taps).
+#define RANRYU_SHADOW_MAP_SIZE 2048
+#define RANRYU_SHADOW_BIAS 0.002
+#define RANRYU_SHADOW_PCF_RADIUS 1
+// Uniform locations of the water mode's programs: the sun's orthographic world-to-clip matrix (mat4)
+// and the origin of the sun depth s(x) (vec4, xyz) of (R8).
+#define RANRYU_LOC_SHADOW_MATRIX 10
+#define RANRYU_LOC_SHADOW_ORIGIN 11
+// Texture units (sampler bindings) of the water mode's passes.
+#define RANRYU_TEX_SCENE_COLOR 0      // the opaque scene, linear rgb (RGBA16F)
+#define RANRYU_TEX_SCENE_DEPTH 1      // its depth buffer
+#define RANRYU_TEX_THICKNESS 2        // the liquid's thickness along each view ray (m, R32F)
+#define RANRYU_TEX_SHADOW_NEAR 3      // the sun depth s of the liquid nearest the sun (m, R32F)
+#define RANRYU_TEX_SHADOW_THICKNESS 4 // the liquid's thickness along the sunlight (m, R32F)
+
 // Mesh vertex attributes (gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32).
 #define RANRYU_ATTR_MESH_POSITION 0
 #define RANRYU_ATTR_MESH_NORMAL 1
 
-// Explicit uniform location of the Fresnel mode's absorption coefficients (rgb, 1/m): Beer-Lambert
-// attenuation exp(-sigma * path) of the refracted light. Set once when the scene is set.
+// Explicit uniform location of the Fresnel and water modes' absorption coefficients (rgb, 1/m):
+// Beer-Lambert attenuation exp(-sigma * path) of the refracted light. Set once when the scene is set.
 #define RANRYU_LOC_ABSORPTION 8
 
 // Particles drawn by sub-particle level (impostor.vert and impostor.frag built with RANRYU_BY_LEVEL;

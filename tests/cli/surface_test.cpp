@@ -141,9 +141,9 @@ TEST_CASE("record --shading fresnel draws the SPH surface into non-uniform frame
     }
 }
 
-TEST_CASE("profile names the surface passes in fresnel mode and not in particles mode") {
+TEST_CASE("profile names the surface passes in the surface modes and not in particles mode, and the water mode's own passes") {
     TempDir tmp;
-    for (const std::string mode : {"fresnel", "particles"}) {
+    for (const std::string mode : {"water", "fresnel", "particles"}) {
         const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.04", "--frames", "2",
                                                  "--warmup", "0", "--size", "32x24", "--shading", mode});
         INFO(mode << "\n" << r.describe());
@@ -151,20 +151,24 @@ TEST_CASE("profile names the surface passes in fresnel mode and not in particles
         const auto passes = table_passes(r.out);
         for (const std::string& p : kSurfacePasses) {
             INFO("pass " << p);
-            CHECK(has(passes, p) == (mode == "fresnel"));
+            CHECK(has(passes, p) == (mode != "particles"));
         }
         CHECK(has(passes, "draw-particles") == (mode == "particles"));
+        for (const std::string p : {"shadow-map", "draw-sky", "draw-walls", "liquid-thickness", "compose"}) {
+            INFO("pass " << p);
+            CHECK(has(passes, p) == (mode == "water"));
+        }
     }
 }
 
-TEST_CASE("record and profile take a shading mode of phong, gouraud, fresnel or particles, and a surface only for SPH scenes") {
+TEST_CASE("record and profile take a shading mode of water, fresnel, phong, gouraud or particles, and a surface only for SPH scenes") {
     TempDir tmp;
     Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--shading", "bogus", "--out", "out"});
     {
         INFO(r.describe());
         CHECK(r.exit_code == 2);
         CHECK_THAT(r.err, Contains("--shading bogus"));
-        CHECK_THAT(r.err, Contains("phong, gouraud, fresnel, particles"));
+        CHECK_THAT(r.err, Contains("water, fresnel, phong, gouraud, particles"));
         CHECK(!fs::exists(tmp / "out"));
     }
     r = run_ranryu(tmp.path(), {"profile", "--scene", "falling-block", "--frames", "1", "--warmup", "0", "--size", "32x24",
@@ -175,7 +179,7 @@ TEST_CASE("record and profile take a shading mode of phong, gouraud, fresnel or 
         CHECK_THAT(r.err, Contains("--shading phong"));
         CHECK_THAT(r.err, Contains("ballistic"));
     }
-    for (const std::string mode : {"phong", "gouraud"}) {
+    for (const std::string mode : {"water", "phong", "gouraud"}) {
         r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.04", "--frames", "1", "--shading",
                                     mode, "--size", "32x24", "--out", "out-" + mode});
         INFO(mode << "\n" << r.describe());

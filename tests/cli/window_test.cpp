@@ -265,7 +265,7 @@ TEST_CASE("ranryu run --script: the panel's scene, shading and solver restart an
     TempDir tmp;
     const ScriptRun r = run_script(tmp,
                                    "2 panel shading particles\n"
-                                   "4 key m            # particles -> fresnel\n"
+                                   "4 key m            # particles -> water (the cycle wraps)\n"
                                    "5 panel solver wcsph\n"
                                    "6 key f12\n"
                                    "7 panel scene falling-block\n"
@@ -280,8 +280,8 @@ TEST_CASE("ranryu run --script: the panel's scene, shading and solver restart an
     CHECK(r.images[0].ok());
     // Each change restarted the scene, before the frame of its line.
     CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
-    CHECK_THAT(r.result.out, Contains("restart at frame 4: drop, dfsph, fresnel\n"));
-    CHECK_THAT(r.result.out, Contains("restart at frame 5: drop, wcsph, fresnel\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 4: drop, dfsph, water\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 5: drop, wcsph, water\n"));
     CHECK_THAT(r.result.out, Contains("restart at frame 7: falling-block, ballistic, particles\n"));
     CHECK_THAT(r.result.out, !Contains("restart at frame 8"));   // m: nothing to change
     CHECK_THAT(r.result.out, Contains("scene falling-block"));   // the last scene's report
@@ -310,7 +310,7 @@ TEST_CASE("ranryu run --script: viscosity, the time-step factor and the turbulen
     // and a new amplitude, are live.
     const ScriptRun t = run_script(turbulence_dir, "0 key t\n3 panel amplitude 20\n4 key t\n6 panel turbulence on\n8 key escape\n", drop);
     INFO(t.result.describe());
-    CHECK_THAT(t.result.out, Contains("restart at frame 0: drop, dfsph, fresnel\n"));
+    CHECK_THAT(t.result.out, Contains("restart at frame 0: drop, dfsph, water\n"));
     CHECK_THAT(t.result.out, !Contains("restart at frame 4"));
     CHECK_THAT(t.result.out, !Contains("restart at frame 6"));
     CHECK_THAT(t.result.out, Contains("turbulence-force"));

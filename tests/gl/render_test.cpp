@@ -13,6 +13,7 @@
 // spheres are nearly equally near, and where a tank edge (a 1-px line) passes within 3 px and is
 // not clearly behind the surface.
 #include "support/gl_fixture.h"
+#include "support/screen.h"
 
 #include <algorithm>
 #include <cmath>
@@ -111,22 +112,15 @@ Image render_particles(const Setup& s, const gpu::FrameParams& fp, const std::ve
 // The CPU side: rays, hits and shading in double precision.
 class Caster {
 public:
-    explicit Caster(const gpu::FrameParams& f) : f_(f), inv_(glm::inverse(glm::dmat4(f.view_proj))) {}
+    explicit Caster(const gpu::FrameParams& f) : f_(f), screen_{glm::dmat4(f.view_proj), kWidth, kHeight} {}
 
     glm::dvec3 eye() const { return glm::dvec3(f_.eye); }
 
     // The unit direction of the ray through window position (x, y) (pixel centres at +½).
-    glm::dvec3 ray(double x, double y) const {
-        const glm::dvec2 ndc(2.0 * x / kWidth - 1.0, 2.0 * y / kHeight - 1.0);
-        glm::dvec4 a = inv_ * glm::dvec4(ndc, -1.0, 1.0), b = inv_ * glm::dvec4(ndc, 1.0, 1.0);
-        return glm::normalize(glm::dvec3(b) / b.w - glm::dvec3(a) / a.w);
-    }
+    glm::dvec3 ray(double x, double y) const { return screen_.ray(x, y); }
 
     // Window position of a world point.
-    glm::dvec2 window(glm::dvec3 p) const {
-        const glm::dvec4 c = glm::dmat4(f_.view_proj) * glm::dvec4(p, 1.0);
-        return {(0.5 * c.x / c.w + 0.5) * kWidth, (0.5 * c.y / c.w + 0.5) * kHeight};
-    }
+    glm::dvec2 window(glm::dvec3 p) const { return screen_.window(p); }
 
     // Depth-buffer value of a world point: 0.5·z_ndc + 0.5, as impostor.frag writes it.
     double depth(glm::dvec3 p) const {
@@ -191,7 +185,7 @@ public:
 
 private:
     const gpu::FrameParams& f_;
-    glm::dmat4 inv_;
+    ranryu::test::Screen screen_;
 };
 
 // The tank's 12 edges are drawn as 1-px lines with depth test. Per pixel: the eye distance of the

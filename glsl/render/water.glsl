@@ -1,0 +1,65 @@
+// The water mode's shared pieces (Shading::water, engine/render/renderer.h): the sun's shadow of the
+// liquid, the tiled floor and walls, and the eye distance behind a pixel. Equation numbers are those
+// of docs/RENDERING.md.
+#include "../common/frame.glsl"
+
+layout(location = RANRYU_LOC_ABSORPTION) uniform vec4 u_absorption;       // rgb: sigma_a (1/m)
+layout(location = RANRYU_LOC_SHADOW_MATRIX) uniform mat4 u_shadow_matrix;  // world -> the sun's clip space
+layout(location = RANRYU_LOC_SHADOW_ORIGIN) uniform vec4 u_shadow_origin;  // xyz: where s = 0
+
+layout(binding = RANRYU_TEX_SCENE_COLOR) uniform sampler2D t_scene_color;
+layout(binding = RANRYU_TEX_SCENE_DEPTH) uniform sampler2D t_scene_depth;
+layout(binding = RANRYU_TEX_THICKNESS) uniform sampler2D t_thickness;
+layout(binding = RANRYU_TEX_SHADOW_NEAR) uniform sampler2D t_shadow_near;
+layout(binding = RANRYU_TEX_SHADOW_THICKNESS) uniform sampler2D t_shadow_thickness;
+
+// (R8) The sun depth: distance along the sunlight's travel, s(x) = (x − o)·(−l).
+float sun_depth(vec3 x) { return dot(x - u_shadow_origin.xyz, -frame.light_dir.xyz); }
+
+// (R10) The fraction of sunlight reaching x, per channel: over the (2r + 1)² shadow-map texels around
+// x's, 1 where x is no deeper than the liquid nearest the sun (s(x) ≤ s_near + bias), else the
+// Beer-Lambert transmittance exp(−σ_a·d_sun) of the liquid's thickness d_sun along the sunlight; averaged.
+vec3 sun_transmittance(vec3 x) {
+    vec2 uv = (u_shadow_matrix * vec4(x, 1.0)).xy * 0.5 + 0.5;   // orthographic: w = 1
+    ivec2 size = textureSize(t_shadow_near, 0);
+    ivec2 base = ivec2(floor(uv * vec2(size)));
+    float s = sun_depth(x);
+    vec3 sum = vec3(0.0);
+    for (int dy = -RANRYU_SHADOW_PCF_RADIUS; dy <= RANRYU_SHADOW_PCF_RADIUS; ++dy)
+        for (int dx = -RANRYU_SHADOW_PCF_RADIUS; dx <= RANRYU_SHADOW_PCF_RADIUS; ++dx) {
+            ivec2 p = base + ivec2(dx, dy);
+            if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) {
+                sum += vec3(1.0);
+                continue;
+            }
+            float s_near = texelFetch(t_shadow_near, p, 0).r;
+            float d = max(texelFetch(t_shadow_thickness, p, 0).r, 0.0);
+            sum += s > s_near + RANRYU_SHADOW_BIAS ? exp(-u_absorption.rgb * d) : vec3(1.0);
+        }
+    const float taps = float((2 * RANRYU_SHADOW_PCF_RADIUS + 1) * (2 * RANRYU_SHADOW_PCF_RADIUS + 1));
+    return sum / taps;
+}
+
+// (R9) Tile albedo at the plane coordinates uv (m): grout along each tile's lower edges.
+vec3 tile_albedo(vec2 uv) {
+    vec2 f = uv / RANRYU_TILE_SIZE - floor(uv / RANRYU_TILE_SIZE);
+    const float g = RANRYU_GROUT_WIDTH / RANRYU_TILE_SIZE;
+    return any(lessThan(f, vec2(g))) ? vec3(RANRYU_GROUT_ALBEDO) : vec3(RANRYU_TILE_ALBEDO);
+}
+
+// (R11) A matte surface lit by the sky's ambient and the sun through the liquid, linear:
+//     c = L·albedo·(k_a + k_d·max(n·l, 0)·S(x)),   S of (R10).
+vec3 lit_matte(vec3 albedo, vec3 n, vec3 x) {
+    float ndl = max(dot(n, frame.light_dir.xyz), 0.0);
+    vec3 sun = ndl > 0.0 ? sun_transmittance(x) : vec3(0.0);
+    return frame.light_color.rgb * albedo * (frame.light_color.a + frame.material.x * ndl * sun);
+}
+
+// (R12) The eye distance of what the depth buffer holds at window position `frag` (pixels) with
+// depth value `depth`: the view depth −z = P[3][2] / (z_ndc + P[2][2]) times the length of the
+// pixel's view ray (x_ndc / P[0][0], y_ndc / P[1][1], −1).
+float eye_distance(vec2 frag, float depth) {
+    float view_z = frame.proj[3][2] / ((2.0 * depth - 1.0) + frame.proj[2][2]);
+    vec2 ndc = frag * frame.viewport.zw * 2.0 - 1.0;
+    return view_z * length(vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0));
+}
