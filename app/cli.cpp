@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -16,18 +17,19 @@ namespace {
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--script", "--shots", "--shading",
-             "--shader-dir", "--gl-debug"}},
+             "--record-dir", "--save-particles", "--budget", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
                 "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
-                 "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
+                 "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown",
+                                      "--overlay"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -153,6 +155,13 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--screenshot") o.screenshot = value;
         else if (opt == "--script") o.script = value;
         else if (opt == "--shots") o.shots = value;
+        else if (opt == "--record-dir") o.record_dir = value;
+        else if (opt == "--save-particles") {
+            const std::string ext = std::filesystem::path(value).extension().string();
+            if (ext != ".ply" && ext != ".vtp") throw InputError("--save-particles " + value + ": expected a file name ending in .ply or .vtp");
+            o.save_particles = value;
+        } else if (opt == "--budget") o.budget = parse_int(opt, value, 1, 64'000'000);
+        else if (opt == "--overlay") o.overlay = true;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;

@@ -108,6 +108,9 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     if (ImGui::Button("Reset")) push({.kind = input::Kind::reset});
     ImGui::SameLine();
     if (ImGui::Button("Screenshot")) push({.kind = input::Kind::screenshot});
+    ImGui::SameLine();
+    bool recording = st.recording;
+    if (ImGui::Checkbox("record (F9)", &recording)) push({.kind = input::Kind::set_record, .on = recording});
     ImGui::PushItemWidth(140.0f);
     int shading = int(std::find(std::begin(kShadings), std::end(kShadings), p.shading()) - std::begin(kShadings));
     if (ImGui::Combo("shading", &shading, kShadingNames, IM_ARRAYSIZE(kShadingNames)))
@@ -132,7 +135,16 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         if (ImGui::Checkbox("turbulence", &turbulence)) push({.kind = input::Kind::turbulence, .on = turbulence});
         if (ImGui::SliderFloat("amplitude A 1/m", &amplitude, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
             push({.kind = input::Kind::amplitude, .x = amplitude});
+        bool paddle = st.paddle;
+        if (ImGui::Checkbox("paddle (P; right-drag moves it)", &paddle)) push({.kind = input::Kind::set_paddle, .on = paddle});
+        ImGui::SameLine();
+        ImGui::Text("radius %.3f m", st.paddle_radius);
     }
+    // The resolution: a new spacing rebuilds the scene when the slider is let go.
+    if (!spacing_edit_) spacing_ = scene.spacing;
+    ImGui::SliderFloat("spacing m (restarts)", &spacing_, 0.002f, 0.1f, "%.4f", ImGuiSliderFlags_Logarithmic);
+    spacing_edit_ = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) push({.kind = input::Kind::spacing, .x = spacing_});
     ImGui::PopItemWidth();
     if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
 
@@ -152,7 +164,7 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     if (ImGui::CollapsingHeader("Keys")) {
         for (const input::Key& k : input::keys())
             ImGui::Text("%-7.*s %.*s", int(k.name.size()), k.name.data(), int(k.help.size()), k.help.data());
-        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom");
+        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom; right-drag: move the paddle");
     }
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     panel_ = {int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)};

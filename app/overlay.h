@@ -30,6 +30,9 @@ struct OverlayState {
     // The live settings (SPH): viscosity (m^2/s), the Courant number, the turbulence force and its A.
     float viscosity = 0.0f, cfl = 0.0f, amplitude = 0.0f;
     bool turbulence = false;
+    float paddle_radius = 0.0f;     // the paddle's radius (m); 0: the scene has none (ballistic)
+    bool paddle = false;            // the paddle is in the liquid
+    bool recording = false;         // F9's take is being written
     std::string status;             // the last control's note ("scene falling-block: particles only"), or empty
 };
 
@@ -60,6 +63,8 @@ public:
 private:
     PanelRect panel_;
     std::vector<std::string> scenes_;   // the bundled scenes' names, for the scene list
+    float spacing_ = 0.0f;              // the spacing slider's value while it is dragged
+    bool spacing_edit_ = false;
 };
 
 }  // namespace ranryu::app

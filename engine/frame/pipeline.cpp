@@ -70,7 +70,9 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     memory_.estimate = check_memory(scene_, view, memory_.device);
     const bool sph = scene_.model == scene::Model::sph;
     if (view.draw) {
-        renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled());
+        renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled(),
+                                                       sph && scene_.paddle_radius > 0.0f);
+        if (sph && scene_.paddle_radius > 0.0f) paddle_sphere_ = gl::Buffer(2 * sizeof(glm::vec4), GL_DYNAMIC_DRAW, nullptr, "paddle.sphere");
         target_ = gl::RenderTarget(view.width, view.height, "frame");
     }
     if (sph) {
@@ -152,6 +154,12 @@ void Pipeline::draw() {
         renderer_->draw(target_, positions(), velocities(), particle_count(), nullptr, &sub);
     } else {
         renderer_->draw(target_, positions(), velocities(), particle_count());
+    }
+    if (paddle_sphere_.id() && sph_->paddle_on()) {
+        const glm::vec4 sphere[2] = {glm::vec4(sph_->paddle_center(), sph_->fluid().paddle_radius()),
+                                     glm::vec4(sph_->paddle_velocity(), 0.0f)};
+        paddle_sphere_.upload(sphere, sizeof sphere);
+        renderer_->draw_sphere(target_, paddle_sphere_);
     }
 }
 

@@ -84,6 +84,10 @@ public:
     // End of a run: waits for the outstanding records (not the frame path).
     void drain();
 
+    // The paddle (scene.paddle_radius > 0): sim::Simulation::set_paddle(); drawn as the pass
+    // "draw-paddle" while it is on.
+    bool has_paddle() const { return sph_ && sph_->fluid().has_paddle(); }
+
     void set_camera(const render::Camera& cam);
     const render::Camera& camera() const { return camera_; }
 
@@ -137,6 +141,7 @@ private:
     std::optional<std::uint64_t> inject_fault_at_;
     std::optional<profile::PassId> fault_pass_;
     MemoryUse memory_;
+    gl::Buffer paddle_sphere_;   // (center, radius), (velocity, 0): draw-paddle's instance
 };
 
 }  // namespace ranryu::frame

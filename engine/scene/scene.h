@@ -117,6 +117,9 @@ struct Scene {
     float particle_radius = 0.01f;  // drawn radius (m); default spacing / 2
     std::vector<Block> blocks;
     std::vector<Obstacle> obstacles;
+    // The paddle (not a scene key: `ranryu run` sets it): a kinematic sphere of this radius (m) that
+    // the window drags through the liquid, 0 for none (sim/boundary.h paddle_offsets(), sim::Fluid::move_paddle).
+    float paddle_radius = 0.0f;
 
     Model model = Model::ballistic;
     SphSettings sph;

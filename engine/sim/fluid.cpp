@@ -55,6 +55,7 @@ std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
     return 2 * std::max<std::size_t>(count, 1) * words * sizeof(std::uint32_t);
 }
 
+// raw, zeros, zeros_sorted, weighted: start-up's, kept for the run with a paddle (bytes_for counts them then).
 std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array_bytes(boundary); }
 
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
@@ -66,6 +67,7 @@ std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size
                     + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
                     + NeighbourGrid::bytes_for(sort_capacity(count, boundary));
     b += sizeof(gpu::SphParams) + sizeof(gpu::StepState) + obstacle_shapes(s).size() * sizeof(glm::vec4);
+    if (s.paddle_radius > 0.0f) b += transient_bytes(boundary);
     return b;
 }
 
@@ -140,11 +142,17 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
                 [this](std::uint64_t, const void* bytes) { on_record(bytes); }) {
     const std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
     const std::vector<glm::vec4> wall = boundary_of(scene);
+    paddle_offsets_ = paddle_offsets(scene, layers_of(scene));
+    paddle_placed_.resize(paddle_offsets_.size());
+    paddle_first_ = wall.size() - paddle_offsets_.size();
+    paddle_radius_ = scene.paddle_radius;
+    paddle_park_ = paddle_at_ = paddle_park(scene);
     count_ = x.size();
     boundary_count_ = wall.size();
     params_ = sph_params(scene, count_, boundary_count_);
     params_ubo_ = gl::Buffer(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, &params_, "SphParams");
-    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), GL_STATIC_DRAW, "fluid.obstacles");
+    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), scene.paddle_radius > 0.0f ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
+                                             "fluid.obstacles");
 
     const std::size_t bytes = vec4_array_bytes(count_);
     for (int k = 0; k < 2; ++k) {
@@ -172,32 +180,41 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     compute_boundary(wall);
 }
 
-// Start-up, not the frame path: the boundary sorted by cell once, psi_b from the sorted set, and the
-// cells that have boundary particles around them (the boundary is static).
+// Start-up: the boundary sorted by cell, psi_b from the sorted set, and the cells that have boundary
+// particles around them. The boundary is static but for the paddle (move_paddle() sorts it again).
 void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
     const std::size_t m = vec4_array_bytes(boundary_count_);   // transient_bytes(): raw, zeros, zeros_sorted, weighted
-    gl::Buffer raw = gl::Buffer::from<glm::vec4>(wall, GL_STATIC_DRAW, "fluid.boundary.raw");
-    gl::Buffer zeros(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
-    gl::Buffer zeros_sorted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
+    raw_ = gl::Buffer(m, has_paddle() ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW, nullptr, "fluid.boundary.raw");
+    if (!wall.empty()) raw_.upload(wall.data(), wall.size() * sizeof(glm::vec4));
+    zeros_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
+    zeros_sorted_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
     boundary_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary");
-    gl::Buffer weighted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
+    weighted_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
     const GridLayout& g = grid_.layout();
     boundary_near_ = gl::Buffer(std::size_t(g.key_count) * sizeof(std::uint32_t), GL_STATIC_DRAW, nullptr, "fluid.boundary_near");
+    timer_.begin_frame();
+    rebuild_boundary();
+    timer_.end_frame();
+    timer_.drain();
+    timer_.reset_samples();
+    if (!has_paddle()) raw_ = gl::Buffer(), zeros_ = gl::Buffer(), zeros_sorted_ = gl::Buffer(), weighted_ = gl::Buffer();
+}
+
+void Fluid::rebuild_boundary() {
+    const GridLayout& g = grid_.layout();
     const GLuint zero = 0;
     glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_near_.id());
     glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);   // Morton keys between cells
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
-    timer_.begin_frame();
-    const shader::StorageSet buffers = bind_state().with("Weighted", weighted);
+    const shader::StorageSet buffers = bind_state().with("Weighted", weighted_);
     if (boundary_count_ > 0) {
-        grid_.build(raw, zeros, boundary_, zeros_sorted, boundary_ranges_, boundary_count_, /*clear=*/true);
+        grid_.build(raw_, zeros_, boundary_, zeros_sorted_, boundary_ranges_, boundary_count_, /*clear=*/true);
         auto pass = timer_.scope(boundary_pass_);
         params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
         boundary_volume_.bind(buffers).dispatch(boundary_count_);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        glBindBuffer(GL_COPY_READ_BUFFER, weighted.id());
+        glBindBuffer(GL_COPY_READ_BUFFER, weighted_.id());
         glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_.id());
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(boundary_count_ * sizeof(glm::vec4)));
         glBindBuffer(GL_COPY_READ_BUFFER, 0);
@@ -211,9 +228,20 @@ void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
         if (boundary_count_ > 0) flag_boundary_.bind(buffers).dispatch(std::size_t(g.dims.x) * g.dims.y * g.dims.z);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    timer_.end_frame();
-    timer_.drain();
-    timer_.reset_samples();
+}
+
+void Fluid::move_paddle(glm::vec3 center, glm::vec3 velocity, bool on) {
+    if (!has_paddle()) throw Error("Fluid::move_paddle: the scene has no paddle (scene.paddle_radius is 0)");
+    const glm::vec3 at = on ? center : paddle_park_;
+    // Its entry is the last of obstacle_shapes(): (center, 2), (radius, velocity); radius 0 when parked.
+    const glm::vec4 entry[2] = {glm::vec4(at, 2.0f), on ? glm::vec4(paddle_radius_, velocity) : glm::vec4(0.0f)};
+    obstacles_.upload(entry, sizeof entry, obstacles_.size() - sizeof entry);
+    if (at == paddle_at_) return;   // only its velocity changed: the boundary stands
+    paddle_at_ = at;
+    for (std::size_t k = 0; k < paddle_offsets_.size(); ++k)
+        paddle_placed_[k] = glm::vec4(at + glm::vec3(paddle_offsets_[k]), paddle_offsets_[k].w);
+    raw_.upload(paddle_placed_.data(), paddle_placed_.size() * sizeof(glm::vec4), paddle_first_ * sizeof(glm::vec4));
+    rebuild_boundary();
 }
 
 int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill) {

@@ -72,6 +72,17 @@ public:
     void rebuild_grid();   // the masks are no longer current
     void integrate();      // v += dt a, x += dt v, the projection and the guard (the masks are no longer current)
 
+    // ---- the paddle (scene.paddle_radius > 0; sim/boundary.h): a kinematic sphere, on or parked.
+    // Places its boundary particles about `center` (m), sets its projection entry (radius, velocity u
+    // in m/s: docs/SPH.md (9)) and re-sorts the boundary with psi_b and the near-boundary cells
+    // ("hash", "sort.*", "reorder", "boundary-volume", "boundary-cells"), inside the caller's timer
+    // frame, before a step. Off: the particles wait at paddle_park(), the entry's radius is 0. Uploads
+    // the paddle's few boundary particles and 32 bytes, allocates nothing; when only the velocity
+    // changes, the 32 bytes alone. sim::Simulation::set_paddle() moves it a substep at a time.
+    void move_paddle(glm::vec3 center, glm::vec3 velocity, bool on);
+    bool has_paddle() const { return !paddle_offsets_.empty(); }
+    float paddle_radius() const { return paddle_radius_; }
+
     // ---- the state, in the cell order of the last rebuild_grid()
     std::size_t count() const { return count_; }
     std::size_t boundary_count() const { return boundary_count_; }
@@ -137,6 +148,7 @@ public:
 private:
     void on_record(const void* bytes);
     void compute_boundary(const std::vector<glm::vec4>& wall);
+    void rebuild_boundary();   // raw_ into boundary_: the sort, psi_b, the near-boundary cells
 
     profile::GpuTimer& timer_;
     profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_;
@@ -155,7 +167,13 @@ private:
     bool masks_current_ = false;
     int runs_ = 9;
     gl::Buffer obstacles_;       // obstacle_shapes(): the integration's last-resort projection (docs/SPH.md (8))
-    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)
+    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up, and when the paddle moves)
+    // The boundary before its sort and the sort's scratch: freed after start-up, kept with a paddle.
+    gl::Buffer raw_, zeros_, zeros_sorted_, weighted_;
+    std::vector<glm::vec4> paddle_offsets_, paddle_placed_;   // paddle_offsets(); the placed ones (reused)
+    std::size_t paddle_first_ = 0;                             // its first boundary particle in raw_
+    float paddle_radius_ = 0.0f;
+    glm::vec3 paddle_park_{0.0f}, paddle_at_{0.0f};   // where it waits off; where its particles are
     CellRanges ranges_, boundary_ranges_;
     struct Carried {
         std::string block;

@@ -1,11 +1,14 @@
 #include "sim/simulation.h"
 
+#include <algorithm>
+
 #include "turbulence/force.h"
 
 namespace ranryu::sim {
 
 Simulation::Simulation(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene)
-    : fluid_(shaders, timer, scene), solver_(make_solver(shaders, timer, scene, fluid_)) {
+    : fluid_(shaders, timer, scene), solver_(make_solver(shaders, timer, scene, fluid_)), frame_dt_(scene.frame_dt),
+      paddle_speed_(kPaddleSpeed * scene.speed_estimate()) {
     if (scene.turbulence.enabled())
         turbulence_ = std::make_unique<turbulence::TurbulenceForce>(shaders, timer, scene.turbulence, fluid_);
 }
@@ -17,7 +20,32 @@ void Simulation::begin_frame(std::uint64_t frame) {
     solver_->begin_frame(fluid_);
 }
 
+// Before a step: the paddle where set_paddle() asked, a substep's move at a time. The projection's
+// velocity u is the move over the substep's share of the frame (the GPU's dt splits the frame
+// nearly evenly between the substeps the CPU issued).
+void Simulation::place_paddle() {
+    if (!fluid_.has_paddle()) return;
+    if (paddle_on_ != paddle_placed_on_) {
+        if (paddle_on_) paddle_center_ = paddle_goal_;
+        paddle_velocity_ = glm::vec3(0.0f);
+        fluid_.move_paddle(paddle_center_, paddle_velocity_, paddle_on_);
+        paddle_placed_on_ = paddle_on_;
+        return;
+    }
+    if (!paddle_on_) return;
+    glm::vec3 d = paddle_goal_ - paddle_center_;
+    const float substep = frame_dt_ / float(fluid_.substeps_this_frame());
+    const float len = glm::length(d), most = std::min(kPaddleStep * fluid_.params().spacing, paddle_speed_ * substep);
+    if (len > most) d *= most / len;
+    const glm::vec3 u = d / substep;
+    if (len == 0.0f && paddle_velocity_ == glm::vec3(0.0f)) return;
+    paddle_center_ = len > most ? paddle_center_ + d : paddle_goal_;
+    paddle_velocity_ = u;
+    fluid_.move_paddle(paddle_center_, paddle_velocity_, true);
+}
+
 void Simulation::step() {
+    place_paddle();
     if (turbulence_) solver_->step(fluid_, *turbulence_);
     else solver_->step(fluid_, none_);
 }
