@@ -1,9 +1,11 @@
 #include "overlay.h"
 
-#include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#ifdef RANRYU_HAVE_GLFW
+#include <GLFW/glfw3.h>
+#include <imgui_impl_glfw.h>
+#endif
 
 #include <algorithm>
 #include <bit>
@@ -20,7 +22,7 @@ constexpr const char* kShadingNames[] = {"fresnel", "phong", "gouraud", "particl
 constexpr const char* kSolverNames[] = {"dfsph", "wcsph"};
 }  // namespace
 
-Overlay::Overlay(GLFWwindow* window) {
+void Overlay::start() {
     for (const scene::BundledScene& s : scene::bundled()) scenes_.push_back(s.name);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -29,17 +31,40 @@ Overlay::Overlay(GLFWwindow* window) {
     io.LogFilename = nullptr;
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 0.0f;
+}
+
+Overlay::Overlay(GLFWwindow* window) : window_(window) {
+#ifdef RANRYU_HAVE_GLFW
+    start();
     if (!ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true) || !ImGui_ImplOpenGL3_Init("#version 430 core")) {
         ImGui::DestroyContext();
         throw Error("cannot start the overlay (Dear ImGui's GLFW or OpenGL 3 backend failed)");
     }
     // The font atlas and the backend's program and buffers: now, not in the first frame.
     ImGui_ImplOpenGL3_CreateDeviceObjects();
+#else
+    throw Error("this build has no window (GLFW was not found at configure time)");
+#endif
+}
+
+Overlay::Overlay(glm::ivec2 display) : display_(display) {
+    start();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(display.x), float(display.y));
+    io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
+    io.DeltaTime = 1.0f / 60.0f;
+    if (!ImGui_ImplOpenGL3_Init("#version 430 core")) {
+        ImGui::DestroyContext();
+        throw Error("cannot start the overlay (Dear ImGui's OpenGL 3 backend failed)");
+    }
+    ImGui_ImplOpenGL3_CreateDeviceObjects();
 }
 
 Overlay::~Overlay() {
     ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
+#ifdef RANRYU_HAVE_GLFW
+    if (window_) ImGui_ImplGlfw_Shutdown();
+#endif
     ImGui::DestroyContext();
 }
 
@@ -49,7 +74,14 @@ bool Overlay::wants_text() const { return ImGui::GetIO().WantTextInput; }
 void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
     auto scope = p.timer().scope(pass);
     ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
+#ifdef RANRYU_HAVE_GLFW
+    if (window_) ImGui_ImplGlfw_NewFrame();
+#endif
+    if (!window_) {
+        ImGuiIO& io = ImGui::GetIO();
+        io.DisplaySize = ImVec2(float(display_.x), float(display_.y));
+        io.DeltaTime = 1.0f / 60.0f;
+    }
     ImGui::NewFrame();
 
     const ImVec2 display = ImGui::GetIO().DisplaySize;
