@@ -99,10 +99,12 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     ImGui::Text("%.1f fps   GPU %.2f ms a frame", st.fps, gpu_ms);
     if (st.rtf) ImGui::Text("real-time factor %.3f", *st.rtf);
     else ImGui::TextUnformatted("real-time factor -");
+    // The particles not parked, as the last record says (the emitter pours parked ones in).
+    const std::size_t live = p.active_particles().value_or(p.scene().particle_count());
     if (const turbulence::Subparticles* sub = p.subparticles(); sub && sub->stats().last)
-        ImGui::Text("particles %zu   sub-particles %u", p.particle_count(), sub->stats().last->dispatch.w);
+        ImGui::Text("particles %zu   sub-particles %u", live, sub->stats().last->dispatch.w);
     else
-        ImGui::Text("particles %zu   sub-particles %s", p.particle_count(), sub ? "-" : "off");
+        ImGui::Text("particles %zu   sub-particles %s", live, sub ? "-" : "off");
     const std::optional<std::uint32_t> substeps = p.substeps_per_frame();
     const auto& record = sim ? sim->fluid().last_record() : std::nullopt;
     if (substeps && record && scene.sph.solver == scene::Solver::dfsph)
@@ -171,6 +173,10 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         if (ImGui::Checkbox("paddle (P; right-drag moves it)", &paddle)) push({.kind = input::Kind::set_paddle, .on = paddle});
         ImGui::SameLine();
         ImGui::Text("radius %.3f m", st.paddle_radius);
+        bool emitter = st.emitter;
+        if (ImGui::Checkbox("emitter (E)", &emitter)) push({.kind = input::Kind::set_emitter, .on = emitter});
+        ImGui::SameLine();
+        ImGui::Text("budget %zu particles", st.budget);
     }
     // The resolution: a new spacing rebuilds the scene when the slider is let go.
     if (!spacing_edit_) spacing_ = scene.spacing;

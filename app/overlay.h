@@ -39,6 +39,8 @@ struct OverlayState {
     float paddle_radius = 0.0f;     // the paddle's radius (m); 0: the scene has none (ballistic)
     bool paddle = false;            // the paddle is in the liquid
     bool recording = false;         // F9's take is being written
+    bool emitter = false;           // the emitter pours
+    std::size_t budget = 0;         // the emitter's particle budget; 0: none (ballistic)
     std::string status;             // the last control's note ("scene falling-block: particles only"), or empty
 };
 

@@ -191,6 +191,7 @@ int run(const Options& o) {
         bool paddle = false;                 // the paddle is in the liquid (off at every start)
         glm::vec3 paddle_goal{0.0f};         // where the drags so far take it (it follows: sim::Simulation::set_paddle)
         bool record = false;                 // F9: the frames go to a take of --record-dir
+        bool emitter = false;                // E: pouring liquid in, up to the budget (off at every start)
     } c;
     c.shading = shading(o);
     c.turbulence = scene.turbulence.enabled();
@@ -304,7 +305,11 @@ int run(const Options& o) {
                 break;
             case input::Kind::toggle_emitter:
             case input::Kind::set_emitter:
-                view.status = "no emitter yet";
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model: no emitter";
+                    break;
+                }
+                c.emitter = cmd.kind == input::Kind::set_emitter ? cmd.on : !c.emitter;
                 break;
             case input::Kind::toggle_record:
             case input::Kind::set_record:
@@ -343,13 +348,18 @@ int run(const Options& o) {
     for (bool first = true;; first = false) {
         // Every SPH scene the window runs has a paddle, parked until it is switched on.
         scene.paddle_radius = scene.model == scene::Model::sph ? sim::paddle_radius_for(scene) : 0.0f;
-        c.paddle = false;
+        // And an emitter with a budget: --budget, or twice the scene's particles; all allocated now.
+        scene.particle_budget = 0;
+        if (scene.model == scene::Model::sph)
+            scene.particle_budget = std::max<std::size_t>(o.budget ? std::size_t(*o.budget) : 2 * scene.particle_count(), scene.particle_count());
+        c.paddle = c.emitter = false;
         frame::Pipeline pipeline(scene, shaders, size.x, size.y, c.shading);
         if (!first)
             std::printf("restart at frame %llu: %s, %s, %s\n", static_cast<unsigned long long>(base), scene.name.c_str(),
                         pipeline.simulation() ? scene::solver_name(scene.sph.solver) : "ballistic",
                         render::shading_name(pipeline.shading()));
-        std::printf("particles: %zu at spacing %g m\n", pipeline.particle_count(), double(scene.spacing));
+        std::printf("particles: %zu at spacing %g m\n", scene.particle_count(), double(scene.spacing));
+        if (scene.particle_budget) std::printf("particle budget: %zu (the emitter pours up to that)\n", scene.particle_budget);
         std::fflush(stdout);
         view.paddle_radius = scene.paddle_radius;
         if (c.camera_from_scene) orbit = Orbit(pipeline.camera());
@@ -406,6 +416,8 @@ int run(const Options& o) {
                 stop_recording();
             }
             if (p.has_paddle()) p.simulation()->set_paddle(c.paddle, c.paddle_goal);
+            if (p.simulation()) p.simulation()->set_emitter(c.emitter);
+            view.emitter = c.emitter, view.budget = scene.particle_budget;
             view.paddle = c.paddle, view.recording = recorder != nullptr;
             if (std::exchange(c.settings_changed, false) && p.simulation()) {
                 p.simulation()->fluid().set_viscosity_and_cfl(scene.sph.viscosity, scene.sph.cfl);
@@ -484,6 +496,8 @@ int run(const Options& o) {
                                     record::ParticleFrame{x, v, {}, {}, {}}, scratch);
             std::printf("wrote %s (%zu particles)\n", o.save_particles.c_str(), x.size());
         }
+        if (const auto active = pipeline.active_particles(); active && scene.particle_budget)
+            std::printf("particles: %zu active of budget %zu\n", *active, scene.particle_budget);
         if (const sim::Simulation* sim = pipeline.simulation(); sim && sim->paddle_on()) {
             const glm::vec3 at = sim->paddle_center();
             std::printf("paddle at %.6f %.6f %.6f radius %.6f m\n", double(at.x), double(at.y), double(at.z), double(scene.paddle_radius));

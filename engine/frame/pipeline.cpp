@@ -35,7 +35,7 @@ surface::MeshCapacity mesh_capacity(const scene::Scene& s) {
 
 MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view) {
     MemoryEstimate e;
-    e.particles = s.particle_count();
+    e.particles = s.particle_capacity();
     e.extra = view.extra_bytes;
     const std::size_t n = e.particles;
     if (s.model == scene::Model::sph) {
@@ -191,6 +191,12 @@ void Pipeline::drain() {
     timer_.drain();
     if (sph_) sph_->fluid().drain_records();
     if (sub_) sub_->drain();
+}
+
+std::optional<std::size_t> Pipeline::active_particles() const {
+    if (!sph_) return ballistic_->count();
+    const auto& last = sph_->fluid().last_record();
+    return last ? std::optional<std::size_t>(last->live_count) : std::nullopt;
 }
 
 std::size_t Pipeline::particle_count() const { return sph_ ? sph_->fluid().count() : ballistic_->count(); }

@@ -87,6 +87,9 @@ public:
     // The paddle (scene.paddle_radius > 0): sim::Simulation::set_paddle(); drawn as the pass
     // "draw-paddle" while it is on.
     bool has_paddle() const { return sph_ && sph_->fluid().has_paddle(); }
+    // The particles not parked as of the last record (the emitter pours parked ones in: sim/fluid.h),
+    // or nothing yet; particle_count() is the budget, all allocated.
+    std::optional<std::size_t> active_particles() const;
 
     void set_camera(const render::Camera& cam);
     const render::Camera& camera() const { return camera_; }

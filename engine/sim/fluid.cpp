@@ -68,6 +68,7 @@ std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size
                     + NeighbourGrid::bytes_for(sort_capacity(count, boundary));
     b += sizeof(gpu::SphParams) + sizeof(gpu::StepState) + obstacle_shapes(s).size() * sizeof(glm::vec4);
     if (s.paddle_radius > 0.0f) b += transient_bytes(boundary);
+    if (s.particle_budget > 0) b += sizeof(std::uint32_t);   // the emitter's slot counter
     return b;
 }
 
@@ -106,6 +107,34 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     return p;
 }
 
+EmitterShape emitter_for(const scene::Scene& s) {
+    EmitterShape e;
+    const glm::vec3 c = 0.5f * (s.tank_min + s.tank_max), extent = s.tank_max - s.tank_min;
+    float y = s.tank_min.y + 0.85f * extent.y;
+    if (s.tank_closed) y = std::min(y, s.tank_max.y - 2.0f * s.spacing);
+    e.nozzle = glm::vec3(c.x, y, c.z);
+    e.side = std::clamp(int(std::lround(0.15f * std::min(extent.x, extent.z) / s.spacing)), 2, 16);
+    e.velocity = glm::vec3(0.0f, -s.spacing / s.frame_dt, 0.0f);
+    return e;
+}
+
+std::vector<glm::vec4> parked_positions(const scene::Scene& s, std::size_t count) {
+    // A lattice of pitch 3 h over the tank's footprint, layer under layer downwards from 1 m and 3 h
+    // below the floor's boundary layers (the neighbour grid clamps them into its bottom cells, which
+    // no fluid particle's walk reaches, and the walks skip parked particles).
+    const float pitch = 6.0f * s.spacing;
+    const glm::vec3 e = s.tank_max - s.tank_min;
+    const std::size_t nx = std::max<std::size_t>(1, std::size_t(e.x / pitch)), nz = std::max<std::size_t>(1, std::size_t(e.z / pitch));
+    const float top = s.tank_min.y - 1.0f - float(layers_of(s) + 6) * s.spacing;
+    std::vector<glm::vec4> out;
+    out.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t i = k % nx, j = (k / nx) % nz, layer = k / (nx * nz);
+        out.emplace_back(s.tank_min.x + (float(i) + 0.5f) * pitch, top - float(layer) * pitch, s.tank_min.z + (float(j) + 0.5f) * pitch, 1.0f);
+    }
+    return out;
+}
+
 GuardLimits guard_limits(const scene::Scene& s) {
     GuardLimits g;
     g.density_ratio = s.sph.density_limit;
@@ -123,6 +152,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       diag_pass_(timer.pass("diagnostics")),
       boundary_pass_(timer.pass("boundary-volume")),
       boundary_cells_pass_(timer.pass("boundary-cells")),
+      emit_pass_(timer.pass("emit")),
       defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
                (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "")),
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
@@ -130,17 +160,26 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
       boundary_volume_(shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", defines_)),
       flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", defines_)),
+      emit_(scene.particle_budget > 0 ? shader::Program::compute(shaders, "sim/fluid/emit_particles.comp") : shader::Program()),
+      emitter_(emitter_for(scene)),
       limits_(guard_limits(scene)),
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),
       grid_(shaders, timer,
             fluid_grid(scene, 2.0f * scene.spacing, boundary_layers(scene.spacing, 2.0f * scene.spacing)),
-            sort_capacity(scene.particle_count(), boundary_count(scene)),
+            sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),
       readback_(sizeof(gpu::StepState), 4, "StepState.readback",
                 [this](std::uint64_t, const void* bytes) { on_record(bytes); }) {
-    const std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
+    std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
+    scene_count_ = x.size();
+    if (scene.particle_budget > x.size()) {   // the emitter's parked particles, at rest
+        const std::vector<glm::vec4> parked = parked_positions(scene, scene.particle_budget - x.size());
+        x.insert(x.end(), parked.begin(), parked.end());
+        v.resize(x.size(), glm::vec4(0.0f));
+    }
+    if (scene.particle_budget > 0) emit_claimed_ = gl::Buffer(sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "fluid.emit_claimed");
     const std::vector<glm::vec4> wall = boundary_of(scene);
     paddle_offsets_ = paddle_offsets(scene, layers_of(scene));
     paddle_placed_.resize(paddle_offsets_.size());
@@ -175,6 +214,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     s.max_accel = bits(glm::length(scene.gravity));
     s.frame_min_dt = frame_dt_;
     s.nan_index = s.escaped_index = 0xFFFFFFFFu;
+    s.live_count = std::uint32_t(scene_count_);
     step_ = gl::Buffer(sizeof s, GL_DYNAMIC_COPY, &s, "fluid.step");
     dt_estimate_ = std::min(params_.cfl * params_.spacing / (params_.sound_speed + scene.speed_estimate()), params_.dt_max);
     compute_boundary(wall);
@@ -248,10 +288,12 @@ int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::
     if (carried_.size() == NeighbourGrid::max_carried)
         throw Error("Fluid::carry: at most " + std::to_string(NeighbourGrid::max_carried) + " carried arrays (adding " + block + ")");
     const std::size_t n = std::max<std::size_t>(count_, 1);   // as carried_bytes()
-    if (words == 0 || (fill.size() != words && fill.size() != count_ * words))
+    // Every particle's: the scene's, in its initial order (parked ones, after them, start at zero).
+    if (words == 0 || (fill.size() != words && fill.size() != count_ * words && fill.size() != scene_count_ * words))
         throw Error("Fluid::carry: " + block + " needs a fill of one particle's words or of every particle's");
     std::vector<std::uint32_t> all(n * words);
-    if (fill.size() == count_ * words && count_ > 0) std::copy(fill.begin(), fill.end(), all.begin());
+    if ((fill.size() == count_ * words || fill.size() == scene_count_ * words) && count_ > 0)
+        std::copy(fill.begin(), fill.end(), all.begin());
     else for (std::size_t i = 0; i < n; ++i) std::copy(fill.begin(), fill.begin() + words, all.begin() + std::ptrdiff_t(i * words));
     Carried c{std::move(block), words, {}};
     for (int k = 0; k < 2; ++k)
@@ -336,6 +378,21 @@ void Fluid::integrate() {
     auto pass = timer_.scope(integrate_pass_);
     integrate_.bind(bind_state()).dispatch(count_);
     // The next substep's hash, the time step and the impostor draw read what this wrote.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+void Fluid::emit() {
+    if (!has_budget()) throw Error("Fluid::emit: no particle budget beyond the scene's (scene.particle_budget)");
+    auto pass = timer_.scope(emit_pass_);
+    const GLuint zero = 0;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, emit_claimed_.id());
+    glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glProgramUniform4f(emit_.id(), RANRYU_LOC_EMIT_NOZZLE, emitter_.nozzle.x, emitter_.nozzle.y, emitter_.nozzle.z, float(emitter_.side));
+    glProgramUniform4f(emit_.id(), RANRYU_LOC_EMIT_VELOCITY, emitter_.velocity.x, emitter_.velocity.y, emitter_.velocity.z,
+                       params_.spacing);
+    emit_.bind(bind_state().with("Emitter", emit_claimed_)).dispatch(count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 

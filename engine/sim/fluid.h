@@ -49,6 +49,19 @@ namespace ranryu::sim {
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);
 GuardLimits guard_limits(const scene::Scene& s);
 
+// Where the emitter pours (Fluid::emit): a side x side sheet, spacing dx, in the horizontal plane
+// through `nozzle` (over the middle of the tank, at 0.85 of its height, 2 dx under a lid), moving at
+// `velocity` = dx / frame_dt downwards, so that one sheet a frame leaves a column at the spacing
+// (gravity only spreads it). side: 0.15 of the tank's narrower horizontal extent, in [2, 16] spacings.
+struct EmitterShape {
+    glm::vec3 nozzle{0.0f};
+    int side = 2;
+    glm::vec3 velocity{0.0f};
+};
+EmitterShape emitter_for(const scene::Scene& s);
+// The parked particles' places (Fluid, the emitter's budget): `count` of them, below the tank.
+std::vector<glm::vec4> parked_positions(const scene::Scene& s, std::size_t count);
+
 class Fluid {
 public:
     // Samples the boundary, computes its psi_b and the cells near it (start-up passes
@@ -82,6 +95,17 @@ public:
     void move_paddle(glm::vec3 center, glm::vec3 velocity, bool on);
     bool has_paddle() const { return !paddle_offsets_.empty(); }
     float paddle_radius() const { return paddle_radius_; }
+
+    // ---- the emitter (scene.particle_budget above scene.particle_count()): count() particles are
+    // allocated, the scene's and the rest parked (position.w = 1, glsl/sim/fluid/fluid.glsl) on a
+    // lattice below the tank, farther apart and from everything else than a support: the density and
+    // neighbour walks visit nothing for them, the integrations leave them at rest and out of the
+    // guard's records, the surface's bounds and the impostors skip them. emit(), pass "emit", pours
+    // one sheet of emitter_for(scene) from the parked ones, on the GPU (StepState.live_count counts the
+    // particles not parked: the count never comes back to the CPU but in the records).
+    void emit();
+    bool has_budget() const { return count_ > scene_count_; }
+    std::size_t scene_count() const { return scene_count_; }
 
     // ---- the state, in the cell order of the last rebuild_grid()
     std::size_t count() const { return count_; }
@@ -151,9 +175,12 @@ private:
     void rebuild_boundary();   // raw_ into boundary_: the sort, psi_b, the near-boundary cells
 
     profile::GpuTimer& timer_;
-    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_;
+    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_, emit_pass_;
     std::string defines_;
-    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_;
+    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_, emit_;
+    EmitterShape emitter_;
+    gl::Buffer emit_claimed_;   // the emit pass's slot counter (a uint), with a budget only
+    std::size_t scene_count_ = 0;
     gpu::SphParams params_{};
     GuardLimits limits_;
     float frame_dt_;

@@ -17,6 +17,7 @@ Simulation::~Simulation() = default;
 
 void Simulation::begin_frame(std::uint64_t frame) {
     fluid_.begin_frame(frame);
+    if (emitting_ && fluid_.has_budget()) fluid_.emit();
     solver_->begin_frame(fluid_);
 }
 

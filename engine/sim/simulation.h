@@ -46,6 +46,11 @@ public:
     glm::vec3 paddle_center() const { return paddle_center_; }
     glm::vec3 paddle_velocity() const { return paddle_velocity_; }
 
+    // The emitter (scene.particle_budget above its count; sim/fluid.h): on, every frame pours a sheet
+    // (pass "emit", at the frame's start) until the budget is spent; the GPU keeps the count.
+    void set_emitter(bool on) { emitting_ = on; }
+    bool emitting() const { return emitting_; }
+
     Fluid& fluid() { return fluid_; }
     const Fluid& fluid() const { return fluid_; }
     Solver& solver() { return *solver_; }
@@ -59,7 +64,7 @@ private:
     std::unique_ptr<turbulence::TurbulenceForce> turbulence_;
     StepHooks none_;
     float frame_dt_, paddle_speed_;
-    bool paddle_on_ = false, paddle_placed_on_ = false;
+    bool paddle_on_ = false, paddle_placed_on_ = false, emitting_ = false;
     glm::vec3 paddle_goal_{0.0f}, paddle_center_{0.0f}, paddle_velocity_{0.0f};
     void place_paddle();
 };

@@ -22,6 +22,7 @@ void visit_boundary(uint b, vec3 d, float r2);
 // Visits the fluid neighbours of particle i at xi, and its boundary neighbours when `flags` (its
 // density[i].w bits) has kBoundaryNear.
 void for_each_neighbour(uint i, vec3 xi, uint flags) {
+    if (parked(position[i])) return;   // no neighbour (density_walk.glsl)
     ivec3 c = grid_cell(xi);
     float h2 = sph.h * sph.h;
     bool masked = false, walls = (flags & kBoundaryNear) != 0u;
