@@ -423,3 +423,38 @@ TEST_CASE("ranryu run --script: the panel's spacing rebuilds the scene at that r
     CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
     CHECK_THAT(r.result.out, !Contains("restart at frame 3"));
 }
+
+// "particles: A active of budget B" at the end of a run.
+std::pair<std::size_t, std::size_t> active_of(const std::string& out) {
+    static const std::regex line(R"(particles: (\d+) active of budget (\d+))");
+    std::smatch m;
+    if (!std::regex_search(out, m, line)) return {0, 0};
+    return {std::stoull(m[1]), std::stoull(m[2])};
+}
+
+TEST_CASE("ranryu run --script: the emitter raises the live count up to the budget and not beyond", "[cli][window][script][emitter]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    // The pool's 16 x 8 x 16 particles and a budget 10 beyond them: its emitter's sheet is 2 x 2, so
+    // 3 frames of pouring spend the budget (4, 4, 2) and the rest pour nothing.
+    const std::vector<std::string> args = {"--scene", scene_file("paddle-pool.json").string(), "--size", "96x64", "--shading",
+                                           "particles", "--budget", "2058", "--save-particles", "last.ply"};
+    TempDir full_dir, one_dir;
+    const ScriptRun full = run_script(full_dir, "0 key e\n8 key escape\n", args);
+    const ScriptRun one = run_script(one_dir, "0 panel emitter on\n1 panel emitter off\n8 key escape\n", args);
+    INFO(full.result.describe() << "\n" << one.result.describe());
+    const auto lines = particle_lines(full.result.out);
+    REQUIRE(lines.size() == 1);
+    REQUIRE(lines[0].first == 2048);
+    CHECK_THAT(full.result.out, Contains("particle budget: 2058"));
+    CHECK(active_of(full.result.out) == std::pair<std::size_t, std::size_t>(2058, 2058));
+    CHECK(active_of(one.result.out) == std::pair<std::size_t, std::size_t>(2052, 2058));
+    // The saved particles agree: every one of the budget is there, those not poured parked below the
+    // tank (1 m under its floor), the poured ones in it.
+    for (const auto& [dir, poured] : {std::pair<const TempDir*, std::size_t>{&full_dir, 10}, {&one_dir, 4}}) {
+        const std::vector<glm::dvec3> x = positions_of(ranryu::test::read_ply(*dir / "last.ply"));
+        REQUIRE(x.size() == 2058);
+        std::size_t parked = 0;
+        for (const glm::dvec3& q : x) parked += q.y < -0.5;
+        CHECK(parked == 10 - poured);
+    }
+}
