@@ -130,7 +130,7 @@ std::vector<glm::vec4> parked_positions(const scene::Scene& s, std::size_t count
     out.reserve(count);
     for (std::size_t k = 0; k < count; ++k) {
         const std::size_t i = k % nx, j = (k / nx) % nz, layer = k / (nx * nz);
-        out.emplace_back(s.tank_min.x + (float(i) + 0.5f) * pitch, top - float(layer) * pitch, s.tank_min.z + (float(j) + 0.5f) * pitch, 1.0f);
+        out.emplace_back(s.tank_min.x + (float(i) + 0.5f) * pitch, top - float(layer) * pitch, s.tank_min.z + (float(j) + 0.5f) * pitch, -1.0f);
     }
     return out;
 }

@@ -97,7 +97,7 @@ public:
     float paddle_radius() const { return paddle_radius_; }
 
     // ---- the emitter (scene.particle_budget above scene.particle_count()): count() particles are
-    // allocated, the scene's and the rest parked (position.w = 1, glsl/sim/fluid/fluid.glsl) on a
+    // allocated, the scene's and the rest parked (position.w = -1, glsl/sim/fluid/fluid.glsl) on a
     // lattice below the tank, farther apart and from everything else than a support: the density and
     // neighbour walks visit nothing for them, the integrations leave them at rest and out of the
     // guard's records, the surface's bounds and the impostors skip them. emit(), pass "emit", pours

@@ -7,7 +7,7 @@
 // r/2^E and the level's colour. Parents (children == 0) carry their levels word: one the spawn pass
 // split (E > 0) is not drawn, its sub-particles are. Sub-particles (children == 1) carry E in position.w.
 // Built with RANRYU_RADIUS_IN_W (the paddle, render/renderer.h draw_sphere): the radius is position.w.
-// A fluid particle with position.w = 1 is parked (the emitter's budget, engine/sim/fluid.h): not drawn.
+// A fluid particle with position.w = -1 is parked (the emitter's budget, engine/sim/fluid.h): not drawn.
 #include "../common/frame.glsl"
 
 layout(location = RANRYU_ATTR_POSITION) in vec4 in_position;
@@ -41,9 +41,9 @@ void main() {
     bool split = false;
 #endif
 #if defined(RANRYU_BY_LEVEL)
-    split = split || (children == 0u && in_position.w > 0.5);   // a parked parent (engine/sim/fluid.h): not drawn
+    split = split || (children == 0u && in_position.w < -0.5);   // a parked parent (engine/sim/fluid.h): not drawn
 #elif !defined(RANRYU_RADIUS_IN_W)
-    split = in_position.w > 0.5;   // parked (engine/sim/fluid.h): not drawn
+    split = in_position.w < -0.5;   // parked (engine/sim/fluid.h): not drawn
 #endif
     float d = length(c);
     v_center = c;

@@ -1,6 +1,6 @@
 #version 430
 // "surface.bounds", step 1 of 2: the box around the particles' centres.
-//   in   sorted_position[0, surface.particle_count), less the parked ones (w = 1: the emitter's
+//   in   sorted_position[0, surface.particle_count), less the parked ones (w = -1: the emitter's
 //        budget not poured in yet, engine/sim/fluid.h)
 //   out  surface_grid.bounds_min/max = ordered_bits of the smallest/largest x, y, z
 // The caller clears bounds_min to 0xFFFFFFFF and bounds_max to 0 first. Each workgroup reduces its
@@ -23,7 +23,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     uint l = gl_LocalInvocationIndex;
     uvec3 lo = uvec3(0xFFFFFFFFu), hi = uvec3(0u);   // identities of min and max
-    if (i < surface.particle_count && sorted_position[i].w < 0.5) {
+    if (i < surface.particle_count && sorted_position[i].w > -0.5) {
         lo = ordered_bits(sorted_position[i].xyz);
         hi = lo;
     }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# On the GPU host, after setup-and-build.sh (with Dear ImGui there: fetch-debs.sh nlohmann-json3-dev
-# libimgui-dev, so that the headless build finds libimgui.a and its backends' sources): the window's
+# On the GPU host, after setup-and-build.sh, with Dear ImGui carried in .gl/ (here:
+# ../shared/gpu-host/fetch-debs.sh nlohmann-json3-dev libimgui-dev, so that the headless build finds
+# libimgui.a and its backends' sources; without it, --overlay is refused with exit 2): the window's
 # overlay cost (issue 13), measured where no window can open. `ranryu profile --overlay` draws the
 # panel into the offscreen target after every frame: the pass "overlay" is its GPU time, and the
 # "overlay: CPU" line its CPU time (building the panel and recording its draws). The dam break, the

@@ -76,6 +76,14 @@ Diff diff(const Image& a, const Image& b) {
     return d;
 }
 
+// An earlier file at `rel` in tmp (its folders made), which a run must leave as it is; returns its text.
+std::string plant_earlier(const TempDir& tmp, const std::string& rel) {
+    const std::string text = "an earlier file, not to be lost: " + rel + "\n";
+    fs::create_directories((tmp / rel).parent_path());
+    write_file(tmp / rel, text);
+    return text;
+}
+
 // `ranryu run ARGS --script script.txt` (the script's text written into tmp) under xvfb-run with a
 // 640x480x24 screen; it must succeed without a GL error. Returns the run and the screenshots it took.
 struct ScriptRun {
@@ -248,9 +256,7 @@ TEST_CASE("ranryu run --script: the overlay changes the picture in the panel's r
 TEST_CASE("ranryu run: a screenshot never replaces an earlier one", "[cli][window][script]") {
     if (!window_available(/*need_xvfb=*/true)) return;
     TempDir tmp;
-    fs::create_directories(tmp / "screenshots");
-    const std::string earlier = "an earlier screenshot, not to be lost\n";
-    write_file(tmp / "screenshots/shot_00000.png", earlier);
+    const std::string earlier = plant_earlier(tmp, "screenshots/shot_00000.png");
     const ScriptRun r = run_script(tmp, "1 key f12\n1 panel screenshot\n3 key escape\n",
                                    {"--scene", "falling-block", "--size", "160x120"});
     INFO(r.result.describe());
@@ -377,9 +383,7 @@ TEST_CASE("ranryu run --script: a dragged paddle moves the liquid near its path 
 TEST_CASE("ranryu run --script: F9 records takes through the asynchronous writer, never over an earlier one", "[cli][window][script]") {
     if (!window_available(/*need_xvfb=*/true)) return;
     TempDir tmp;
-    fs::create_directories(tmp / "recordings/take_000");
-    const std::string earlier = "an earlier take, not to be lost\n";
-    write_file(tmp / "recordings/take_000/frame_00000.png", earlier);
+    const std::string earlier = plant_earlier(tmp, "recordings/take_000/frame_00000.png");
     const ScriptRun r = run_script(tmp, "0 key h\n1 key f9\n4 key f9\n6 panel record on\n8 panel record off\n9 key escape\n",
                                    {"--scene", "falling-block", "--size", "96x64"});
     INFO(r.result.describe());

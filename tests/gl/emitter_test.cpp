@@ -69,7 +69,7 @@ TEST_CASE("emitter: each emit pours one sheet of the parked particles onto the n
         std::vector<int> taken(slots.size(), 0);
         std::size_t poured = 0, moved_parked = 0, stray = 0;
         for (std::size_t i = 0; i < x.size(); ++i) {
-            const bool was = before[i].w > 0.5f, is = x[i].w > 0.5f;
+            const bool was = before[i].w < -0.5f, is = x[i].w < -0.5f;
             if (was && !is) {
                 ++poured;
                 // Its slot: the nearest; float rounding of a few ulp of 1 m, bound 1e-6 m.
@@ -100,12 +100,12 @@ TEST_CASE("emitter: each emit pours one sheet of the parked particles onto the n
     const std::vector<glm::vec4> x0 = fresh.read(fresh.fluid.positions());
     std::vector<glm::vec4> parked0;
     for (const glm::vec4& p : x0)
-        if (p.w > 0.5f) parked0.push_back(p);
+        if (p.w < -0.5f) parked0.push_back(p);
     for (int f = 0; f < 3; ++f) fresh.frame(std::uint64_t(f));
     const std::vector<glm::vec4> x1 = fresh.read(fresh.fluid.positions());
     std::vector<glm::vec4> parked1;
     for (const glm::vec4& p : x1)
-        if (p.w > 0.5f) parked1.push_back(p);
+        if (p.w < -0.5f) parked1.push_back(p);
     const auto order = [](const glm::vec4& a, const glm::vec4& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
     std::sort(parked0.begin(), parked0.end(), order);
     std::sort(parked1.begin(), parked1.end(), order);
