@@ -55,6 +55,7 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
         e.parts.push_back({"particles", sim::Particles::bytes_for(n)});
     }
     if (view.draw) e.parts.push_back({"render target", gl::RenderTarget::bytes_for(view.width, view.height)});
+    if (view.draw && s.model == scene::Model::sph && s.paddle_radius > 0.0f) e.parts.push_back({"paddle's sphere", 2 * sizeof(glm::vec4)});
     return e;
 }
 
