@@ -500,7 +500,8 @@ int run(const Options& o) {
             std::printf("particles: %zu active of budget %zu\n", *active, scene.particle_budget);
         if (const sim::Simulation* sim = pipeline.simulation(); sim && sim->paddle_on()) {
             const glm::vec3 at = sim->paddle_center();
-            std::printf("paddle at %.6f %.6f %.6f radius %.6f m\n", double(at.x), double(at.y), double(at.z), double(scene.paddle_radius));
+            std::printf("paddle at %.6f %.6f %.6f radius %.6f m\n", double(at.x), double(at.y), double(at.z),
+                        double(sim->paddle_scale() * scene.paddle_radius));
         }
         const profile::Report report =
             profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0), log.summary());

@@ -157,7 +157,7 @@ void Pipeline::draw() {
         renderer_->draw(target_, positions(), velocities(), particle_count());
     }
     if (paddle_sphere_.id() && sph_->paddle_on()) {
-        const glm::vec4 sphere[2] = {glm::vec4(sph_->paddle_center(), sph_->fluid().paddle_radius()),
+        const glm::vec4 sphere[2] = {glm::vec4(sph_->paddle_center(), sph_->paddle_scale() * sph_->fluid().paddle_radius()),
                                      glm::vec4(sph_->paddle_velocity(), 0.0f)};
         paddle_sphere_.upload(sphere, sizeof sphere);
         renderer_->draw_sphere(target_, paddle_sphere_);

@@ -270,16 +270,17 @@ void Fluid::rebuild_boundary() {
     }
 }
 
-void Fluid::move_paddle(glm::vec3 center, glm::vec3 velocity, bool on) {
+void Fluid::move_paddle(glm::vec3 center, glm::vec3 velocity, bool on, float scale) {
     if (!has_paddle()) throw Error("Fluid::move_paddle: the scene has no paddle (scene.paddle_radius is 0)");
     const glm::vec3 at = on ? center : paddle_park_;
     // Its entry is the last of obstacle_shapes(): (center, 2), (radius, velocity); radius 0 when parked.
-    const glm::vec4 entry[2] = {glm::vec4(at, 2.0f), on ? glm::vec4(paddle_radius_, velocity) : glm::vec4(0.0f)};
+    if (!on) scale = 1.0f;
+    const glm::vec4 entry[2] = {glm::vec4(at, 2.0f), on ? glm::vec4(scale * paddle_radius_, velocity) : glm::vec4(0.0f)};
     obstacles_.upload(entry, sizeof entry, obstacles_.size() - sizeof entry);
-    if (at == paddle_at_) return;   // only its velocity changed: the boundary stands
-    paddle_at_ = at;
+    if (at == paddle_at_ && scale == paddle_scale_) return;   // only its velocity changed: the boundary stands
+    paddle_at_ = at, paddle_scale_ = scale;
     for (std::size_t k = 0; k < paddle_offsets_.size(); ++k)
-        paddle_placed_[k] = glm::vec4(at + glm::vec3(paddle_offsets_[k]), paddle_offsets_[k].w);
+        paddle_placed_[k] = glm::vec4(at + scale * glm::vec3(paddle_offsets_[k]), scale * scale * scale * paddle_offsets_[k].w);
     raw_.upload(paddle_placed_.data(), paddle_placed_.size() * sizeof(glm::vec4), paddle_first_ * sizeof(glm::vec4));
     rebuild_boundary();
 }

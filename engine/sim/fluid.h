@@ -92,7 +92,8 @@ public:
     // frame, before a step. Off: the particles wait at paddle_park(), the entry's radius is 0. Uploads
     // the paddle's few boundary particles and 32 bytes, allocates nothing; when only the velocity
     // changes, the 32 bytes alone. sim::Simulation::set_paddle() moves it a substep at a time.
-    void move_paddle(glm::vec3 center, glm::vec3 velocity, bool on);
+    // `scale` in (0, 1]: the paddle grown to that part of its radius (offsets and cell volumes scaled).
+    void move_paddle(glm::vec3 center, glm::vec3 velocity, bool on, float scale = 1.0f);
     bool has_paddle() const { return !paddle_offsets_.empty(); }
     float paddle_radius() const { return paddle_radius_; }
 
@@ -201,6 +202,7 @@ private:
     std::size_t paddle_first_ = 0;                             // its first boundary particle in raw_
     float paddle_radius_ = 0.0f;
     glm::vec3 paddle_park_{0.0f}, paddle_at_{0.0f};   // where it waits off; where its particles are
+    float paddle_scale_ = 1.0f;                       // the part of its radius they stand at
     CellRanges ranges_, boundary_ranges_;
     struct Carried {
         std::string block;

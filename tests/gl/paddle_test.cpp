@@ -135,12 +135,17 @@ TEST_CASE("paddle: its boundary particles follow the centre with psi from the re
     const double R = s.paddle_radius;
     const std::vector<glm::vec4> offsets = ranryu::sim::paddle_offsets(s, ranryu::sim::boundary_layers(s.spacing, 2.0f * s.spacing));
     REQUIRE(!offsets.empty());
-    // Above the pool (whose top is at 0.24 m): switched on, it appears there at once.
+    // Above the pool (whose top is at 0.24 m): switched on, it appears there and grows to its radius,
+    // Δx/4 a substep.
     const glm::dvec3 c(rng.uniform(0.2f, 0.4f), rng.uniform(0.38f, 0.42f), rng.uniform(0.2f, 0.4f));
     rig.sim.set_paddle(true, glm::vec3(c));
-    rig.frame(0);
+    int frame = 0;
+    rig.frame(std::uint64_t(frame++));
     REQUIRE(rig.sim.paddle_on());
     REQUIRE(glm::dvec3(rig.sim.paddle_center()) == c);
+    CHECK(rig.sim.paddle_scale() < 1.0f);
+    while (frame < 20 && rig.sim.paddle_scale() < 1.0f) rig.frame(std::uint64_t(frame++));
+    REQUIRE(rig.sim.paddle_scale() == 1.0f);
     std::vector<glm::vec4> b = rig.fluid.boundary().read<glm::vec4>(rig.fluid.boundary_count());
 
     // The paddle's particles, found by position: c + each offset, once each.
@@ -179,7 +184,7 @@ TEST_CASE("paddle: its boundary particles follow the centre with psi from the re
     // at any frame's end, and it gets there.
     const glm::vec3 low = glm::vec3(c) - glm::vec3(0.0f, 0.16f, 0.0f);
     rig.sim.set_paddle(true, low);
-    for (int f = 1; f < 40 && rig.sim.paddle_center() != low && !rig.fluid.instability(); ++f) {
+    for (int f = frame; f < frame + 40 && rig.sim.paddle_center() != low && !rig.fluid.instability(); ++f) {
         rig.frame(std::uint64_t(f));
         const glm::dvec3 at(rig.sim.paddle_center());
         const std::vector<glm::vec4> xs = rig.read(rig.fluid.positions());
@@ -192,7 +197,7 @@ TEST_CASE("paddle: its boundary particles follow the centre with psi from the re
 
     // Parked: its particles leave for paddle_park(), farther than a support from every fluid particle.
     rig.sim.set_paddle(false, low);
-    rig.frame(40);
+    rig.frame(100);
     CHECK_FALSE(rig.sim.paddle_on());
     b = rig.fluid.boundary().read<glm::vec4>(rig.fluid.boundary_count());
     const glm::dvec3 park(ranryu::sim::paddle_park(s));
