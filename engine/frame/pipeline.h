@@ -9,7 +9,8 @@
 //                                 // "level-set" and "mc.classify", "mc.compact", "mc.emit"
 //                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
 //     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
-//                                 // sub-particles, coloured by level) or "draw-surface"
+//                                 // sub-particles, coloured by level) or "draw-surface", and with the
+//                                 // paddle on (run), "draw-paddle"
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //

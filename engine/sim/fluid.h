@@ -19,6 +19,9 @@
 //     choose_time_step()  "choose-time-step"   docs/SPH.md (7), docs/DFSPH.md (D8), on the GPU
 //     rebuild_grid()      "hash", "sort.*", "reorder"   the state into cell order
 //     integrate()         "integrate"          docs/SPH.md (6) and (8): the explicit step
+//     emit()              "emit"               the emitter pours a sheet of parked particles (run)
+//     move_paddle()       "hash", "sort.*", "reorder", "boundary-volume", "boundary-cells": the
+//                         boundary re-sorted about the paddle, docs/SPH.md (9) (run)
 //     end_frame()         "diagnostics"        queues the record's readback
 //
 // The CPU never waits: the substeps a frame are planned from records that arrive frames late (enough
