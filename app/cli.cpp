@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -16,18 +17,19 @@ namespace {
 // Which options each command takes.
 const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--script", "--shots", "--shading",
-             "--shader-dir", "--gl-debug"}},
+             "--record-dir", "--save-particles", "--budget", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
                 "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
-                 "--shading", "--quiet", "--shader-dir", "--gl-debug"}},
+                 "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown"};
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown",
+                                      "--overlay"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -153,6 +155,13 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--screenshot") o.screenshot = value;
         else if (opt == "--script") o.script = value;
         else if (opt == "--shots") o.shots = value;
+        else if (opt == "--record-dir") o.record_dir = value;
+        else if (opt == "--save-particles") {
+            const std::string ext = std::filesystem::path(value).extension().string();
+            if (ext != ".ply" && ext != ".vtp") throw InputError("--save-particles " + value + ": expected a file name ending in .ply or .vtp");
+            o.save_particles = value;
+        } else if (opt == "--budget") o.budget = parse_int(opt, value, 1, 64'000'000);
+        else if (opt == "--overlay") o.overlay = true;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
@@ -254,23 +263,39 @@ std::string command_help(const std::string& cmd) {
     if (cmd == "run")
         return "usage: ranryu run [options]\n\nWatch a scene in a window: drag to orbit, wheel to zoom. A panel shows fps, GPU ms a\n"
                "frame, the real-time factor, particles, substeps, solver iterations, the guard and a bar per GPU\n"
-               "pass, with the controls (pause, step, reset, shading, scene, solver: a change of these three\n"
-               "restarts the scene; viscosity, time-step factor, turbulence on/off and amplitude: live).\n\nkeys:\n" +
+               "pass, with the controls (pause, step, reset, shading, scene, solver, spacing: a change of these\n"
+               "restarts the scene; viscosity, time-step factor, turbulence on/off and amplitude: live).\n\n"
+               "In an SPH scene, P puts in the paddle, a sphere of a tenth of the tank's largest extent (at least\n"
+               "3 spacings) that the right mouse button drags through the liquid in the plane facing the camera;\n"
+               "it pushes the liquid and never lets it through, and follows the drag at most a quarter spacing a\n"
+               "substep and half the scene's speed estimate sqrt(2 g H). E pours liquid in from a nozzle over the\n"
+               "tank, one sheet a frame, up to the particle budget (--budget; default twice the scene's\n"
+               "particles, all allocated at start); the panel states the budget and the live count.\n\nkeys:\n" +
                input::keys_help() + "\n" + common +
                R"(  --frames N          quit after N frames (default 0: run until the window closes)
   --screenshot FILE   save the window's last frame as PNG (with --frames, for tests)
   --shots DIR         folder for F12's screenshots, shot_00000.png, ... (default screenshots; created
                       when the first is taken; an existing file is never replaced)
+  --record-dir DIR    folder for F9's recordings (default recordings): each take goes to the first
+                      take_NNN that does not exist, as frame_00000.png, ... of the picture (without
+                      the panel), written by the same asynchronous writer as `ranryu record`
+  --budget N          the emitter's particle budget: the scene's particles and those it may pour in
+                      (default twice the scene's; all allocated at start)
+  --save-particles FILE
+                      at the end, write the last frame's particles to FILE (.ply or .vtp; an
+                      existing file is refused)
   --script FILE       replay timed input from FILE, one event a line (FRAME is the frame, from 0,
                       before which it acts; frames never decrease; # starts a comment):
-                        FRAME key NAME            space n r m t h f12 escape 1-9
+                        FRAME key NAME            space n r m t p e h f12 f9 escape 1-9
                         FRAME drag DX DY          a mouse drag of DX, DY pixels (orbit)
+                        FRAME paddle DX DY        a right-button drag of DX, DY pixels (the paddle)
                         FRAME wheel N             N notches of the wheel (zoom)
                         FRAME panel ACTION [ARG]  the panel's widgets: pause on|off, step, reset,
                                                   screenshot, quit, panel on|off, shading MODE,
                                                   scene NAME, solver dfsph|wcsph|pbf,
                                                   turbulence on|off, amplitude A (1/m),
-                                                  viscosity NU (m^2/s), cfl C
+                                                  viscosity NU (m^2/s), cfl C, paddle on|off,
+                                                  emitter on|off, record on|off, spacing DX (m)
                       a mistake is reported as FILE:LINE (exit 2); the script does not end the run:
                       end it with "key escape" or "panel quit" (or --frames)
 )";
@@ -306,6 +331,9 @@ std::string command_help(const std::string& cmd) {
   --json FILE         also write the report as JSON (device, driver, date, scene, particles, passes)
   --csv FILE          also write it as CSV, one row per pass
   --records FILE      also write the SPH simulation's record of every frame as CSV (warm-up included)
+  --overlay           also draw the window's panel (Dear ImGui) into the picture each frame: its GPU
+                      time is the pass "overlay", its CPU time the line "overlay: CPU ... ms a frame"
+                      (builds without Dear ImGui refuse it)
   --quiet             no progress line on stderr
 )";
     if (cmd == "scenes")

@@ -24,6 +24,10 @@ struct Options {
     std::string screenshot;       // run: PNG of the window's last frame
     std::string script;           // run: timed input events to replay (input/script.h)
     std::string shots = "screenshots";   // run: folder of F12's (and the script's) screenshots
+    std::string record_dir = "recordings";   // run: folder of F9's recordings, one take_NNN folder each
+    std::string save_particles;   // run: FILE.ply|.vtp of the last frame's particles, written at exit
+    std::optional<int> budget;    // run: the emitter's particle budget (default: the scene's count x 2)
+    bool overlay = false;         // profile: draw the window's panel into the offscreen target too
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
     std::string records;          // record/profile: the simulation's per-frame records as CSV

@@ -28,6 +28,9 @@
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
+#ifdef RANRYU_HAVE_IMGUI
+#include "overlay.h"
+#endif
 
 namespace ranryu::app {
 
@@ -310,9 +313,39 @@ int profile_cmd(const Options& o) {
     frame::Progress progress = make_progress(o, "ranryu profile");
     progress.expect(std::uint64_t(o.warmup) + std::uint64_t(frames));
     const shader::FileSource shaders = shader_source(o);
+#ifndef RANRYU_HAVE_IMGUI
+    if (o.overlay) throw InputError("--overlay: this build has no Dear ImGui (it was not found at configure time)");
+#endif
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
     SimulationLog log(pipeline, std::uint64_t(o.warmup), o.records);
+    // --overlay: the window's panel drawn into the offscreen target after each frame's picture, as
+    // the pass "overlay" (GPU) and timed on the CPU (building the panel and recording its draws).
+    frame::FrameHooks hooks = progress.hooks();
+    std::vector<double> overlay_cpu_ms;
+#ifdef RANRYU_HAVE_IMGUI
+    std::unique_ptr<Overlay> overlay;
+    OverlayState overlay_state;
+    std::vector<input::Command> ignored;
+    if (o.overlay) {
+        overlay = std::make_unique<Overlay>(glm::ivec2(size.x, size.y));
+        overlay_cpu_ms.reserve(std::size_t(frames));
+        ignored.reserve(64);
+        if (pipeline.simulation()) overlay_state.limits = sim::guard_limits(scene);
+        overlay_state.viscosity = scene.sph.viscosity, overlay_state.cfl = scene.sph.cfl;
+        const profile::PassId pass = pipeline.timer().pass("overlay");
+        hooks.after_draw = [&, pass](frame::Pipeline& p) {
+            const auto t0 = std::chrono::steady_clock::now();
+            glBindFramebuffer(GL_FRAMEBUFFER, p.target().framebuffer());
+            glViewport(0, 0, size.x, size.y);
+            overlay->draw(p, pass, overlay_state, ignored);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            ignored.clear();
+            if (overlay_cpu_ms.size() < overlay_cpu_ms.capacity())
+                overlay_cpu_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        };
+    }
+#endif
     // Stopped by an instability or cut short by a signal: the records so far, and no report.
     auto check_stopped = [&](bool cut_short) {
         const auto& bad = pipeline.instability();
@@ -322,14 +355,15 @@ int profile_cmd(const Options& o) {
         if (bad) throw sim::UnstableError(*bad);
         throw frame::interrupted(pipeline.frames(), std::uint64_t(o.warmup) + std::uint64_t(frames));
     };
-    bool cut_short = frame::run_frames(pipeline, std::uint64_t(o.warmup), progress.hooks()) < std::uint64_t(o.warmup) &&
+    bool cut_short = frame::run_frames(pipeline, std::uint64_t(o.warmup), hooks) < std::uint64_t(o.warmup) &&
                      frame::stop_requested();
     pipeline.drain();
     check_stopped(cut_short);
     pipeline.timer().reset_samples();
+    overlay_cpu_ms.clear();
     if (turbulence::Subparticles* sub = pipeline.subparticles()) sub->count_from(pipeline.frames());
     log.start_clock();
-    cut_short = frame::run_frames(pipeline, std::uint64_t(frames), progress.hooks()) < std::uint64_t(frames) &&
+    cut_short = frame::run_frames(pipeline, std::uint64_t(frames), hooks) < std::uint64_t(frames) &&
                 frame::stop_requested();
     progress.finish();
     pipeline.drain();
@@ -350,6 +384,15 @@ int profile_cmd(const Options& o) {
     }
     extra["not_run"] = skipped;
     extra["device_memory"] = memory_json(pipeline.memory());
+    if (o.overlay) {
+        // Its GPU time is the pass "overlay" in the table; this is the CPU's side of it.
+        double sum = 0.0, most = 0.0;
+        for (const double ms : overlay_cpu_ms) sum += ms, most = std::max(most, ms);
+        const double mean = overlay_cpu_ms.empty() ? 0.0 : sum / double(overlay_cpu_ms.size());
+        std::printf("overlay: CPU %.3f ms a frame (mean of %zu frames, most %.3f ms); GPU: the pass \"overlay\" above\n", mean,
+                    overlay_cpu_ms.size(), most);
+        extra["overlay"] = {{"cpu_ms_mean", mean}, {"cpu_ms_max", most}, {"frames", overlay_cpu_ms.size()}};
+    }
     if (const surface::MarchingCubes* mc = pipeline.mesh()) {
         // After the run, not in the frame path: the last frame's mesh size, read once.
         const gpu::MeshState m = mc->state().read<gpu::MeshState>(1)[0];

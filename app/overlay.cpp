@@ -1,9 +1,11 @@
 #include "overlay.h"
 
-#include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#ifdef RANRYU_HAVE_GLFW
+#include <GLFW/glfw3.h>
+#include <imgui_impl_glfw.h>
+#endif
 
 #include <algorithm>
 #include <bit>
@@ -20,7 +22,7 @@ constexpr const char* kShadingNames[] = {"water", "fresnel", "phong", "gouraud",
 constexpr const char* kSolverNames[] = {"dfsph", "wcsph", "pbf"};   // scene::Solver's order
 }  // namespace
 
-Overlay::Overlay(GLFWwindow* window) {
+void Overlay::start() {
     for (const scene::BundledScene& s : scene::bundled()) scenes_.push_back(s.name);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -29,17 +31,40 @@ Overlay::Overlay(GLFWwindow* window) {
     io.LogFilename = nullptr;
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 0.0f;
+}
+
+Overlay::Overlay(GLFWwindow* window) : window_(window) {
+#ifdef RANRYU_HAVE_GLFW
+    start();
     if (!ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true) || !ImGui_ImplOpenGL3_Init("#version 430 core")) {
         ImGui::DestroyContext();
         throw Error("cannot start the overlay (Dear ImGui's GLFW or OpenGL 3 backend failed)");
     }
     // The font atlas and the backend's program and buffers: now, not in the first frame.
     ImGui_ImplOpenGL3_CreateDeviceObjects();
+#else
+    throw Error("this build has no window (GLFW was not found at configure time)");
+#endif
+}
+
+Overlay::Overlay(glm::ivec2 display) : display_(display) {
+    start();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(display.x), float(display.y));
+    io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
+    io.DeltaTime = 1.0f / 60.0f;
+    if (!ImGui_ImplOpenGL3_Init("#version 430 core")) {
+        ImGui::DestroyContext();
+        throw Error("cannot start the overlay (Dear ImGui's OpenGL 3 backend failed)");
+    }
+    ImGui_ImplOpenGL3_CreateDeviceObjects();
 }
 
 Overlay::~Overlay() {
     ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
+#ifdef RANRYU_HAVE_GLFW
+    if (window_) ImGui_ImplGlfw_Shutdown();
+#endif
     ImGui::DestroyContext();
 }
 
@@ -49,7 +74,14 @@ bool Overlay::wants_text() const { return ImGui::GetIO().WantTextInput; }
 void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
     auto scope = p.timer().scope(pass);
     ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
+#ifdef RANRYU_HAVE_GLFW
+    if (window_) ImGui_ImplGlfw_NewFrame();
+#endif
+    if (!window_) {
+        ImGuiIO& io = ImGui::GetIO();
+        io.DisplaySize = ImVec2(float(display_.x), float(display_.y));
+        io.DeltaTime = 1.0f / 60.0f;
+    }
     ImGui::NewFrame();
 
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -67,10 +99,12 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     ImGui::Text("%.1f fps   GPU %.2f ms a frame", st.fps, gpu_ms);
     if (st.rtf) ImGui::Text("real-time factor %.3f", *st.rtf);
     else ImGui::TextUnformatted("real-time factor -");
+    // The particles not parked, as the last record says (the emitter pours parked ones in).
+    const std::size_t live = p.active_particles().value_or(p.scene().particle_count());
     if (const turbulence::Subparticles* sub = p.subparticles(); sub && sub->stats().last)
-        ImGui::Text("particles %zu   sub-particles %u", p.particle_count(), sub->stats().last->dispatch.w);
+        ImGui::Text("particles %zu   sub-particles %u", live, sub->stats().last->dispatch.w);
     else
-        ImGui::Text("particles %zu   sub-particles %s", p.particle_count(), sub ? "-" : "off");
+        ImGui::Text("particles %zu   sub-particles %s", live, sub ? "-" : "off");
     const std::optional<std::uint32_t> substeps = p.substeps_per_frame();
     const auto& record = sim ? sim->fluid().last_record() : std::nullopt;
     if (substeps && record && scene.sph.solver == scene::Solver::dfsph)
@@ -108,6 +142,9 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     if (ImGui::Button("Reset")) push({.kind = input::Kind::reset});
     ImGui::SameLine();
     if (ImGui::Button("Screenshot")) push({.kind = input::Kind::screenshot});
+    ImGui::SameLine();
+    bool recording = st.recording;
+    if (ImGui::Checkbox("record (F9)", &recording)) push({.kind = input::Kind::set_record, .on = recording});
     ImGui::PushItemWidth(140.0f);
     int shading = int(std::find(std::begin(kShadings), std::end(kShadings), p.shading()) - std::begin(kShadings));
     if (ImGui::Combo("shading", &shading, kShadingNames, IM_ARRAYSIZE(kShadingNames)))
@@ -132,7 +169,20 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         if (ImGui::Checkbox("turbulence", &turbulence)) push({.kind = input::Kind::turbulence, .on = turbulence});
         if (ImGui::SliderFloat("amplitude A 1/m", &amplitude, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
             push({.kind = input::Kind::amplitude, .x = amplitude});
+        bool paddle = st.paddle;
+        if (ImGui::Checkbox("paddle (P; right-drag moves it)", &paddle)) push({.kind = input::Kind::set_paddle, .on = paddle});
+        ImGui::SameLine();
+        ImGui::Text("radius %.3f m", st.paddle_radius);
+        bool emitter = st.emitter;
+        if (ImGui::Checkbox("emitter (E)", &emitter)) push({.kind = input::Kind::set_emitter, .on = emitter});
+        ImGui::SameLine();
+        ImGui::Text("budget %zu particles", st.budget);
     }
+    // The resolution: a new spacing rebuilds the scene when the slider is let go.
+    if (!spacing_edit_) spacing_ = scene.spacing;
+    ImGui::SliderFloat("spacing m (restarts)", &spacing_, 0.002f, 0.1f, "%.4f", ImGuiSliderFlags_Logarithmic);
+    spacing_edit_ = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) push({.kind = input::Kind::spacing, .x = spacing_});
     ImGui::PopItemWidth();
     if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
 
@@ -152,7 +202,7 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     if (ImGui::CollapsingHeader("Keys")) {
         for (const input::Key& k : input::keys())
             ImGui::Text("%-7.*s %.*s", int(k.name.size()), k.name.data(), int(k.help.size()), k.help.data());
-        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom");
+        ImGui::TextUnformatted("drag  orbit the camera; wheel: zoom; right-drag: move the paddle");
     }
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     panel_ = {int(pos.x), int(pos.y), int(size.x + 0.5f), int(size.y + 0.5f)};

@@ -7,9 +7,15 @@
 // Nothing here reads the GPU back or waits for it: the numbers are the timers' results and the
 // pipeline's last record, which came back through their rings. The panel is drawn as its own pass,
 // "overlay" (a debug group and a GPU timer), after the frame is presented to the window's back buffer.
+//
+// Headless (`ranryu profile --overlay`, no GLFW needed): the OpenGL 3 backend alone, with the display
+// size given and a 60 Hz clock, draws the same panel into the bound framebuffer (the pipeline's
+// target), so that its cost per frame can be measured where no window can open.
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "frame/pipeline.h"
 #include "input/commands.h"
@@ -30,6 +36,11 @@ struct OverlayState {
     // The live settings (SPH): viscosity (m^2/s), the Courant number, the turbulence force and its A.
     float viscosity = 0.0f, cfl = 0.0f, amplitude = 0.0f;
     bool turbulence = false;
+    float paddle_radius = 0.0f;     // the paddle's radius (m); 0: the scene has none (ballistic)
+    bool paddle = false;            // the paddle is in the liquid
+    bool recording = false;         // F9's take is being written
+    bool emitter = false;           // the emitter pours
+    std::size_t budget = 0;         // the emitter's particle budget; 0: none (ballistic)
     std::string status;             // the last control's note ("scene falling-block: particles only"), or empty
 };
 
@@ -42,6 +53,8 @@ class Overlay {
 public:
     // Start-up: the ImGui context, the backends (their shaders and font texture are built here, once).
     explicit Overlay(GLFWwindow* window);
+    // Headless: no input; the panel laid out for a `display` pixels framebuffer.
+    explicit Overlay(glm::ivec2 display);
     ~Overlay();
     Overlay(const Overlay&) = delete;
     Overlay& operator=(const Overlay&) = delete;
@@ -58,8 +71,13 @@ public:
     const PanelRect& panel() const { return panel_; }
 
 private:
+    void start();   // the ImGui context and the OpenGL 3 backend's device objects
+    GLFWwindow* window_ = nullptr;
+    glm::ivec2 display_{0};
     PanelRect panel_;
     std::vector<std::string> scenes_;   // the bundled scenes' names, for the scene list
+    float spacing_ = 0.0f;              // the spacing slider's value while it is dragged
+    bool spacing_edit_ = false;
 };
 
 }  // namespace ranryu::app

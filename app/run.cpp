@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -16,7 +17,10 @@
 #include "frame/loop.h"
 #include "frame/pipeline.h"
 #include "input/script.h"
+#include "record/particle_files.h"
 #include "record/png.h"
+#include "record/recorder.h"
+#include "sim/boundary.h"
 #include "sim/fluid.h"
 #include "sim/guard.h"
 #include "simulation_log.h"
@@ -86,6 +90,48 @@ struct Orbit {
     }
 };
 
+// The recordings folder: each F9 (or `panel record on`) starts a take in the first take_NNN that
+// does not exist yet, so a take never writes over an earlier one.
+fs::path next_take(const fs::path& dir) {
+    if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError("--record-dir " + dir.string() + ": not a folder");
+    char name[32];
+    for (int k = 0;; ++k) {
+        std::snprintf(name, sizeof name, "take_%03d", k);
+        if (!fs::exists(dir / name)) return dir / name;
+    }
+}
+
+// A drag of `pixels` on a picture `height` pixels high, as a displacement in the plane through
+// `at` that faces the camera: at that depth one pixel spans 2 d tan(fov/2) / height metres.
+glm::vec3 camera_plane_drag(const render::Camera& cam, glm::vec3 at, glm::vec2 pixels, int height) {
+    const glm::vec3 forward = glm::normalize(cam.target - cam.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float depth = std::max(glm::dot(at - cam.eye, forward), 1e-3f);
+    const float metres = 2.0f * depth * std::tan(glm::radians(cam.fov_deg) * 0.5f) / float(std::max(height, 1));
+    return metres * (pixels.x * right - pixels.y * up);
+}
+
+// Where the paddle may go: inside the tank, a radius and a spacing off every wall and the floor
+// (up to a radius above an open top); an axis too narrow for that keeps its middle.
+struct PaddleRange {
+    glm::vec3 lo, hi;
+    explicit PaddleRange(const scene::Scene& s) {
+        const float r = s.paddle_radius, gap = r + s.spacing;
+        lo = s.tank_min + gap;
+        hi = s.tank_max - gap;
+        if (!s.tank_closed) hi.y = s.tank_max.y + r;
+        for (int a = 0; a < 3; ++a)
+            if (lo[a] > hi[a]) lo[a] = hi[a] = 0.5f * (s.tank_min[a] + s.tank_max[a]);
+    }
+    glm::vec3 clamp(glm::vec3 p) const { return glm::clamp(p, lo, hi); }
+    // Where it appears: over the middle of the tank, a spacing above the liquid's highest block.
+    glm::vec3 spawn(const scene::Scene& s) const {
+        const glm::vec3 c = 0.5f * (s.tank_min + s.tank_max);
+        return clamp(glm::vec3(c.x, s.tank_min.y + s.fluid_height() + s.paddle_radius + s.spacing, c.z));
+    }
+};
+
 int bundled_index(const std::string& name) {
     const std::vector<scene::BundledScene> all = scene::bundled();
     for (std::size_t i = 0; i < all.size(); ++i)
@@ -114,6 +160,14 @@ int run(const Options& o) {
         if (!fs::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
     }
     Shots shots(o.shots);
+    if (fs::exists(o.record_dir) && !fs::is_directory(o.record_dir))
+        throw InputError("--record-dir " + o.record_dir + ": not a folder");
+    if (!o.save_particles.empty()) {
+        const fs::path file(o.save_particles);
+        if (fs::exists(file)) throw InputError("--save-particles " + o.save_particles + ": the file exists; not overwriting it");
+        const auto parent = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+        if (!fs::is_directory(parent)) throw InputError("--save-particles " + o.save_particles + ": no such folder");
+    }
     input::Replay script;
     if (!o.script.empty()) script = input::Replay(input::load_script(o.script));
 
@@ -134,6 +188,10 @@ int run(const Options& o) {
         bool turbulence = false;     // the force on (with scene.turbulence.amplitude) or off (A = 0)
         float amplitude = 5.0f;      // A for turning it on in a scene without it (a restart)
         bool settings_changed = true;   // viscosity, CFL or turbulence: into the pipeline before the next frame
+        bool paddle = false;                 // the paddle is in the liquid (off at every start)
+        glm::vec3 paddle_goal{0.0f};         // where the drags so far take it (it follows: sim::Simulation::set_paddle)
+        bool record = false;                 // F9: the frames go to a take of --record-dir
+        bool emitter = false;                // E: pouring liquid in, up to the budget (off at every start)
     } c;
     c.shading = shading(o);
     c.turbulence = scene.turbulence.enabled();
@@ -229,6 +287,44 @@ int run(const Options& o) {
                 c.settings_changed = true;
                 break;
             }
+            case input::Kind::toggle_paddle:
+            case input::Kind::set_paddle: {
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model: no paddle";
+                    break;
+                }
+                const bool on = cmd.kind == input::Kind::set_paddle ? cmd.on : !c.paddle;
+                if (on && !c.paddle) c.paddle_goal = PaddleRange(scene).spawn(scene);
+                c.paddle = on;
+                break;
+            }
+            case input::Kind::paddle_drag:
+                if (c.paddle)
+                    c.paddle_goal = PaddleRange(scene).clamp(c.paddle_goal + camera_plane_drag(orbit.cam, c.paddle_goal,
+                                                                                               glm::vec2(cmd.x, cmd.y), size.y));
+                break;
+            case input::Kind::toggle_emitter:
+            case input::Kind::set_emitter:
+                if (!sph) {
+                    view.status = "scene " + scene.name + " uses the ballistic model: no emitter";
+                    break;
+                }
+                c.emitter = cmd.kind == input::Kind::set_emitter ? cmd.on : !c.emitter;
+                break;
+            case input::Kind::toggle_record:
+            case input::Kind::set_record:
+                c.record = cmd.kind == input::Kind::set_record ? cmd.on : !c.record;
+                break;
+            case input::Kind::spacing:
+                try {
+                    scene = scene::with_spacing(scene, cmd.x, "panel spacing");
+                } catch (const InputError& e) {
+                    view.status = e.what();
+                    break;
+                }
+                view.status.clear();
+                c.restart = true;
+                break;
             case input::Kind::drag:
             case input::Kind::wheel:
                 orbit.move(cmd.kind == input::Kind::drag ? glm::vec2(cmd.x, cmd.y) : glm::vec2(0.0f),
@@ -239,12 +335,33 @@ int run(const Options& o) {
     };
 
     std::uint64_t base = 0;   // frames run by the pipelines before this one
+    std::unique_ptr<record::Recorder> recorder;   // F9's take, while recording
+    fs::path take;
+    std::uint64_t take_from = 0;   // the pipeline's frame that is the take's frame_00000
+    auto stop_recording = [&] {
+        if (!recorder) return;
+        recorder->finish();
+        std::printf("recorded %llu frames into %s\n", static_cast<unsigned long long>(recorder->frames_written()), take.string().c_str());
+        std::fflush(stdout);
+        recorder.reset();
+    };
     for (bool first = true;; first = false) {
+        // Every SPH scene the window runs has a paddle, parked until it is switched on.
+        scene.paddle_radius = scene.model == scene::Model::sph ? sim::paddle_radius_for(scene) : 0.0f;
+        // And an emitter with a budget: --budget, or twice the scene's particles; all allocated now.
+        scene.particle_budget = 0;
+        if (scene.model == scene::Model::sph)
+            scene.particle_budget = std::max<std::size_t>(o.budget ? std::size_t(*o.budget) : 2 * scene.particle_count(), scene.particle_count());
+        c.paddle = c.emitter = false;
         frame::Pipeline pipeline(scene, shaders, size.x, size.y, c.shading);
         if (!first)
             std::printf("restart at frame %llu: %s, %s, %s\n", static_cast<unsigned long long>(base), scene.name.c_str(),
                         pipeline.simulation() ? scene::solver_name(scene.sph.solver) : "ballistic",
                         render::shading_name(pipeline.shading()));
+        std::printf("particles: %zu at spacing %g m\n", scene.particle_count(), double(scene.spacing));
+        if (scene.particle_budget) std::printf("particle budget: %zu (the emitter pours up to that)\n", scene.particle_budget);
+        std::fflush(stdout);
+        view.paddle_radius = scene.paddle_radius;
         if (c.camera_from_scene) orbit = Orbit(pipeline.camera());
         else pipeline.set_camera(orbit.cam);
         c.camera_from_scene = c.restart = c.camera_moved = false;
@@ -272,6 +389,7 @@ int run(const Options& o) {
             if (!overlay.wants_mouse()) {
                 if (in.drag != glm::vec2(0.0f)) queue({.kind = input::Kind::drag, .x = in.drag.x, .y = in.drag.y});
                 if (in.wheel != 0.0f) queue({.kind = input::Kind::wheel, .x = in.wheel});
+                if (in.right_drag != glm::vec2(0.0f)) queue({.kind = input::Kind::paddle_drag, .x = in.right_drag.x, .y = in.right_drag.y});
             }
             for (const input::Command& cmd : pending) apply(cmd);
             pending.clear();
@@ -279,8 +397,28 @@ int run(const Options& o) {
                 apply(e->command);
             return !c.quit && !c.restart && !window.should_close();
         };
+        // The sound frames so far into the take (SPH frames are written once the guard has seen them).
+        auto validate_take = [&] {
+            if (!recorder) return;
+            if (const auto sound = pipeline.poll(); sound && *sound >= take_from) recorder->validate_through(*sound - take_from);
+        };
         hooks.before = [&](frame::Pipeline& p) {
             if (std::exchange(c.camera_moved, false)) p.set_camera(orbit.cam);
+            if (c.record && !recorder) {
+                take = next_take(o.record_dir);
+                fs::create_directories(take);
+                take_from = p.frames();
+                recorder = std::make_unique<record::Recorder>(p.timer(), take, size.x, size.y, p.simulation() != nullptr, validate_take);
+                std::printf("recording into %s\n", take.string().c_str());
+                std::fflush(stdout);
+            } else if (!c.record && recorder) {
+                validate_take();
+                stop_recording();
+            }
+            if (p.has_paddle()) p.simulation()->set_paddle(c.paddle, c.paddle_goal);
+            if (p.simulation()) p.simulation()->set_emitter(c.emitter);
+            view.emitter = c.emitter, view.budget = scene.particle_budget;
+            view.paddle = c.paddle, view.recording = recorder != nullptr;
             if (std::exchange(c.settings_changed, false) && p.simulation()) {
                 p.simulation()->fluid().set_viscosity_and_cfl(scene.sph.viscosity, scene.sph.cfl);
                 if (turbulence::TurbulenceForce* force = p.simulation()->turbulence())
@@ -300,6 +438,7 @@ int run(const Options& o) {
                 glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
             }
             view.paused = c.paused;
+            if (recorder) recorder->capture(p.target());
             if (c.panel) overlay.draw(p, overlay_pass, view, pending);
             const std::uint64_t frame = base + p.frames();
             if (c.shots > 0) {
@@ -321,6 +460,7 @@ int run(const Options& o) {
             }
         };
         hooks.after = [&](frame::Pipeline& p) {
+            validate_take();
             window.swap();
             ++frames_since;
             const Clock::time_point now = Clock::now();
@@ -338,8 +478,31 @@ int run(const Options& o) {
         pipeline.drain();
         log.stop_clock();
         pipeline.poll();
+        if (recorder) {
+            // A take ends with its pipeline; after an instability, without the frames that show it.
+            if (const auto& bad = pipeline.instability(); bad && bad->frame >= take_from) recorder->discard_from(bad->frame - take_from);
+            validate_take();
+            stop_recording();
+        }
         if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
         if (c.restart && !c.quit && !window.should_close() && !(frames && base >= frames)) continue;
+        if (!o.save_particles.empty()) {
+            // After the run, not in the frame path: the last frame's particles, read once.
+            std::vector<glm::vec4> x = pipeline.positions().read<glm::vec4>(pipeline.particle_count());
+            std::vector<glm::vec4> v = pipeline.velocities().read<glm::vec4>(pipeline.particle_count());
+            std::vector<char> scratch;
+            const std::string ext = fs::path(o.save_particles).extension().string();
+            record::write_particles(ext == ".vtp" ? record::ParticleFormat::vtp : record::ParticleFormat::ply, o.save_particles,
+                                    record::ParticleFrame{x, v, {}, {}, {}}, scratch);
+            std::printf("wrote %s (%zu particles)\n", o.save_particles.c_str(), x.size());
+        }
+        if (const auto active = pipeline.active_particles(); active && scene.particle_budget)
+            std::printf("particles: %zu active of budget %zu\n", *active, scene.particle_budget);
+        if (const sim::Simulation* sim = pipeline.simulation(); sim && sim->paddle_on()) {
+            const glm::vec3 at = sim->paddle_center();
+            std::printf("paddle at %.6f %.6f %.6f radius %.6f m\n", double(at.x), double(at.y), double(at.z),
+                        double(sim->paddle_scale() * scene.paddle_radius));
+        }
         const profile::Report report =
             profile::summarize(pipeline.timer(), run_info(window.info(), pipeline, int(pipeline.frames()), 0), log.summary());
         std::printf("%s", profile::table(report).c_str());

@@ -1,7 +1,9 @@
-# Dear ImGui for the window's overlay (app/overlay.h): Debian's libimgui-dev (1.86) gives the core as
+# Dear ImGui for the overlay (app/overlay.h): Debian's libimgui-dev (1.86) gives the core as
 # libimgui.a and headers; its GLFW and OpenGL 3 backends ship only as sources in the package's doc
 # folder (examples/backends/, possibly .gz-compressed), so they are copied (or decompressed) into the
-# build folder at configure time and built here as ranryu_imgui.
+# build folder at configure time and built here: ranryu_imgui (the core and the OpenGL 3 backend,
+# all that the headless `profile --overlay` needs) and, with the window, ranryu_imgui_glfw.
+# Sets RANRYU_HAVE_IMGUI. Required with the window; optional without it.
 #
 # The OpenGL 3 backend takes its entry points from GLVND's libOpenGL like the engine does
 # (engine/gl/gl.h, IMGUI_IMPL_OPENGL_LOADER_CUSTOM): no second loader.
@@ -11,13 +13,29 @@ find_library(IMGUI_LIBRARY imgui)
 find_library(STB_LIBRARY stb)
 set(RANRYU_IMGUI_BACKENDS_DIR /usr/share/doc/libimgui-dev/examples/backends CACHE PATH
     "Folder with Dear ImGui's backend sources imgui_impl_glfw.cpp and imgui_impl_opengl3.cpp (or .cpp.gz)")
-if(NOT IMGUI_INCLUDE_DIR OR NOT IMGUI_LIBRARY OR NOT STB_LIBRARY)
-  message(FATAL_ERROR "Dear ImGui not found (the window's overlay needs it): run scripts/install-deps.sh "
-                      "(Debian: libimgui-dev), or configure with -DRANRYU_WINDOW=OFF for a headless build")
+set(RANRYU_HAVE_IMGUI OFF)
+set(_names imgui_impl_opengl3)
+if(RANRYU_HAVE_GLFW)
+  list(APPEND _names imgui_impl_glfw)
 endif()
+set(_have_backends ON)
+foreach(name ${_names})
+  if(NOT EXISTS ${RANRYU_IMGUI_BACKENDS_DIR}/${name}.cpp AND NOT EXISTS ${RANRYU_IMGUI_BACKENDS_DIR}/${name}.cpp.gz)
+    set(_have_backends OFF)
+  endif()
+endforeach()
+if(NOT IMGUI_INCLUDE_DIR OR NOT IMGUI_LIBRARY OR NOT STB_LIBRARY OR NOT _have_backends)
+  if(RANRYU_HAVE_GLFW)
+    message(FATAL_ERROR "Dear ImGui not found (the window's overlay needs it): run scripts/install-deps.sh "
+                        "(Debian: libimgui-dev), or configure with -DRANRYU_WINDOW=OFF for a headless build")
+  endif()
+  message(STATUS "Dear ImGui not found: building without the overlay (ranryu profile --overlay is unavailable)")
+  return()
+endif()
+set(RANRYU_HAVE_IMGUI ON)
 
 set(_backends)
-foreach(name imgui_impl_glfw imgui_impl_opengl3)
+foreach(name ${_names})
   set(_out ${CMAKE_BINARY_DIR}/imgui_backends/${name}.cpp)
   set(_src ${RANRYU_IMGUI_BACKENDS_DIR}/${name}.cpp)
   if(EXISTS ${_src})
@@ -36,10 +54,17 @@ foreach(name imgui_impl_glfw imgui_impl_opengl3)
   list(APPEND _backends ${_out})
 endforeach()
 
-add_library(ranryu_imgui STATIC ${_backends})
+list(GET _backends 0 _opengl3)
+add_library(ranryu_imgui STATIC ${_opengl3})
 target_include_directories(ranryu_imgui SYSTEM PUBLIC ${IMGUI_INCLUDE_DIR} ${IMGUI_INCLUDE_DIR}/backends)
 target_compile_definitions(ranryu_imgui PRIVATE IMGUI_IMPL_OPENGL_LOADER_CUSTOM GL_GLEXT_PROTOTYPES=1)
 # Not our code: its own warnings are not ours to fix. The system's GL core-profile header, included
 # first, declares what the backend calls.
 target_compile_options(ranryu_imgui PRIVATE -w -include GL/glcorearb.h)
-target_link_libraries(ranryu_imgui PUBLIC ${IMGUI_LIBRARY} ${STB_LIBRARY} glfw OpenGL::OpenGL)
+target_link_libraries(ranryu_imgui PUBLIC ${IMGUI_LIBRARY} ${STB_LIBRARY} OpenGL::OpenGL)
+if(RANRYU_HAVE_GLFW)
+  list(GET _backends 1 _glfw)
+  add_library(ranryu_imgui_glfw STATIC ${_glfw})
+  target_compile_options(ranryu_imgui_glfw PRIVATE -w)
+  target_link_libraries(ranryu_imgui_glfw PUBLIC ranryu_imgui glfw)
+endif()

@@ -39,7 +39,7 @@ surface::MeshCapacity mesh_capacity(const scene::Scene& s) {
 
 MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view) {
     MemoryEstimate e;
-    e.particles = s.particle_count();
+    e.particles = s.particle_capacity();
     e.extra = view.extra_bytes;
     const std::size_t n = e.particles;
     if (s.model == scene::Model::sph) {
@@ -62,6 +62,7 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
     const render::Shading shading = view.shading.value_or(render::default_shading(s));
     if (view.draw && shading == render::Shading::water)
         e.parts.push_back({"water shading targets", render::Renderer::bytes_for(shading, view.width, view.height)});
+    if (view.draw && s.model == scene::Model::sph && s.paddle_radius > 0.0f) e.parts.push_back({"paddle's sphere", 2 * sizeof(glm::vec4)});
     return e;
 }
 
@@ -77,7 +78,9 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     memory_.estimate = check_memory(scene_, view, memory_.device);
     const bool sph = scene_.model == scene::Model::sph;
     if (view.draw) {
-        renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled());
+        renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled(),
+                                                       sph && scene_.paddle_radius > 0.0f);
+        if (sph && scene_.paddle_radius > 0.0f) paddle_sphere_ = gl::Buffer(2 * sizeof(glm::vec4), GL_DYNAMIC_DRAW, nullptr, "paddle.sphere");
         target_ = gl::RenderTarget(view.width, view.height, "frame");
         renderer_->resize(view.width, view.height);
     }
@@ -172,6 +175,12 @@ void Pipeline::draw() {
     } else {
         renderer_->draw(target_, positions(), velocities(), particle_count());
     }
+    if (paddle_sphere_.id() && sph_->paddle_on()) {
+        const glm::vec4 sphere[2] = {glm::vec4(sph_->paddle_center(), sph_->paddle_scale() * sph_->fluid().paddle_radius()),
+                                     glm::vec4(sph_->paddle_velocity(), 0.0f)};
+        paddle_sphere_.upload(sphere, sizeof sphere);
+        renderer_->draw_sphere(target_, paddle_sphere_);
+    }
 }
 
 void Pipeline::end_frame() {
@@ -202,6 +211,12 @@ void Pipeline::drain() {
     timer_.drain();
     if (sph_) sph_->fluid().drain_records();
     if (sub_) sub_->drain();
+}
+
+std::optional<std::size_t> Pipeline::active_particles() const {
+    if (!sph_) return ballistic_->count();
+    const auto& last = sph_->fluid().last_record();
+    return last ? std::optional<std::size_t>(last->live_count) : std::nullopt;
 }
 
 std::size_t Pipeline::particle_count() const { return sph_ ? sph_->fluid().count() : ballistic_->count(); }

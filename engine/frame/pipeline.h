@@ -14,7 +14,8 @@
 //                                 // shading: "shadow-map", "clear", "draw-sky", "draw-floor",
 //                                 // "draw-walls", "draw-tank", "liquid-thickness", "compose",
 //                                 // "draw-surface"; with sub-particles, "draw-spray"
-//                                 // after the surface (render/renderer.h)
+//                                 // after the surface, and with the paddle on (run), "draw-paddle"
+//                                 // (render/renderer.h)
 //     recorder.capture(...);      // "readback"   (record only)
 //     pipeline.end_frame();
 //
@@ -89,6 +90,13 @@ public:
     // End of a run: waits for the outstanding records (not the frame path).
     void drain();
 
+    // The paddle (scene.paddle_radius > 0): sim::Simulation::set_paddle(); drawn as the pass
+    // "draw-paddle" while it is on.
+    bool has_paddle() const { return sph_ && sph_->fluid().has_paddle(); }
+    // The particles not parked as of the last record (the emitter pours parked ones in: sim/fluid.h),
+    // or nothing yet; particle_count() is the budget, all allocated.
+    std::optional<std::size_t> active_particles() const;
+
     void set_camera(const render::Camera& cam);
     const render::Camera& camera() const { return camera_; }
 
@@ -142,6 +150,7 @@ private:
     std::optional<std::uint64_t> inject_fault_at_;
     std::optional<profile::PassId> fault_pass_;
     MemoryUse memory_;
+    gl::Buffer paddle_sphere_;   // (center, radius), (velocity, 0): draw-paddle's instance
 };
 
 }  // namespace ranryu::frame

@@ -46,6 +46,9 @@ Window::Window(int width, int height, const std::string& title, bool debug) {
             case GLFW_KEY_M: name = "m"; break;
             case GLFW_KEY_T: name = "t"; break;
             case GLFW_KEY_H: name = "h"; break;
+            case GLFW_KEY_P: name = "p"; break;
+            case GLFW_KEY_E: name = "e"; break;
+            case GLFW_KEY_F9: name = "f9"; break;
             case GLFW_KEY_F12: name = "f12"; break;
             case GLFW_KEY_ESCAPE: name = "escape"; break;
             default:
@@ -72,6 +75,9 @@ void Window::poll() {
     const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     if (down && dragging_) input_.drag += glm::vec2(c - last_cursor_);
     dragging_ = down;
+    const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (right && right_dragging_) input_.right_drag += glm::vec2(c - last_cursor_);
+    right_dragging_ = right;
     last_cursor_ = c;
 }
 

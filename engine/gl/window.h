@@ -1,6 +1,6 @@
 #pragma once
 // A GLFW window with an OpenGL 4.3 core context (only in builds configured with GLFW). It gathers the
-// input that the app turns into commands (input/commands.h): the left-button drag and the wheel, and
+// input that the app turns into commands (input/commands.h): the left- and right-button drags and the wheel, and
 // the presses of the keys the app answers, by name.
 #include <array>
 #include <memory>
@@ -29,9 +29,10 @@ public:
     void swap();
     glm::ivec2 framebuffer_size() const;
 
-    // Input since the last call: drag in pixels, wheel in notches.
+    // Input since the last call: drags in pixels (left button, right button), wheel in notches.
     struct Input {
         glm::vec2 drag{0.0f};
+        glm::vec2 right_drag{0.0f};
         float wheel = 0.0f;
     };
     Input take_input();
@@ -52,7 +53,7 @@ private:
     Input input_;
     Keys keys_;
     glm::dvec2 last_cursor_{0.0};
-    bool dragging_ = false;
+    bool dragging_ = false, right_dragging_ = false;
 };
 
 }  // namespace ranryu::gl

@@ -5,15 +5,18 @@
 namespace ranryu::input {
 
 namespace {
-constexpr std::array<Key, 9> kKeys{{
+constexpr std::array<Key, 12> kKeys{{
     {"space", "pause / resume the simulation (the picture is still drawn)"},
     {"n", "single step: one frame of simulation while paused"},
     {"r", "reset: restart the scene from its first frame"},
     {"m", "next shading mode: water, fresnel, phong, gouraud, particles (restarts the scene)"},
     {"t", "turbulence force on / off (live where the scene has it, else a restart)"},
     {"1-9", "the bundled scene of that number, in `ranryu scenes` order (restarts)"},
+    {"p", "paddle on / off: a sphere to drag through the liquid with the right mouse button (SPH scenes)"},
+    {"e", "emitter on / off: pour liquid in, up to the particle budget (SPH scenes)"},
     {"h", "hide / show the panel"},
     {"f12", "screenshot into the --shots folder (never overwrites)"},
+    {"f9", "record on / off: the window's frames into the --record-dir folder (never overwrites)"},
     {"escape", "quit"},
 }};
 }  // namespace
@@ -28,6 +31,9 @@ std::optional<Command> key_command(std::string_view name) {
     else if (name == "m") c.kind = Kind::next_shading;
     else if (name == "t") c.kind = Kind::toggle_turbulence;
     else if (name == "h") c.kind = Kind::toggle_panel;
+    else if (name == "p") c.kind = Kind::toggle_paddle;
+    else if (name == "e") c.kind = Kind::toggle_emitter;
+    else if (name == "f9") c.kind = Kind::toggle_record;
     else if (name == "f12") c.kind = Kind::screenshot;
     else if (name == "escape") c.kind = Kind::quit;
     else if (name.size() == 1 && name[0] >= '1' && name[0] <= '9') {
@@ -45,6 +51,7 @@ std::string keys_help() {
     for (const Key& k : kKeys) {
         std::string name(k.name);
         if (name == "f12") name = "F12";
+        else if (name == "f9") name = "F9";
         else if (name == "escape") name = "Esc";
         text += "  " + name + std::string(name.size() < 8 ? 8 - name.size() : 1, ' ') + std::string(k.help) + "\n";
     }

@@ -36,15 +36,23 @@ enum class Kind : std::uint8_t {
     amplitude,      // the turbulence force's A = x (1/m): live where the scene has it
     drag,           // orbit the camera as a mouse drag of (x, y) pixels
     wheel,          // zoom as `x` notches of the wheel
+    toggle_paddle,  // the paddle (a sphere dragged through the liquid) on or off, live (SPH scenes)
+    set_paddle,     // on: the paddle in, off: out
+    paddle_drag,    // move the paddle as a right-button drag of (x, y) pixels, in the plane facing the camera
+    toggle_emitter, // the emitter pours liquid in (up to the particle budget) or stops, live (SPH scenes)
+    set_emitter,    // on: pour, off: stop
+    toggle_record,  // recording the window's frames into the --record-dir folder, on or off
+    set_record,     // on: record, off: stop
+    spacing,        // particle spacing = x (m): the scene rebuilt at that resolution (restarts)
 };
 
 struct Command {
     Kind kind = Kind::quit;
-    bool on = false;                                   // set_pause, set_panel, turbulence
+    bool on = false;                                   // set_pause, set_panel, turbulence, set_paddle, set_emitter, set_record
     int index = 0;                                     // scene
     render::Shading shading = render::Shading::particles;
     scene::Solver solver = scene::Solver::dfsph;
-    float x = 0.0f, y = 0.0f;                          // drag (pixels), wheel (notches in x), viscosity, cfl, amplitude
+    float x = 0.0f, y = 0.0f;                          // drag, paddle_drag (pixels), wheel (notches in x), viscosity, cfl, amplitude, spacing
 };
 
 // A key of the window: its name (as a script writes it), what it does, and the help line.

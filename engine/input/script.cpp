@@ -34,7 +34,7 @@ void arity(const std::vector<std::string>& w, std::size_t n, const std::string& 
 
 Command panel(const std::vector<std::string>& w) {
     if (w.size() < 3) throw LineError{"panel: name an action (pause, step, reset, screenshot, quit, panel, shading, scene, solver, turbulence, "
-                        "amplitude, viscosity, cfl)"};
+                        "amplitude, viscosity, cfl, paddle, emitter, record, spacing)"};
     const std::string& a = w[2];
     Command c;
     if (a == "pause") c.kind = Kind::set_pause, c.on = on_off(w, 3);
@@ -59,6 +59,18 @@ Command panel(const std::vector<std::string>& w) {
         if (c.index < 0) throw LineError{"panel scene " + w[3] + ": no bundled scene of that name (" + names + ")"};
     } else if (a == "turbulence") {
         c.kind = Kind::turbulence, c.on = on_off(w, 3);
+    } else if (a == "paddle") {
+        c.kind = Kind::set_paddle, c.on = on_off(w, 3);
+    } else if (a == "emitter") {
+        c.kind = Kind::set_emitter, c.on = on_off(w, 3);
+    } else if (a == "record") {
+        c.kind = Kind::set_record, c.on = on_off(w, 3);
+    } else if (a == "spacing") {
+        arity(w, 4, "panel spacing DX");
+        c.kind = Kind::spacing;
+        c.x = number(w[3], "panel spacing");
+        // scene::with_spacing checks the particle count; the spacing itself must be a length.
+        if (!(c.x >= 1e-4f && c.x <= 1.0f)) throw LineError{"panel spacing " + w[3] + ": expected metres in [0.0001, 1]"};
     } else if (a == "viscosity" || a == "cfl" || a == "amplitude") {
         arity(w, 4, "panel " + a + " VALUE");
         c.kind = a == "viscosity" ? Kind::viscosity : a == "cfl" ? Kind::cfl : Kind::amplitude;
@@ -74,7 +86,7 @@ Command panel(const std::vector<std::string>& w) {
         c.kind = Kind::solver, c.solver = scene::parse_solver(w[3], "panel solver");
     } else {
         throw LineError{"panel " + a + ": no such action (pause, step, reset, screenshot, quit, panel, shading, scene, solver, "
-                        "turbulence, amplitude, viscosity, cfl)"};
+                        "turbulence, amplitude, viscosity, cfl, paddle, emitter, record, spacing)"};
     }
     return c;
 }
@@ -86,7 +98,7 @@ Event parse_line(const std::vector<std::string>& w, int line) {
     const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), e.frame);
     if (ec != std::errc() || end != f.data() + f.size() || e.frame > 100'000'000)
         throw LineError{"\"" + f + "\": expected a frame number (a whole number from 0) first"};
-    if (w.size() < 2) throw LineError{"frame " + f + " has no event (key, drag, wheel, panel)"};
+    if (w.size() < 2) throw LineError{"frame " + f + " has no event (key, drag, paddle, wheel, panel)"};
     const std::string& ev = w[1];
     if (ev == "key") {
         arity(w, 3, "key NAME");
@@ -102,6 +114,11 @@ Event parse_line(const std::vector<std::string>& w, int line) {
         e.command.kind = Kind::drag;
         e.command.x = number(w[2], "drag DX");
         e.command.y = number(w[3], "drag DY");
+    } else if (ev == "paddle") {
+        arity(w, 4, "paddle DX DY");
+        e.command.kind = Kind::paddle_drag;
+        e.command.x = number(w[2], "paddle DX");
+        e.command.y = number(w[3], "paddle DY");
     } else if (ev == "wheel") {
         arity(w, 3, "wheel N");
         e.command.kind = Kind::wheel;
@@ -109,7 +126,7 @@ Event parse_line(const std::vector<std::string>& w, int line) {
     } else if (ev == "panel") {
         e.command = panel(w);
     } else {
-        throw LineError{"\"" + ev + "\": no such event (key, drag, wheel, panel)"};
+        throw LineError{"\"" + ev + "\": no such event (key, drag, paddle, wheel, panel)"};
     }
     return e;
 }

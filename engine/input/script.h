@@ -3,12 +3,14 @@
 // makes (input/commands.h), so the window can be tested under Xvfb. One event a line:
 //
 //     # a comment; blank lines are skipped
-//     FRAME key NAME            a key: space n r m t h f12 escape 1-9
+//     FRAME key NAME            a key: space n r m t p e h f12 f9 escape 1-9
 //     FRAME drag DX DY          a mouse drag of (DX, DY) pixels on the picture (orbits the camera)
+//     FRAME paddle DX DY        a right-button drag of (DX, DY) pixels (moves the paddle)
 //     FRAME wheel N             N notches of the mouse wheel (zoom)
 //     FRAME panel ACTION [ARG]  a widget of the panel: pause on|off, step, reset, screenshot, quit,
 //                               panel on|off, shading MODE, scene NAME, solver dfsph|wcsph|pbf,
-//                               turbulence on|off, amplitude A, viscosity NU, cfl C
+//                               turbulence on|off, amplitude A, viscosity NU, cfl C, paddle on|off,
+//                               emitter on|off, record on|off, spacing DX
 //
 // FRAME is the number of the frame (from 0, counted over the whole run, restarts included) before
 // which the event acts: `0 key h` hides the panel before the first frame is drawn, `5 key f12` saves

@@ -88,7 +88,7 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
     return p;
 }
 
-Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles)
+Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles, bool paddle)
     : timer_(timer),
       shading_(shading),
       clear_pass_(timer.pass("clear")),
@@ -126,6 +126,11 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         glVertexAttribIFormat(RANRYU_ATTR_LEVEL, 1, GL_UNSIGNED_INT, 0);
         glBindVertexArray(0);
         gl::label(GL_VERTEX_ARRAY, parent_vao_.id(), "particles.parents.vao");
+    }
+
+    if (paddle) {
+        paddle_pass_ = timer.pass("draw-paddle");
+        impostor_sphere_ = shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag", "#define RANRYU_RADIUS_IN_W 1\n");
     }
 
     if (needs_surface(shading_)) {
@@ -432,6 +437,24 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         glBindVertexBuffer(1, velocities.id(), 0, sizeof(glm::vec4));
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
     }
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::draw_sphere(const gl::RenderTarget& target, const gl::Buffer& sphere) {
+    if (!impostor_sphere_.id()) throw Error("Renderer::draw_sphere: a renderer built without the paddle");
+    auto pass = timer_.scope(paddle_pass_);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, target.width(), target.height());
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    impostor_sphere_.use();
+    glBindVertexArray(particle_vao_.id());
+    glBindVertexBuffer(0, sphere.id(), 0, 2 * sizeof(glm::vec4));
+    glBindVertexBuffer(1, sphere.id(), sizeof(glm::vec4), 2 * sizeof(glm::vec4));
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, 1);
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

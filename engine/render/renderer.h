@@ -75,9 +75,10 @@ class Renderer {
 public:
     // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
     // its pass "draw-surface") when it is not particles. `subparticles`: also the impostor variant that
-    // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL).
+    // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL). `paddle`: also the one
+    // that draw_sphere() draws with (RANRYU_RADIUS_IN_W).
     Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
-             bool subparticles = false);
+             bool subparticles = false, bool paddle = false);
 
     void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO (and the sun's view)
     const gpu::FrameParams& frame() const { return frame_; }
@@ -110,6 +111,10 @@ public:
     // radius r/2^level.
     void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
               std::size_t count, const SurfaceMesh* surface = nullptr, const SubparticleDraw* sub = nullptr);
+    // Pass "draw-paddle": one sphere into `target` over what draw() left in it (depth-tested), from
+    // `sphere`: vec4 (center, radius) then vec4 (velocity, 0), drawn as an impostor coloured by its
+    // speed like the particles. Needs a renderer built with `paddle`.
+    void draw_sphere(const gl::RenderTarget& target, const gl::Buffer& sphere);
 
     // Spray and foam over a drawn frame (renderers built with subparticles and a surface shading):
     // pass "draw-spray", the sub-particles as white discs of radius r/2^level and opacity rising with
@@ -126,8 +131,8 @@ private:
 
     profile::GpuTimer& timer_;
     Shading shading_;
-    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{}, spray_pass_{};
-    shader::Program floor_, tank_, impostor_, surface_, impostor_levels_, spray_;
+    profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{}, spray_pass_{}, paddle_pass_{};
+    shader::Program floor_, tank_, impostor_, surface_, impostor_levels_, spray_, impostor_sphere_;
     gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, parent_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};

@@ -246,6 +246,8 @@ void for_each_site(const Scene& s, F&& f) {
 }
 }  // namespace
 
+std::size_t Scene::particle_capacity() const { return std::max(particle_count(), particle_budget); }
+
 std::size_t Scene::particle_count() const {
     std::size_t n = 0;
     if (obstacles.empty()) {   // every site counts: no need to visit them (the memory check counts 64M)

@@ -138,6 +138,12 @@ struct Scene {
     float particle_radius = 0.01f;  // drawn radius (m); default spacing / 2
     std::vector<Block> blocks;
     std::vector<Obstacle> obstacles;
+    // The paddle (not a scene key: `ranryu run` sets it): a kinematic sphere of this radius (m) that
+    // the window drags through the liquid, 0 for none (sim/boundary.h paddle_offsets(), sim::Fluid::move_paddle).
+    float paddle_radius = 0.0f;
+    // The emitter's budget (not a scene key: `ranryu run` sets it): particles allocated, the scene's
+    // and parked ones the emitter can pour in (sim/fluid.h). At most particle_count() is none to pour.
+    std::size_t particle_budget = 0;
 
     Model model = Model::ballistic;
     SphSettings sph;
@@ -163,6 +169,7 @@ struct Scene {
     // of the block at rest under gravity), 0 for the others: an incompressible solver's first guess.
     std::vector<float> initial_pressures() const;
     std::size_t particle_count() const;
+    std::size_t particle_capacity() const;   // max(particle_count(), particle_budget): what is allocated
 };
 
 // Parses and validates JSON text. `origin` names the input in error messages.

@@ -59,7 +59,30 @@ struct TankAxes {
           z(axis(s.tank_min.z, s.tank_max.z, s.spacing, layers)) {}
 };
 
-// Calls out.emplace_back(vec3, w) for every obstacle's boundary particle, in sample_boundary()'s order.
+// A sphere's boundary: shells of thickness dx from the surface inward, `layers` of them or down to
+// the centre, each a Fibonacci lattice at its mid radius (half a spacing inside the surface for the
+// outer one, as on a flat wall) sharing the shell's volume equally. Its points are kShellPitch apart,
+// finer than the fluid: an irregular lattice as coarse as dx leaves holes where the boundary density
+// a resting fluid particle sees drops by 25 % (a Fibonacci lattice's local spacing varies); at 0.7 dx
+// it stays within about 15 % of the flat wall's.
+template <class Out>
+void sample_sphere(glm::vec3 center, float radius, float dx, int layers, Out& out) {
+    for (int l = 0; l < layers; ++l) {
+        const float r_out = radius - float(l) * dx, r_in = radius - float(l + 1) * dx;
+        if (r_out <= 0.0f) break;
+        if (r_in <= 0.0f) {   // what is left is a ball thinner than a shell: one particle at the centre
+            out.emplace_back(center, 4.0f / 3.0f * kPi * r_out * r_out * r_out);
+            break;
+        }
+        const float r = 0.5f * (r_in + r_out), pitch = kShellPitch * dx;
+        const int n = std::max(1, int(std::lround(4.0f * kPi * r * r / (pitch * pitch))));
+        const float volume = 4.0f / 3.0f * kPi * (r_out * r_out * r_out - r_in * r_in * r_in);
+        fibonacci_shell(center, r, n, volume / float(n), out);
+    }
+}
+
+// Calls out.emplace_back(vec3, w) for every obstacle's boundary particle, then the paddle's (parked),
+// in sample_boundary()'s order.
 template <class Out>
 void walk_obstacles(const scene::Scene& s, int layers, Out& out) {
     const float dx = s.spacing;
@@ -79,34 +102,17 @@ void walk_obstacles(const scene::Scene& s, int layers, Out& out) {
                         if (std::min({d.x, d.y, d.z}) < depth) out.emplace_back(p, cell);
                     }
         } else {
-            // Shells of thickness dx from the surface inward, `layers` of them or down to the centre,
-            // each a Fibonacci lattice at its mid radius (half a spacing inside the surface for the
-            // outer one, as on a flat wall) sharing the shell's volume equally. Its points are kShellPitch
-            // apart, finer than the fluid: an irregular lattice as coarse as dx leaves holes where the
-            // boundary density a resting fluid particle sees drops by 25 % (a Fibonacci lattice's
-            // local spacing varies); at 0.7 dx it stays within about 15 % of the flat wall's.
-            for (int l = 0; l < layers; ++l) {
-                const float r_out = o.radius - float(l) * dx, r_in = o.radius - float(l + 1) * dx;
-                if (r_out <= 0.0f) break;
-                if (r_in <= 0.0f) {   // what is left is a ball thinner than a shell: one particle at the centre
-                    out.emplace_back(o.center, 4.0f / 3.0f * kPi * r_out * r_out * r_out);
-                    break;
-                }
-                const float r = 0.5f * (r_in + r_out), pitch = kShellPitch * dx;
-                const int n = std::max(1, int(std::lround(4.0f * kPi * r * r / (pitch * pitch))));
-                const float volume = 4.0f / 3.0f * kPi * (r_out * r_out * r_out - r_in * r_in * r_in);
-                fibonacci_shell(o.center, r, n, volume / float(n), out);
-            }
+            sample_sphere(o.center, o.radius, dx, layers, out);
         }
     }
+    if (s.paddle_radius > 0.0f) sample_sphere(paddle_park(s), s.paddle_radius, dx, layers, out);
 }
 
 // Calls out.emplace_back(x, y, z, w) or out.emplace_back(vec3, w) for every boundary particle, in
 // sample_boundary()'s order: the tank's shell, less the part above the top unless the tank is
-// closed, then the obstacles.
+// closed, then the obstacles and the paddle.
 template <class Out>
 void walk_boundary(const scene::Scene& s, int layers, Out& out) {
-    const float dx = s.spacing;
     const TankAxes t(s, layers);
     const Axis &ax = t.x, &ay = t.y, &az = t.z;
     for (std::size_t k = 0; k < az.at.size(); ++k)
@@ -159,7 +165,31 @@ std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s) {
             out.emplace_back(o.radius, 0.0f, 0.0f, 0.0f);
         }
     }
+    if (s.paddle_radius > 0.0f) {
+        out[0].x += 1.0f;
+        out.emplace_back(paddle_park(s), 2.0f);
+        out.emplace_back(0.0f);
+    }
     return out;
+}
+
+std::vector<glm::vec4> paddle_offsets(const scene::Scene& s, int layers) {
+    std::vector<glm::vec4> out;
+    if (s.paddle_radius > 0.0f) sample_sphere(glm::vec3(0.0f), s.paddle_radius, s.spacing, layers, out);
+    return out;
+}
+
+glm::vec3 paddle_park(const scene::Scene& s) {
+    const glm::vec3 c = 0.5f * (s.tank_min + s.tank_max);
+    // 1 m and the sphere's radius below the floor's boundary layers: no fluid or wall particle is
+    // within a support of it (the guard stops a particle that far below the floor).
+    return glm::vec3(c.x, s.tank_min.y - 1.0f - s.paddle_radius - 8.0f * s.spacing, c.z);
+}
+
+float paddle_radius_for(const scene::Scene& s) {
+    const glm::vec3 e = s.tank_max - s.tank_min;
+    const float largest = std::max({e.x, e.y, e.z}), smallest = std::min({e.x, e.y, e.z});
+    return std::max(std::min(0.1f * largest, 0.45f * smallest), 3.0f * s.spacing);
 }
 
 }  // namespace ranryu::sim

@@ -27,9 +27,22 @@ std::vector<glm::vec4> sample_boundary(const scene::Scene& s, int layers);
 // sample_boundary(s, layers).size(), without storing the samples.
 std::size_t boundary_count(const scene::Scene& s, int layers);
 
-// The obstacles as the integrate pass's last-resort projection reads them
-// (glsl/sim/fluid/motion.glsl, storage block Obstacles): element 0 is (count, 0, 0, 0);
-// then two vec4 an obstacle: a box as (min, 0), (max, 0); a sphere as (center, 1), (radius, 0, 0, 0).
+// The obstacles as the integrate pass's projection reads them (glsl/sim/fluid/motion.glsl, storage
+// block Obstacles): element 0 is (count, 0, 0, 0); then two vec4 an obstacle: a box as (min, 0),
+// (max, 0); a sphere as (center, 1), (radius, 0, 0, 0); last, with a paddle (scene.paddle_radius > 0),
+// the paddle as (center, 2), (radius, velocity), written parked: (paddle_park(s), 2), (0, 0, 0, 0).
 std::vector<glm::vec4> obstacle_shapes(const scene::Scene& s);
+
+// The paddle, a kinematic sphere of radius scene.paddle_radius that `ranryu run` drags through the
+// liquid: its boundary particles are the last of sample_boundary() (after the obstacles), sampled as
+// a sphere obstacle is, about the origin: paddle_offsets() gives them as (offset from the centre,
+// V_cell). sim::Fluid::move_paddle() places them about the paddle's centre each frame it moves.
+std::vector<glm::vec4> paddle_offsets(const scene::Scene& s, int layers);
+// Where a paddle that is off waits: below the tank, farther than a kernel support from every fluid
+// particle and wall particle (the neighbour grid clamps it into its bottom row of cells).
+glm::vec3 paddle_park(const scene::Scene& s);
+// The paddle's radius for a scene: a tenth of the tank's largest extent, at most 0.45 of its smallest
+// (it fits between two walls), and never below 3 spacings (its boundary needs a kernel's depth).
+float paddle_radius_for(const scene::Scene& s);
 
 }  // namespace ranryu::sim

@@ -55,6 +55,7 @@ std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
     return 2 * std::max<std::size_t>(count, 1) * words * sizeof(std::uint32_t);
 }
 
+// raw, zeros, zeros_sorted, weighted: start-up's, kept for the run with a paddle (bytes_for counts them then).
 std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array_bytes(boundary); }
 
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
@@ -66,6 +67,8 @@ std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size
                     + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
                     + NeighbourGrid::bytes_for(sort_capacity(count, boundary));
     b += sizeof(gpu::SphParams) + sizeof(gpu::StepState) + obstacle_shapes(s).size() * sizeof(glm::vec4);
+    if (s.paddle_radius > 0.0f) b += transient_bytes(boundary);
+    if (s.particle_budget > 0) b += sizeof(std::uint32_t);   // the emitter's slot counter
     return b;
 }
 
@@ -108,6 +111,34 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     return p;
 }
 
+EmitterShape emitter_for(const scene::Scene& s) {
+    EmitterShape e;
+    const glm::vec3 c = 0.5f * (s.tank_min + s.tank_max), extent = s.tank_max - s.tank_min;
+    float y = s.tank_min.y + 0.85f * extent.y;
+    if (s.tank_closed) y = std::min(y, s.tank_max.y - 2.0f * s.spacing);
+    e.nozzle = glm::vec3(c.x, y, c.z);
+    e.side = std::clamp(int(std::lround(0.15f * std::min(extent.x, extent.z) / s.spacing)), 2, 16);
+    e.velocity = glm::vec3(0.0f, -s.spacing / s.frame_dt, 0.0f);
+    return e;
+}
+
+std::vector<glm::vec4> parked_positions(const scene::Scene& s, std::size_t count) {
+    // A lattice of pitch 3 h over the tank's footprint, layer under layer downwards from 1 m and 3 h
+    // below the floor's boundary layers (the neighbour grid clamps them into its bottom cells, which
+    // no fluid particle's walk reaches, and the walks skip parked particles).
+    const float pitch = 6.0f * s.spacing;
+    const glm::vec3 e = s.tank_max - s.tank_min;
+    const std::size_t nx = std::max<std::size_t>(1, std::size_t(e.x / pitch)), nz = std::max<std::size_t>(1, std::size_t(e.z / pitch));
+    const float top = s.tank_min.y - 1.0f - float(layers_of(s) + 6) * s.spacing;
+    std::vector<glm::vec4> out;
+    out.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t i = k % nx, j = (k / nx) % nz, layer = k / (nx * nz);
+        out.emplace_back(s.tank_min.x + (float(i) + 0.5f) * pitch, top - float(layer) * pitch, s.tank_min.z + (float(j) + 0.5f) * pitch, -1.0f);
+    }
+    return out;
+}
+
 GuardLimits guard_limits(const scene::Scene& s) {
     GuardLimits g;
     g.density_ratio = s.sph.density_limit;
@@ -125,6 +156,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       diag_pass_(timer.pass("diagnostics")),
       boundary_pass_(timer.pass("boundary-volume")),
       boundary_cells_pass_(timer.pass("boundary-cells")),
+      emit_pass_(timer.pass("emit")),
       defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
                (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "")),
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
@@ -132,23 +164,38 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
       boundary_volume_(shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", defines_)),
       flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", defines_)),
+      emit_(scene.particle_budget > 0 ? shader::Program::compute(shaders, "sim/fluid/emit_particles.comp") : shader::Program()),
+      emitter_(emitter_for(scene)),
       limits_(guard_limits(scene)),
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),
       grid_(shaders, timer,
             fluid_grid(scene, 2.0f * scene.spacing, boundary_layers(scene.spacing, 2.0f * scene.spacing)),
-            sort_capacity(scene.particle_count(), boundary_count(scene)),
+            sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),
       readback_(sizeof(gpu::StepState), 4, "StepState.readback",
                 [this](std::uint64_t, const void* bytes) { on_record(bytes); }) {
-    const std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
+    std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
+    scene_count_ = x.size();
+    if (scene.particle_budget > x.size()) {   // the emitter's parked particles, at rest
+        const std::vector<glm::vec4> parked = parked_positions(scene, scene.particle_budget - x.size());
+        x.insert(x.end(), parked.begin(), parked.end());
+        v.resize(x.size(), glm::vec4(0.0f));
+    }
+    if (scene.particle_budget > 0) emit_claimed_ = gl::Buffer(sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "fluid.emit_claimed");
     const std::vector<glm::vec4> wall = boundary_of(scene);
+    paddle_offsets_ = paddle_offsets(scene, layers_of(scene));
+    paddle_placed_.resize(paddle_offsets_.size());
+    paddle_first_ = wall.size() - paddle_offsets_.size();
+    paddle_radius_ = scene.paddle_radius;
+    paddle_park_ = paddle_at_ = paddle_park(scene);
     count_ = x.size();
     boundary_count_ = wall.size();
     params_ = sph_params(scene, count_, boundary_count_);
     params_ubo_ = gl::Buffer(sizeof(gpu::SphParams), GL_DYNAMIC_DRAW, &params_, "SphParams");
-    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), GL_STATIC_DRAW, "fluid.obstacles");
+    obstacles_ = gl::Buffer::from<glm::vec4>(obstacle_shapes(scene), scene.paddle_radius > 0.0f ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
+                                             "fluid.obstacles");
 
     const std::size_t bytes = vec4_array_bytes(count_);
     for (int k = 0; k < 2; ++k) {
@@ -171,37 +218,47 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     s.max_accel = bits(glm::length(scene.gravity));
     s.frame_min_dt = frame_dt_;
     s.nan_index = s.escaped_index = 0xFFFFFFFFu;
+    s.live_count = std::uint32_t(scene_count_);
     step_ = gl::Buffer(sizeof s, GL_DYNAMIC_COPY, &s, "fluid.step");
     dt_estimate_ = std::min(params_.cfl * params_.spacing / (params_.sound_speed + scene.speed_estimate()), params_.dt_max);
     compute_boundary(wall);
 }
 
-// Start-up, not the frame path: the boundary sorted by cell once, psi_b from the sorted set, and the
-// cells that have boundary particles around them (the boundary is static).
+// Start-up: the boundary sorted by cell, psi_b from the sorted set, and the cells that have boundary
+// particles around them. The boundary is static but for the paddle (move_paddle() sorts it again).
 void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
     const std::size_t m = vec4_array_bytes(boundary_count_);   // transient_bytes(): raw, zeros, zeros_sorted, weighted
-    gl::Buffer raw = gl::Buffer::from<glm::vec4>(wall, GL_STATIC_DRAW, "fluid.boundary.raw");
-    gl::Buffer zeros(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
-    gl::Buffer zeros_sorted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
+    raw_ = gl::Buffer(m, has_paddle() ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW, nullptr, "fluid.boundary.raw");
+    if (!wall.empty()) raw_.upload(wall.data(), wall.size() * sizeof(glm::vec4));
+    zeros_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros");
+    zeros_sorted_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.zeros_sorted");
     boundary_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary");
-    gl::Buffer weighted(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
+    weighted_ = gl::Buffer(m, GL_STATIC_DRAW, nullptr, "fluid.boundary.weighted");
     const GridLayout& g = grid_.layout();
     boundary_near_ = gl::Buffer(std::size_t(g.key_count) * sizeof(std::uint32_t), GL_STATIC_DRAW, nullptr, "fluid.boundary_near");
+    timer_.begin_frame();
+    rebuild_boundary();
+    timer_.end_frame();
+    timer_.drain();
+    timer_.reset_samples();
+    if (!has_paddle()) raw_ = gl::Buffer(), zeros_ = gl::Buffer(), zeros_sorted_ = gl::Buffer(), weighted_ = gl::Buffer();
+}
+
+void Fluid::rebuild_boundary() {
+    const GridLayout& g = grid_.layout();
     const GLuint zero = 0;
     glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_near_.id());
     glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);   // Morton keys between cells
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
-    timer_.begin_frame();
-    const shader::StorageSet buffers = bind_state().with("Weighted", weighted);
+    const shader::StorageSet buffers = bind_state().with("Weighted", weighted_);
     if (boundary_count_ > 0) {
-        grid_.build(raw, zeros, boundary_, zeros_sorted, boundary_ranges_, boundary_count_, /*clear=*/true);
+        grid_.build(raw_, zeros_, boundary_, zeros_sorted_, boundary_ranges_, boundary_count_, /*clear=*/true);
         auto pass = timer_.scope(boundary_pass_);
         params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
         boundary_volume_.bind(buffers).dispatch(boundary_count_);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        glBindBuffer(GL_COPY_READ_BUFFER, weighted.id());
+        glBindBuffer(GL_COPY_READ_BUFFER, weighted_.id());
         glBindBuffer(GL_COPY_WRITE_BUFFER, boundary_.id());
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(boundary_count_ * sizeof(glm::vec4)));
         glBindBuffer(GL_COPY_READ_BUFFER, 0);
@@ -215,19 +272,34 @@ void Fluid::compute_boundary(const std::vector<glm::vec4>& wall) {
         if (boundary_count_ > 0) flag_boundary_.bind(buffers).dispatch(std::size_t(g.dims.x) * g.dims.y * g.dims.z);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    timer_.end_frame();
-    timer_.drain();
-    timer_.reset_samples();
+}
+
+void Fluid::move_paddle(glm::vec3 center, glm::vec3 velocity, bool on, float scale) {
+    if (!has_paddle()) throw Error("Fluid::move_paddle: the scene has no paddle (scene.paddle_radius is 0)");
+    const glm::vec3 at = on ? center : paddle_park_;
+    // Its entry is the last of obstacle_shapes(): (center, 2), (radius, velocity); radius 0 when parked.
+    if (!on) scale = 1.0f;
+    const glm::vec4 entry[2] = {glm::vec4(at, 2.0f), on ? glm::vec4(scale * paddle_radius_, velocity) : glm::vec4(0.0f)};
+    obstacles_.upload(entry, sizeof entry, obstacles_.size() - sizeof entry);
+    if (at == paddle_at_ && scale == paddle_scale_) return;   // only its velocity changed: the boundary stands
+    ++boundary_generation_;
+    paddle_at_ = at, paddle_scale_ = scale;
+    for (std::size_t k = 0; k < paddle_offsets_.size(); ++k)
+        paddle_placed_[k] = glm::vec4(at + scale * glm::vec3(paddle_offsets_[k]), scale * scale * scale * paddle_offsets_[k].w);
+    raw_.upload(paddle_placed_.data(), paddle_placed_.size() * sizeof(glm::vec4), paddle_first_ * sizeof(glm::vec4));
+    rebuild_boundary();
 }
 
 int Fluid::carry(std::string block, std::uint32_t words, const std::vector<std::uint32_t>& fill) {
     if (carried_.size() == NeighbourGrid::max_carried)
         throw Error("Fluid::carry: at most " + std::to_string(NeighbourGrid::max_carried) + " carried arrays (adding " + block + ")");
     const std::size_t n = std::max<std::size_t>(count_, 1);   // as carried_bytes()
-    if (words == 0 || (fill.size() != words && fill.size() != count_ * words))
+    // Every particle's: the scene's, in its initial order (parked ones, after them, start at zero).
+    if (words == 0 || (fill.size() != words && fill.size() != count_ * words && fill.size() != scene_count_ * words))
         throw Error("Fluid::carry: " + block + " needs a fill of one particle's words or of every particle's");
     std::vector<std::uint32_t> all(n * words);
-    if (fill.size() == count_ * words && count_ > 0) std::copy(fill.begin(), fill.end(), all.begin());
+    if ((fill.size() == count_ * words || fill.size() == scene_count_ * words) && count_ > 0)
+        std::copy(fill.begin(), fill.end(), all.begin());
     else for (std::size_t i = 0; i < n; ++i) std::copy(fill.begin(), fill.begin() + words, all.begin() + std::ptrdiff_t(i * words));
     Carried c{std::move(block), words, {}};
     for (int k = 0; k < 2; ++k)
@@ -312,6 +384,21 @@ void Fluid::integrate() {
     auto pass = timer_.scope(integrate_pass_);
     integrate_.bind(bind_state()).dispatch(count_);
     // The next substep's hash, the time step and the impostor draw read what this wrote.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+void Fluid::emit() {
+    if (!has_budget()) throw Error("Fluid::emit: no particle budget beyond the scene's (scene.particle_budget)");
+    auto pass = timer_.scope(emit_pass_);
+    const GLuint zero = 0;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, emit_claimed_.id());
+    glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glProgramUniform4f(emit_.id(), RANRYU_LOC_EMIT_NOZZLE, emitter_.nozzle.x, emitter_.nozzle.y, emitter_.nozzle.z, float(emitter_.side));
+    glProgramUniform4f(emit_.id(), RANRYU_LOC_EMIT_VELOCITY, emitter_.velocity.x, emitter_.velocity.y, emitter_.velocity.z,
+                       params_.spacing);
+    emit_.bind(bind_state().with("Emitter", emit_claimed_)).dispatch(count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 

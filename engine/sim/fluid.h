@@ -19,6 +19,9 @@
 //     choose_time_step()  "choose-time-step"   docs/SPH.md (7), docs/DFSPH.md (D8), on the GPU
 //     rebuild_grid()      "hash", "sort.*", "reorder"   the state into cell order
 //     integrate()         "integrate"          docs/SPH.md (6) and (8): the explicit step
+//     emit()              "emit"               the emitter pours a sheet of parked particles (run)
+//     move_paddle()       "hash", "sort.*", "reorder", "boundary-volume", "boundary-cells": the
+//                         boundary re-sorted about the paddle, docs/SPH.md (9) (run)
 //     end_frame()         "diagnostics"        queues the record's readback
 //
 // The CPU never waits: the substeps a frame are planned from records that arrive frames late (enough
@@ -49,6 +52,19 @@ namespace ranryu::sim {
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);
 GuardLimits guard_limits(const scene::Scene& s);
 
+// Where the emitter pours (Fluid::emit): a side x side sheet, spacing dx, in the horizontal plane
+// through `nozzle` (over the middle of the tank, at 0.85 of its height, 2 dx under a lid), moving at
+// `velocity` = dx / frame_dt downwards, so that one sheet a frame leaves a column at the spacing
+// (gravity only spreads it). side: 0.15 of the tank's narrower horizontal extent, in [2, 16] spacings.
+struct EmitterShape {
+    glm::vec3 nozzle{0.0f};
+    int side = 2;
+    glm::vec3 velocity{0.0f};
+};
+EmitterShape emitter_for(const scene::Scene& s);
+// The parked particles' places (Fluid, the emitter's budget): `count` of them, below the tank.
+std::vector<glm::vec4> parked_positions(const scene::Scene& s, std::size_t count);
+
 class Fluid {
 public:
     // Samples the boundary, computes its psi_b and the cells near it (start-up passes
@@ -71,6 +87,32 @@ public:
     void choose_time_step();
     void rebuild_grid();   // the masks are no longer current
     void integrate();      // v += dt a, x += dt v, the projection and the guard (the masks are no longer current)
+
+    // ---- the paddle (scene.paddle_radius > 0; sim/boundary.h): a kinematic sphere, on or parked.
+    // Places its boundary particles about `center` (m), sets its projection entry (radius, velocity u
+    // in m/s: docs/SPH.md (9)) and re-sorts the boundary with psi_b and the near-boundary cells
+    // ("hash", "sort.*", "reorder", "boundary-volume", "boundary-cells"), inside the caller's timer
+    // frame, before a step. Off: the particles wait at paddle_park(), the entry's radius is 0. Uploads
+    // the paddle's few boundary particles and 32 bytes, allocates nothing; when only the velocity
+    // changes, the 32 bytes alone. sim::Simulation::set_paddle() moves it a substep at a time.
+    // `scale` in (0, 1]: the paddle grown to that part of its radius (offsets and cell volumes scaled).
+    void move_paddle(glm::vec3 center, glm::vec3 velocity, bool on, float scale = 1.0f);
+    bool has_paddle() const { return !paddle_offsets_.empty(); }
+    // Counts the boundary's re-sorts (move_paddle): a solver that keeps per-boundary-particle state by
+    // index (DFSPH's boundary rows, docs/DFSPH.md (D9)) drops it when this changes.
+    std::uint64_t boundary_generation() const { return boundary_generation_; }
+    float paddle_radius() const { return paddle_radius_; }
+
+    // ---- the emitter (scene.particle_budget above scene.particle_count()): count() particles are
+    // allocated, the scene's and the rest parked (position.w = -1, glsl/sim/fluid/fluid.glsl) on a
+    // lattice below the tank, farther apart and from everything else than a support: the density and
+    // neighbour walks visit nothing for them, the integrations leave them at rest and out of the
+    // guard's records, the surface's bounds and the impostors skip them. emit(), pass "emit", pours
+    // one sheet of emitter_for(scene) from the parked ones, on the GPU (StepState.live_count counts the
+    // particles not parked: the count never comes back to the CPU but in the records).
+    void emit();
+    bool has_budget() const { return count_ > scene_count_; }
+    std::size_t scene_count() const { return scene_count_; }
 
     // ---- the state, in the cell order of the last rebuild_grid()
     std::size_t count() const { return count_; }
@@ -140,11 +182,15 @@ public:
 private:
     void on_record(const void* bytes);
     void compute_boundary(const std::vector<glm::vec4>& wall);
+    void rebuild_boundary();   // raw_ into boundary_: the sort, psi_b, the near-boundary cells
 
     profile::GpuTimer& timer_;
-    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_;
+    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_, emit_pass_;
     std::string defines_;
-    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_;
+    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_, emit_;
+    EmitterShape emitter_;
+    gl::Buffer emit_claimed_;   // the emit pass's slot counter (a uint), with a budget only
+    std::size_t scene_count_ = 0;
     gpu::SphParams params_{};
     GuardLimits limits_;
     float frame_dt_;
@@ -158,7 +204,15 @@ private:
     bool masks_current_ = false;
     int runs_ = 9;
     gl::Buffer obstacles_;       // obstacle_shapes(): the integration's last-resort projection (docs/SPH.md (8))
-    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up)
+    gl::Buffer boundary_near_;   // uint per key: a boundary particle within the 27 cells (start-up, and when the paddle moves)
+    // The boundary before its sort and the sort's scratch: freed after start-up, kept with a paddle.
+    gl::Buffer raw_, zeros_, zeros_sorted_, weighted_;
+    std::vector<glm::vec4> paddle_offsets_, paddle_placed_;   // paddle_offsets(); the placed ones (reused)
+    std::size_t paddle_first_ = 0;                             // its first boundary particle in raw_
+    float paddle_radius_ = 0.0f;
+    glm::vec3 paddle_park_{0.0f}, paddle_at_{0.0f};   // where it waits off; where its particles are
+    float paddle_scale_ = 1.0f;                       // the part of its radius they stand at
+    std::uint64_t boundary_generation_ = 0;
     CellRanges ranges_, boundary_ranges_;
     struct Carried {
         std::string block;

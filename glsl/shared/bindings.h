@@ -40,6 +40,8 @@ using mat4 = glm::mat4;
 #define RANRYU_LOC_SHIFT 1     // uint: radix sort digit shift
 #define RANRYU_LOC_STAGE 2     // uivec2 / uint: bitonic sort (block size k, stride j)
 #define RANRYU_LOC_AUX 3       // uint or uvec2: pass-specific
+#define RANRYU_LOC_EMIT_NOZZLE 4     // vec4: the emitter's nozzle centre (m), w: slots a side (glsl/sim/fluid/emit_particles.comp)
+#define RANRYU_LOC_EMIT_VELOCITY 5   // vec4: xyz the poured particles' velocity (m/s), w: the spacing (m)
 
 // ---- vertex attribute locations ----
 #define RANRYU_ATTR_POSITION 0   // per-instance particle position (impostors)
@@ -131,7 +133,8 @@ RANRYU_STRUCT(StepState) {
     uint front;               // bits of the surge front: max (x - domain_min.x) of particles within front_band of domain_min.y
     uint frame;               // frame number these findings belong to
     uint steps;               // substeps since the start
-    uint pad0;
+    uint live_count;          // particles not parked: the scene's, and those the emitter has poured in since
+                              // (engine/sim/fluid.h); never more than particle_count
     // An iterative pressure solver's record of this frame (docs/DFSPH.md (D6); zero for WCSPH; PBF,
     // docs/PBF.md: its fixed iterations in x and z, the rest zero).
     // Solve 0 is the density solve, 1 the divergence solve.

@@ -1,6 +1,7 @@
 #version 430
 // "surface.bounds", step 1 of 2: the box around the particles' centres.
-//   in   sorted_position[0, surface.particle_count)
+//   in   sorted_position[0, surface.particle_count), less the parked ones (w = -1: the emitter's
+//        budget not poured in yet, engine/sim/fluid.h)
 //   out  surface_grid.bounds_min/max = ordered_bits of the smallest/largest x, y, z
 // The caller clears bounds_min to 0xFFFFFFFF and bounds_max to 0 first. Each workgroup reduces its
 // particles in shared memory (a tree: the local size is a power of two) and makes one atomicMin and
@@ -22,7 +23,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     uint l = gl_LocalInvocationIndex;
     uvec3 lo = uvec3(0xFFFFFFFFu), hi = uvec3(0u);   // identities of min and max
-    if (i < surface.particle_count) {
+    if (i < surface.particle_count && sorted_position[i].w > -0.5) {
         lo = ordered_bits(sorted_position[i].xyz);
         hi = lo;
     }

@@ -79,7 +79,7 @@ void main() {
     put(step.max_accel); put(step.frame_max_speed); put(step.frame_max_density); put(step.frame_min_dt);
     put(step.frame_substeps); put(step.nan_count); put(step.nan_index); put(step.escaped_count);
     put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
-    put(step.frame); put(step.steps); put(step.pad0);
+    put(step.frame); put(step.steps); put(step.live_count);
     put(step.iterations); put(step.unconverged); put(step.error);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);

@@ -265,3 +265,40 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     for (const char* absent : {"wavelet", "turbulence-force", "level-set", "mc.emit", "draw-surface", "forces"}) CHECK_FALSE(timed.count(absent));
     CHECK(timed.count("dfsph.density"));
 }
+
+TEST_CASE("ranryu profile --overlay draws the window's panel offscreen as the pass \"overlay\" and times its CPU side",
+          "[cli][profile][overlay]") {
+    TempDir tmp;
+    const std::vector<std::string> args = {"profile", "--scene", "dam-break", "--spacing", "0.04", "--shading", "particles",
+                                           "--size", "320x240", "--frames", "3", "--warmup", "1", "--quiet"};
+    std::vector<std::string> with = args;
+    for (const char* a : {"--overlay", "--json", "o.json"}) with.push_back(a);
+    const Result r = run_ranryu(tmp.path(), with);
+    INFO(r.out << r.err);
+    if (!RANRYU_HAVE_OVERLAY) {
+        // A build without Dear ImGui refuses it, naming the option.
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Contains("--overlay"));
+        return;
+    }
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("overlay: CPU "));
+    const auto j = nlohmann::json::parse(read_file(tmp.path() / "o.json"));
+    bool timed = false;
+    for (const auto& p : j["passes"])
+        if (p["name"] == "overlay") {
+            timed = true;
+            CHECK(p["calls_per_frame"].get<double>() == 1.0);
+            CHECK(p["ms_per_call"].get<double>() >= 0.0);
+        }
+    CHECK(timed);
+    REQUIRE(j.contains("overlay"));
+    CHECK(j["overlay"]["frames"] == 3);
+    CHECK(j["overlay"]["cpu_ms_mean"].get<double>() > 0.0);   // building a panel takes the CPU some time
+    CHECK(j["overlay"]["cpu_ms_max"].get<double>() >= j["overlay"]["cpu_ms_mean"].get<double>());
+
+    // Without it: no such pass, no such line.
+    const Result plain = run_ranryu(tmp.path(), args);
+    REQUIRE(plain.exit_code == 0);
+    CHECK_THAT(plain.out, !Contains("overlay"));
+}

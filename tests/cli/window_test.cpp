@@ -6,8 +6,11 @@
 
 #include <regex>
 
+#include <glm/glm.hpp>
+
 #include "image.h"
 #include "run_helper.h"
+#include "support/particle_reader.h"
 
 using namespace ranryu::test;
 using Catch::Matchers::Contains;
@@ -71,6 +74,14 @@ Diff diff(const Image& a, const Image& b) {
             d.x0 = std::min(d.x0, x), d.y0 = std::min(d.y0, y), d.x1 = std::max(d.x1, x), d.y1 = std::max(d.y1, y);
         }
     return d;
+}
+
+// An earlier file at `rel` in tmp (its folders made), which a run must leave as it is; returns its text.
+std::string plant_earlier(const TempDir& tmp, const std::string& rel) {
+    const std::string text = "an earlier file, not to be lost: " + rel + "\n";
+    fs::create_directories((tmp / rel).parent_path());
+    write_file(tmp / rel, text);
+    return text;
 }
 
 // `ranryu run ARGS --script script.txt` (the script's text written into tmp) under xvfb-run with a
@@ -245,9 +256,7 @@ TEST_CASE("ranryu run --script: the overlay changes the picture in the panel's r
 TEST_CASE("ranryu run: a screenshot never replaces an earlier one", "[cli][window][script]") {
     if (!window_available(/*need_xvfb=*/true)) return;
     TempDir tmp;
-    fs::create_directories(tmp / "screenshots");
-    const std::string earlier = "an earlier screenshot, not to be lost\n";
-    write_file(tmp / "screenshots/shot_00000.png", earlier);
+    const std::string earlier = plant_earlier(tmp, "screenshots/shot_00000.png");
     const ScriptRun r = run_script(tmp, "1 key f12\n1 panel screenshot\n3 key escape\n",
                                    {"--scene", "falling-block", "--size", "160x120"});
     INFO(r.result.describe());
@@ -314,4 +323,142 @@ TEST_CASE("ranryu run --script: viscosity, the time-step factor and the turbulen
     CHECK_THAT(t.result.out, !Contains("restart at frame 4"));
     CHECK_THAT(t.result.out, !Contains("restart at frame 6"));
     CHECK_THAT(t.result.out, Contains("turbulence-force"));
+}
+
+// "paddle at X Y Z radius R m" in a run's output: the paddle's last centre, or nothing.
+struct PaddleLine {
+    bool found = false;
+    glm::dvec3 at{0.0};
+    double radius = 0.0;
+};
+PaddleLine paddle_of(const std::string& out) {
+    static const std::regex line(R"(paddle at (\S+) (\S+) (\S+) radius (\S+) m)");
+    std::smatch m;
+    PaddleLine p;
+    if (!std::regex_search(out, m, line)) return p;
+    p = {true, glm::dvec3(std::stod(m[1]), std::stod(m[2]), std::stod(m[3])), std::stod(m[4])};
+    return p;
+}
+std::vector<glm::dvec3> positions_of(const ranryu::test::PointCloud& pc) {
+    std::vector<glm::dvec3> x(pc.count);
+    for (std::size_t i = 0; i < pc.count; ++i) x[i] = {pc.values.at("x")[i], pc.values.at("y")[i], pc.values.at("z")[i]};
+    return x;
+}
+
+TEST_CASE("ranryu run --script: a dragged paddle moves the liquid near its path and no particle ends inside it", "[cli][window][script][paddle]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    // A resting pool 0.2 m deep, the camera looking along -z: the paddle (radius 3 dx = 0.075 m)
+    // appears above the middle of the pool, a drag of 25 pixels down takes it 0.15 m down into the
+    // liquid (6 mm a pixel at 1 m, 120 pixels high), and one of 17 pixels left 0.1 m towards -x. The
+    // same run without the paddle is the liquid it moved.
+    const std::vector<std::string> args = {"--scene", scene_file("paddle-pool.json").string(), "--size", "160x120",
+                                           "--shading", "particles", "--save-particles", "last.ply"};
+    TempDir with_dir, without_dir;
+    const ScriptRun with = run_script(with_dir, "0 key h\n0 panel paddle on\n1 paddle 0 25\n20 paddle -17 0\n44 key f12\n45 key escape\n", args);
+    const ScriptRun without = run_script(without_dir, "45 key escape\n", args);
+    INFO(with.result.describe() << "\n" << without.result.describe());
+    const PaddleLine p = paddle_of(with.result.out);
+    REQUIRE(p.found);
+    CHECK_FALSE(paddle_of(without.result.out).found);
+    INFO("paddle at " << p.at.x << ", " << p.at.y << ", " << p.at.z << ", radius " << p.radius);
+    CHECK(p.radius == Approx(0.075));
+    CHECK(p.at.y < 0.2 - 0.5 * p.radius);   // it went down into the liquid
+    CHECK(p.at.x < 0.15);                   // and along it
+
+    const std::vector<glm::dvec3> x = positions_of(ranryu::test::read_ply(with_dir / "last.ply"));
+    const std::vector<glm::dvec3> y = positions_of(ranryu::test::read_ply(without_dir / "last.ply"));
+    REQUIRE(x.size() == y.size());
+    double nearest = 1e30;
+    for (const glm::dvec3& q : x) nearest = std::min(nearest, glm::length(q - p.at));
+    std::size_t displaced = 0;   // without the paddle, liquid where it ends
+    for (const glm::dvec3& q : y) displaced += glm::length(q - p.at) < p.radius;
+    INFO("nearest centre " << nearest << " m from the paddle's; " << displaced << " particles there without it");
+    CHECK(nearest >= p.radius * (1.0 - 1e-5));   // the projection's bound, in the %.6f printed
+    // The ball holds (4/3) pi R^3 / dx^3 = 113 lattice sites; more than half of it lies in the pool.
+    CHECK(displaced >= 40);
+    REQUIRE(with.shots.size() == 1);
+    CHECK(with.images[0].ok());
+}
+
+TEST_CASE("ranryu run --script: F9 records takes through the asynchronous writer, never over an earlier one", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const std::string earlier = plant_earlier(tmp, "recordings/take_000/frame_00000.png");
+    const ScriptRun r = run_script(tmp, "0 key h\n1 key f9\n4 key f9\n6 panel record on\n8 panel record off\n9 key escape\n",
+                                   {"--scene", "falling-block", "--size", "96x64"});
+    INFO(r.result.describe());
+    CHECK_THAT(r.result.out, Contains("recording into recordings/take_001\n"));
+    CHECK_THAT(r.result.out, Contains("recorded 3 frames into recordings/take_001\n"));
+    CHECK_THAT(r.result.out, Contains("recorded 2 frames into recordings/take_002\n"));
+    CHECK(read_file(tmp / "recordings/take_000/frame_00000.png") == earlier);
+    CHECK(list_dir(tmp / "recordings/take_001") == std::vector<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"});
+    CHECK(list_dir(tmp / "recordings/take_002") == std::vector<std::string>{"frame_00000.png", "frame_00001.png"});
+    const Image a = load_png(tmp / "recordings/take_001/frame_00000.png"), b = load_png(tmp / "recordings/take_001/frame_00002.png");
+    CHECK(a.width == 96);
+    CHECK(a.height == 64);
+    CHECK(diff(a, b).pixels > 20);   // frames 1 and 3 of a falling block
+}
+
+// "particles: N at spacing DX m" lines, in order.
+std::vector<std::pair<std::size_t, double>> particle_lines(const std::string& out) {
+    static const std::regex line(R"(particles: (\d+) at spacing (\S+) m)");
+    std::vector<std::pair<std::size_t, double>> v;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
+        v.emplace_back(std::stoull((*it)[1]), std::stod((*it)[2]));
+    return v;
+}
+
+TEST_CASE("ranryu run --script: the panel's spacing rebuilds the scene at that resolution", "[cli][window][script]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    TempDir tmp;
+    const ScriptRun r = run_script(tmp, "2 panel spacing 0.04\n3 panel spacing 0.0001   # too many particles: a note, no restart\n4 key escape\n",
+                                   {"--scene", "drop", "--spacing", "0.05", "--size", "96x64", "--shading", "particles"});
+    INFO(r.result.describe());
+    const auto lines = particle_lines(r.result.out);
+    REQUIRE(lines.size() == 2);
+    CHECK(lines[0].second == Approx(0.05));
+    CHECK(lines[1].second == Approx(0.04));
+    // The drop's blocks on lattices of the spacing: (0.05 / 0.04)^3 = 1.95 times the particles, give
+    // or take a lattice row of each block.
+    const double ratio = double(lines[1].first) / double(lines[0].first);
+    INFO("particles " << lines[0].first << " -> " << lines[1].first);
+    CHECK(ratio > 1.5);
+    CHECK(ratio < 2.5);
+    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
+    CHECK_THAT(r.result.out, !Contains("restart at frame 3"));
+}
+
+// "particles: A active of budget B" at the end of a run.
+std::pair<std::size_t, std::size_t> active_of(const std::string& out) {
+    static const std::regex line(R"(particles: (\d+) active of budget (\d+))");
+    std::smatch m;
+    if (!std::regex_search(out, m, line)) return {0, 0};
+    return {std::stoull(m[1]), std::stoull(m[2])};
+}
+
+TEST_CASE("ranryu run --script: the emitter raises the live count up to the budget and not beyond", "[cli][window][script][emitter]") {
+    if (!window_available(/*need_xvfb=*/true)) return;
+    // The pool's 16 x 8 x 16 particles and a budget 10 beyond them: its emitter's sheet is 2 x 2, so
+    // 3 frames of pouring spend the budget (4, 4, 2) and the rest pour nothing.
+    const std::vector<std::string> args = {"--scene", scene_file("paddle-pool.json").string(), "--size", "96x64", "--shading",
+                                           "particles", "--budget", "2058", "--save-particles", "last.ply"};
+    TempDir full_dir, one_dir;
+    const ScriptRun full = run_script(full_dir, "0 key e\n8 key escape\n", args);
+    const ScriptRun one = run_script(one_dir, "0 panel emitter on\n1 panel emitter off\n8 key escape\n", args);
+    INFO(full.result.describe() << "\n" << one.result.describe());
+    const auto lines = particle_lines(full.result.out);
+    REQUIRE(lines.size() == 1);
+    REQUIRE(lines[0].first == 2048);
+    CHECK_THAT(full.result.out, Contains("particle budget: 2058"));
+    CHECK(active_of(full.result.out) == std::pair<std::size_t, std::size_t>(2058, 2058));
+    CHECK(active_of(one.result.out) == std::pair<std::size_t, std::size_t>(2052, 2058));
+    // The saved particles agree: every one of the budget is there, those not poured parked below the
+    // tank (1 m under its floor), the poured ones in it.
+    for (const auto& [dir, poured] : {std::pair<const TempDir*, std::size_t>{&full_dir, 10}, {&one_dir, 4}}) {
+        const std::vector<glm::dvec3> x = positions_of(ranryu::test::read_ply(*dir / "last.ply"));
+        REQUIRE(x.size() == 2058);
+        std::size_t parked = 0;
+        for (const glm::dvec3& q : x) parked += q.y < -0.5;
+        CHECK(parked == 10 - poured);
+    }
 }

@@ -116,7 +116,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.front", {offsetof(gpu::StepState, front), GL_UNSIGNED_INT}},
         {"step.frame", {offsetof(gpu::StepState, frame), GL_UNSIGNED_INT}},
         {"step.steps", {offsetof(gpu::StepState, steps), GL_UNSIGNED_INT}},
-        {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+        {"step.live_count", {offsetof(gpu::StepState, live_count), GL_UNSIGNED_INT}},
         {"step.iterations", {offsetof(gpu::StepState, iterations), GL_UNSIGNED_INT_VEC4}},
         {"step.unconverged", {offsetof(gpu::StepState, unconverged), GL_UNSIGNED_INT_VEC4}},
         {"step.error", {offsetof(gpu::StepState, error), GL_FLOAT_VEC4}},
@@ -408,7 +408,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
         *u = d.u();
     st.frame_min_dt = d.f();
     for (std::uint32_t* u : {&st.frame_substeps, &st.nan_count, &st.nan_index, &st.escaped_count, &st.escaped_index,
-                             &st.speed_index, &st.density_index, &st.front, &st.frame, &st.steps, &st.pad0})
+                             &st.speed_index, &st.density_index, &st.front, &st.frame, &st.steps, &st.live_count})
         *u = d.u();
     st.iterations = d.u4();
     st.unconverged = d.u4();
@@ -470,7 +470,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.max_speed); expect.put(st.max_accel); expect.put(st.frame_max_speed); expect.put(st.frame_max_density);
     expect.put(st.frame_min_dt); expect.put(st.frame_substeps); expect.put(st.nan_count); expect.put(st.nan_index);
     expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
-    expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.pad0);
+    expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.live_count);
     expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);

@@ -106,10 +106,11 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
     // 0.025 m and 0.02 m: 10 and 12 layers, 4 and 5 particles across the tank's 0.1 m depth, so most of
     // the column lies within a kernel support of a wall. Measured on llvmpipe (docs/VALIDATION.md):
     // interior 0.21 and 0.15 of rho0 g H, floor layer 1.09 and 1.00, spurious rms speed 0.11 and 0.08
-    // m/s. The floor layer reads about twice hydrostatic: the boundary's pressure term (docs/DFSPH.md
-    // (D3)) carries the fluid particle's own pressure once, where a fluid neighbour carries its own as
-    // well, so the solve holds the column with twice the pressure at the wall. Issue 11 asks for 1 %
-    // and 2 %: not met; these bounds guard what there is and that the error does not grow as dx shrinks.
+    // m/s, with Akinci's boundary term, whose floor layer read about twice hydrostatic. With the
+    // boundary rows of docs/DFSPH.md (D9), the default, the floor layer carries what a fluid layer
+    // would: measured 0.036 of rho0 g H at 0.025 m (interior 0.022) on llvmpipe. Bound: 0.15, a tenth
+    // of Akinci's, for the floor layer. Issue 11 asks for 1 % and 2 %: not met by the interior; these
+    // bounds guard what there is and that the error does not grow as dx shrinks.
     const auto& shaders = shader::FileSource::embedded();
     const validation::HydrostaticResult coarse = validation::hydrostatic(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph), shaders, 0.5);
     const validation::HydrostaticResult fine = validation::hydrostatic(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph), shaders, 0.5);
@@ -122,7 +123,7 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
         for (std::size_t k = 1; k + 2 < r->layers.size(); ++k)
             CHECK(r->layers[k].pressure >= r->layers[k + 1].pressure - 1000.0 * 9.81 * r->spacing);
         CHECK(r->max_error <= 0.25);
-        CHECK(r->floor_error <= 1.25);
+        CHECK(r->floor_error <= 0.15);
         // No acoustic ringing here: the initial lattice rearranges at the walls within the first frame
         // (rms 0.1 m/s after it) and nu = 1e-4 m^2/s barely damps that. Bound: a tenth of the free-fall
         // speed over the column's height, sqrt(2 g H) = 2.2 m/s, in rms.

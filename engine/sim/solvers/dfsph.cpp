@@ -174,6 +174,15 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
 }
 
 void Dfsph::step(Fluid& fluid, StepHooks& hooks) {
+    if (rows_ && fluid.boundary_generation() != boundary_generation_) {
+        // The boundary was re-sorted (the paddle moved): the kept kappa_b belong to other indices now.
+        boundary_generation_ = fluid.boundary_generation();
+        const float none = 0.0f;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, kappa_.id());
+        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32F, GLintptr(fluid.count() * sizeof(float)),
+                             GLsizeiptr(2 * fluid.boundary_count() * sizeof(float)), GL_RED, GL_FLOAT, &none);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    }
     fluid.choose_time_step();
     fluid.rebuild_grid();
     compute_density(fluid);

@@ -102,6 +102,7 @@ private:
     gl::Buffer boundary_mark_, boundary_list_, boundary_row_, rows_state_;
     Fluid& fluid_;
     int warm_;
+    std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to
 };
 
 }  // namespace ranryu::sim

@@ -6,8 +6,8 @@
 // solve's first iteration a particle that separates from the fluid (warm_start_drop(), dfsph.glsl)
 // drops its warm start first: the last step's pressure is a guess only where the fluid still holds
 // together, and a stale one would throw a splash particle away as if it were still compressed.
-// The iteration's mean error (1/N) Σ_i min(max(r_i, 0)/rho0, 1) is summed on the GPU: each workgroup
-// adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
+// The iteration's mean error (1/N) Σ_i min(max(r_i, 0)/rho0, 1), N the particles not parked, is
+// summed on the GPU: each workgroup adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
 // run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
 // iterations issued after it do no work, and adds the solve to the frame's record in StepState. The
@@ -34,7 +34,8 @@ shared float wg_error_[gl_WorkGroupSize.x];
 // The last workgroup's decision, one invocation.
 void decide() {
     uint total = atomicAdd(solve.error_sum, 0u);   // every workgroup added its part before counting itself
-    float mean = float(total) / (dfsph.error_scale * float(sph.particle_count));
+    // Over the particles not parked: a parked one has no neighbours, no residual (fluid.glsl).
+    float mean = float(total) / (dfsph.error_scale * float(max(step.live_count, 1u)));
     uint it = solve.iterations + 1u, s = solve.solve;
     solve.iterations = it;
     uint least = s == 0u ? dfsph.min_iterations : 1u;

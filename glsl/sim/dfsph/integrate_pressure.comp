@@ -28,7 +28,10 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
     uvec2 bits = uvec2(0u);
-    if (live) {
+    if (live && parked(position[i])) {   // it waits where it is, at rest (fluid.glsl)
+        next_position[i] = position[i];
+        next_velocity[i] = vec4(0.0);
+    } else if (live) {
         vec4 d = density[i];
         vec3 x0 = position[i].xyz;
         kappa_i_ = kappa[i];

@@ -14,7 +14,7 @@ layout(std430) coherent buffer BoundaryRows { BoundaryRowsState rows; };
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= sph.particle_count || (floatBitsToUint(density[i].w) & kBoundaryNear) == 0u) return;   // no barriers
+    if (i >= sph.particle_count || (floatBitsToUint(density[i].w) & kBoundaryNear) == 0u || parked(position[i])) return;   // no barriers
     vec3 xi = position[i].xyz;
     ivec3 c = grid_cell(xi);
     float h2 = sph.h * sph.h;

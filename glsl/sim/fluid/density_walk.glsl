@@ -23,6 +23,12 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
     float h2 = sph.h * sph.h;
     uint flags = 0u, run_index = 0u;
     count = 0u;
+    // A parked particle (fluid.glsl) has no neighbour but itself: nothing is within h of it, and the
+    // crowd of parked ones in the grid's clamped bottom cells is not walked.
+    if (parked(position[i])) {
+        visit_fluid(i, vec3(0.0), 0.0);
+        return flags;
+    }
     bool near_boundary = boundary_near[cell_key(c)] != 0u;   // else every boundary run below is empty
 #ifdef RANRYU_NEIGHBOUR_MASKS
     flags = kMasksComplete;

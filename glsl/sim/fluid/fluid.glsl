@@ -16,6 +16,11 @@ layout(std430) readonly buffer BoundaryCellEnd { uint boundary_end[]; };
 #include "../grid.glsl"
 #include "../kernel.glsl"
 
+// A parked particle (position.w = -1): one of the emitter's budget not poured in yet
+// (engine/sim/fluid.h). It waits below the tank, farther than a support from everything else, and the
+// integrations leave it there at rest, out of the guard's records.
+bool parked(vec4 position) { return position.w < -0.5; }
+
 // Keeps the maximum of non-negative floats with atomicMax on their bits (see StepState).
 uint max_bits(float x) { return floatBitsToUint(max(x, 0.0)); }
 

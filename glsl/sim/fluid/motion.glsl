@@ -10,7 +10,7 @@
 // lets through (splash particles too sparse for any pressure, thin obstacles).
 
 // engine/sim/boundary.h obstacle_shapes(): (count, 0, 0, 0), then per obstacle a box as (min, 0),
-// (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0).
+// (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0); the paddle as (center, 2), (radius, velocity).
 layout(std430) readonly buffer Obstacles { vec4 obstacle[]; };
 
 const float kSlack = 0.25;   // spacings a centre may lie inside a solid before it is projected
@@ -38,12 +38,31 @@ void keep_in_tank(inout vec3 x, inout vec3 v) {
 // (a sphere: radially; a box: through the face it entered by, which is the face of least depth among
 // those the particle was outside of before the step, so it cannot tunnel through a thin box). The
 // slack is at most a quarter of a box's thickness or half a sphere's radius.
+//
+// The paddle (engine/sim/boundary.h) is a kinematic sphere that moves with velocity u: a moving wall
+// (docs/SPH.md (9)). It has no slack: a centre inside it goes out radially onto its surface,
+//     x <- c + R n,   n = (x - c) / |x - c|,
+// and leaves with at least the paddle's normal velocity,
+//     v <- v + max(u.n - v.n, 0) n,
+// so that fluid it runs into moves ahead of it, never through it. R = 0 (parked): nothing to do.
+void keep_out_of_paddle(vec3 x0, vec4 a, vec4 b, inout vec3 x, inout vec3 v) {
+    vec3 d = x - a.xyz;
+    float r = length(d);
+    if (r >= b.x) return;
+    vec3 away = x0 - a.xyz;
+    vec3 normal = r > 1e-6 * b.x ? d / r : (length(away) > 0.0 ? normalize(away) : vec3(0.0, 1.0, 0.0));
+    x = a.xyz + b.x * normal;
+    v += max(dot(b.yzw, normal) - dot(v, normal), 0.0) * normal;
+}
+
 void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
     uint n = uint(obstacle[0].x);
     float slack = kSlack * sph.spacing;
     for (uint k = 0u; k < n; ++k) {
         vec4 a = obstacle[1u + 2u * k], b = obstacle[2u + 2u * k];
-        if (a.w > 0.5) {   // sphere: centre a.xyz, radius b.x
+        if (a.w > 1.5) {
+            keep_out_of_paddle(x0, a, b, x, v);
+        } else if (a.w > 0.5) {   // sphere: centre a.xyz, radius b.x
             float inner = b.x - min(slack, 0.5 * b.x);
             vec3 d = x - a.xyz;
             float r = length(d);

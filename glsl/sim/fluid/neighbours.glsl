@@ -22,8 +22,10 @@ void visit_boundary(uint b, vec3 d, float r2);
 // Visits the fluid neighbours of particle i at xi, and its boundary neighbours when `flags` (its
 // density[i].w bits) has kBoundaryNear; a particle without complete masks walks the runs around cell
 // c, which is xi's cell for for_each_neighbour() (a pass that moves particles between the sort and
-// its walk gives the cell they were sorted into, so that it walks what the density pass walked).
+// its walk gives the cell they were sorted into, so that it walks what the density pass walked). A
+// parked particle (the emitter's reserve, density_walk.glsl) has no neighbour.
 void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
+    if (parked(position[i])) return;
     float h2 = sph.h * sph.h;
     bool masked = false, walls = (flags & kBoundaryNear) != 0u;
 #ifdef RANRYU_NEIGHBOUR_MASKS

@@ -32,7 +32,9 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
     uvec2 bits = uvec2(0u);
-    if (live) {
+    if (live && parked(position[i])) {
+        velocity[i] = vec4(0.0);   // waits at rest (fluid.glsl)
+    } else if (live) {
         vec3 x = position[i].xyz;
         vi_ = pbf_velocity[i].xyz;
         smooth_ = curl_ = vec3(0.0);

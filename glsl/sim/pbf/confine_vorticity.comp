@@ -26,7 +26,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     bool live = i < sph.particle_count;   // no early return: workgroup_max() has barriers
     uvec2 bits = uvec2(0u);
-    if (live) {
+    if (live && !parked(position[i])) {   // a parked particle waits at rest (fluid.glsl)
         vec3 x = position[i].xyz;
         vec4 omega = vorticity[i];
         size_i_ = omega.w;

@@ -29,6 +29,10 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
     vec4 x = position[i];
+    if (parked(x)) {   // no neighbours, no correction (fluid.glsl)
+        next_position[i] = x;
+        return;
+    }
     lambda_i_ = lambda[i];
     fluid_ = wall_ = vec3(0.0);
     for_each_neighbour_around(i, x.xyz, sorted_cell(i), walk_flags(i, floatBitsToUint(density[i].w)));

@@ -19,5 +19,6 @@ void main() {
     float dt = step.dt;
     vec4 x = position[i];
     start[i] = x;
+    if (parked(x)) return;   // it waits where it is (the emitter's reserve, fluid.glsl)
     position[i] = vec4(x.xyz + dt * (velocity[i].xyz + dt * accel[i].xyz), x.w);
 }

@@ -16,6 +16,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
     vec4 x = position[i];
+    if (parked(x)) return;   // at rest where it waits (fluid.glsl)
     vec3 x0 = start[i].xyz, xi = x.xyz;
     vec3 v = (xi - x0) / step.dt;
     keep_out_of_obstacles(x0, xi, v);
