@@ -27,7 +27,7 @@ surface::LevelSetSettings level_set_settings(const scene::Scene& s) {
     ls.subparticle_levels = s.turbulence.subparticles.enabled() ? s.turbulence.subparticles.levels : 0;
     ls.max_nodes = std::uint32_t(s.surface.max_nodes);
     ls.anisotropic = s.surface.anisotropic;
-    ls.particle_capacity = s.particle_count();
+    ls.particle_capacity = s.particle_capacity();   // the emitter's budget included
     return ls;
 }
 surface::MeshCapacity mesh_capacity(const scene::Scene& s) {

@@ -69,7 +69,7 @@ struct SphSettings {
     float divergence_warm_start = 0.5f;   // w of (D6), the divergence solve's
     float relaxation = 0.5f;              // omega of (D6)
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
-    bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
+    bool boundary_rows = false;           // (D9): boundary particles as rows of the solves; false: Akinci's term
     float boundary_relaxation = 1.0f;     // omega_b of (D9)
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie

@@ -14,26 +14,28 @@ work=/tmp/rows
 mkdir -p "$work"
 B=build/gpu/app/ranryu
 for case in hydrostatic dam-break; do
-  python3 - "$case" "$work/$case-akinci.json" <<'PY'
+  for mode in rows akinci; do
+    python3 - "$case" "$mode" "$work/$case-$mode.json" <<'PY'
 import json, sys
 s = json.load(open(f"media/scenes/{sys.argv[1]}.json"))
 s.pop("$schema", None)
-s["name"] = sys.argv[1] + "-akinci"
-s.setdefault("sph", {})["boundary_rows"] = False
-json.dump(s, open(sys.argv[2], "w"))
+s["name"] = sys.argv[1] + "-" + sys.argv[2]
+s.setdefault("sph", {})["boundary_rows"] = sys.argv[2] == "rows"
+json.dump(s, open(sys.argv[3], "w"))
 PY
+  done
 done
 run() { local name=$1; shift; local t0=$SECONDS; timeout 300 "$B" "$@" > "$work/$name.txt" 2>&1; local rc=$?;
         echo "== $name (rc $rc, $((SECONDS - t0)) s)"; }
 {
-  run hydrostatic-rows-0.00625 validate hydrostatic --spacing 0.00625 --quiet --json "$work/hydrostatic-rows-0.00625.json"
+  run hydrostatic-rows-0.00625 validate hydrostatic --scene "$work/hydrostatic-rows.json" --spacing 0.00625 --quiet --json "$work/hydrostatic-rows-0.00625.json"
   grep -E "pressure error|floor layer|steps in" "$work/hydrostatic-rows-0.00625.txt"
   run hydrostatic-akinci-0.00625 validate hydrostatic --scene "$work/hydrostatic-akinci.json" --spacing 0.00625 --quiet
   grep -E "pressure error|floor layer|steps in" "$work/hydrostatic-akinci-0.00625.txt"
-  run hydrostatic-rows-0.003125 validate hydrostatic --spacing 0.003125 --quiet --json "$work/hydrostatic-rows-0.003125.json"
+  run hydrostatic-rows-0.003125 validate hydrostatic --scene "$work/hydrostatic-rows.json" --spacing 0.003125 --quiet --json "$work/hydrostatic-rows-0.003125.json"
   grep -E "particles|pressure error|floor layer|steps in" "$work/hydrostatic-rows-0.003125.txt"
   for mode in rows akinci; do
-    scene=dam-break; [ $mode = akinci ] && scene="$work/dam-break-akinci.json"
+    scene="$work/dam-break-$mode.json"
     run dam-break-$mode-250k profile --scene "$scene" --spacing 0.00317 --size 1920x1080 --frames 8 --warmup 20 --json "$work/dam-break-$mode-250k.json"
     grep -E "particles|substeps|iterations|dfsph\.|GPU ms|real-time|guard|unstable" "$work/dam-break-$mode-250k.txt" | head -30
   done

@@ -414,7 +414,8 @@ TEST_CASE("dfsph: warm-starting from the last step's pressure takes fewer iterat
     // (llvmpipe, deterministic: no random input), required at most 0.6 of them.
     const std::uint32_t warm = iterations(R"("warm_start": 1, "boundary_rows": false)"),
                         cold = iterations(R"("warm_start": 0, "boundary_rows": false)");
-    const std::uint32_t warm_rows = iterations(R"("warm_start": 1)"), cold_rows = iterations(R"("warm_start": 0)");
+    const std::uint32_t warm_rows = iterations(R"("warm_start": 1, "boundary_rows": true)"),
+                        cold_rows = iterations(R"("warm_start": 0, "boundary_rows": true)");
     INFO("third step: " << warm << " iterations warm-started, " << cold << " from no pressure; with the boundary rows " << warm_rows
                         << " and " << cold_rows);
     CHECK(2 * warm <= cold);
