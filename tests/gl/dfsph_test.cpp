@@ -461,6 +461,14 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
     rig.sim.end_frame();
     rig.timer.end_frame();
     rig.finish();
+    // The rows' passes are timed under their own names (the row iterations inside their solve's).
+    for (const char* name : {"dfsph.boundary.list", "dfsph.boundary.prepare"}) {
+        INFO("pass " << name);
+        const auto& passes = rig.timer.passes();
+        const auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.name == name; });
+        REQUIRE(it != passes.end());
+        CHECK(!it->calls.empty());
+    }
 
     const ref::Params p = rig.params();
     std::vector<dvec3> xb;

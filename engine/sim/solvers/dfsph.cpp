@@ -56,6 +56,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       pressure_solve_(timer.pass("dfsph.pressure.solve")),
       integrate_pass_(timer.pass("dfsph.integrate")),
       prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
+      list_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.list") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, false))),
@@ -208,11 +209,14 @@ void Dfsph::open_solve(int solve) {
 
 void Dfsph::compute_density(Fluid& fluid) {
     if (divergence_) open_solve(1);
-    auto pass = timer_.scope(density_pass_);
-    density_.bind(state(fluid, 1)).dispatch(fluid.count());
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    fluid.set_neighbour_masks_current(true);
-    if (rows_) {
+    {
+        auto pass = timer_.scope(density_pass_);
+        density_.bind(state(fluid, 1)).dispatch(fluid.count());
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        fluid.set_neighbour_masks_current(true);
+    }
+    if (rows_) {   // (D9): this step's rows, listed and sized
+        auto pass = timer_.scope(list_pass_);
         list_rows_.bind(state(fluid, 1)).dispatch(fluid.count());
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         size_rows_.bind(state(fluid, 1)).use();

@@ -14,7 +14,7 @@
 //     "dfsph.pressure.solve"         (D6) iterations, likewise
 //     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
 //
-// With the boundary rows of (D9) (sph.boundary_rows, the default), the density pass is followed by
+// With the boundary rows of (D9) (sph.boundary_rows), the density pass is followed by "dfsph.boundary.list":
 // list_boundary_rows.comp (the boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve
 // opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration
 // runs correct_boundary_pressure.comp before correct_pressure.comp, indirectly over the rows.
@@ -87,7 +87,7 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
-        prepare_pass_;
+        prepare_pass_, list_pass_;
     bool divergence_, rows_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program list_rows_, size_rows_, prepare_rows_, correct_rows_;   // (D9), built when rows_
