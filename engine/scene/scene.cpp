@@ -452,6 +452,7 @@ Scene parse(const std::string& text, const std::string& origin) {
             q.s_corr_dq = float(b.number("s_corr_dq"));
             q.xsph = float(b.number("xsph"));
             q.vorticity = float(b.number("vorticity"));
+            q.warm_start = float(b.number("warm_start"));
             b.finish();
         }
         p.finish();

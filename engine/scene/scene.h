@@ -48,6 +48,7 @@ struct PbfSettings {
     float s_corr_dq = 0.2f;         // |dq| of (P5), in units of h
     float xsph = 0.01f;             // c of (P7)
     float vorticity = 0.0f;         // epsilon of (P8) (m/s); 0: no vorticity confinement
+    float warm_start = 0.0f;        // w of (P10): the last step's pressure acceleration in the prediction
 };
 
 struct SphSettings {

@@ -55,7 +55,8 @@ NeighbourGrid::NeighbourGrid(const shader::FileSource& shaders, profile::GpuTime
       hash_(shader::Program::compute(shaders, "sim/grid/hash_particles.comp")),
       reorder_{shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 0\n"),
                shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 1\n"),
-               shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 2\n")},
+               shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 2\n"),
+               shader::Program::compute(shaders, "sim/grid/reorder_particles.comp", "#define RANRYU_CARRIED_ARRAYS 3\n")},
       sort_(shaders, timer, capacity),
       layout_(layout),
       method_(method),
@@ -81,7 +82,7 @@ void NeighbourGrid::bind_params(std::size_t count) {
 void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
                           gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
                           std::span<const CarriedArray> carried) {
-    if (carried.size() > max_carried) throw Error("NeighbourGrid::build: more than 2 carried arrays");
+    if (carried.size() > max_carried) throw Error("NeighbourGrid::build: more than 3 carried arrays");
     bind_params(count);
     {
         auto pass = timer_.scope(hash_pass_);
@@ -108,14 +109,15 @@ void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity
                                    {"CellStart", &ranges.start},         {"CellEnd", &ranges.end},
                                    {"Positions", &position},              {"Velocities", &velocity},
                                    {"SortedPositions", &sorted_position}, {"SortedVelocities", &sorted_velocity}};
-        static constexpr std::string_view from[] = {"Carried0", "Carried1"}, to[] = {"SortedCarried0", "SortedCarried1"};
-        GLuint words[2] = {0, 0};
+        static constexpr std::string_view from[] = {"Carried0", "Carried1", "Carried2"},
+                                          to[] = {"SortedCarried0", "SortedCarried1", "SortedCarried2"};
+        GLuint words[3] = {0, 0, 0};
         for (std::size_t a = 0; a < carried.size(); ++a) {
             buffers.add(from[a], *carried[a].from).add(to[a], *carried[a].to);
             words[a] = carried[a].words;
         }
         const shader::Program& reorder = reorder_[carried.size()];
-        if (!carried.empty()) glProgramUniform2ui(reorder.id(), RANRYU_LOC_AUX, words[0], words[1]);
+        if (!carried.empty()) glProgramUniform3ui(reorder.id(), RANRYU_LOC_AUX, words[0], words[1], words[2]);
         reorder.bind(buffers).dispatch(count);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

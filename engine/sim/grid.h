@@ -65,7 +65,7 @@ public:
     // at an entry's start is the cell's own (glsl/sim/fluid/fluid.glsl, fluid_run). Leaves
     // RANRYU_UBO_GRID bound to this grid. The reorder also gathers up to max_carried `carried` arrays
     // (the fluid's carried arrays, sim/fluid.h) in the same pass.
-    static constexpr std::size_t max_carried = 2;
+    static constexpr std::size_t max_carried = 3;
     void build(const gl::Buffer& position, const gl::Buffer& velocity, gl::Buffer& sorted_position,
                gl::Buffer& sorted_velocity, CellRanges& ranges, std::size_t count, bool clear,
                std::span<const CarriedArray> carried = {});

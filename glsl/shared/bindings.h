@@ -199,6 +199,10 @@ RANRYU_STRUCT_END(BoundaryRowsState, 32)
 
 // ---- PBF (engine/sim/solvers/pbf.h, glsl/sim/pbf/; docs/PBF.md) ----
 #define RANRYU_UBO_PBF 9   // PbfParams
+// (P10): the largest warm-start acceleration, in units of |g|. The warm start carries the weight of
+// the fluid above a particle (|a^p| = |g| at rest), not the impulses of an impact, which the
+// iterations answer (docs/PBF.md (P10)).
+#define RANRYU_PBF_WARM_CAP 2.0
 
 // The PBF passes' constants (std140), written once at start, in SI units.
 RANRYU_STRUCT(PbfParams) {
@@ -209,7 +213,7 @@ RANRYU_STRUCT(PbfParams) {
     float xsph;           // c of (P7)
     float vorticity;      // epsilon of (P8) (m/s)
     uint iterations;      // constraint iterations a substep
-    uint pad0;
+    float warm_start;     // w of (P10); 0: no warm start
 }
 RANRYU_STRUCT_END(PbfParams, 32)
 // ---- end PBF

@@ -20,7 +20,7 @@
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               24 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               25 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -39,7 +39,7 @@ layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
 layout(std140, binding = RANRYU_UBO_PBF) uniform PbfBlock { PbfParams pbf; };
 layout(std430) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[24] = uint[24](
+const uint kMacros[25] = uint[25](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
     RANRYU_UBO_SURFACE, RANRYU_UBO_NOISE,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
@@ -47,7 +47,7 @@ const uint kMacros[24] = uint[24](
     RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
     RANRYU_UBO_SUBPARTICLES, RANRYU_LOC_SUBPARTICLE_GROUP,
     RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE),
-    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF);
+    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF, floatBitsToUint(RANRYU_PBF_WARM_CAP));
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }
@@ -97,7 +97,7 @@ void main() {
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
     put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);
-    put(pbf.xsph); put(pbf.vorticity); put(pbf.iterations); put(pbf.pad0);
+    put(pbf.xsph); put(pbf.vorticity); put(pbf.iterations); put(pbf.warm_start);
 
     for (int i = 0; i < kMacros.length(); ++i) put(kMacros[i]);
 }

@@ -9,6 +9,7 @@
 // The probe shader is glsl/test/probe_layout.comp; its header comment gives the output order.
 #include "support/gl_fixture.h"
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -177,7 +178,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"pbf.xsph", {offsetof(gpu::PbfParams, xsph), GL_FLOAT}},
         {"pbf.vorticity", {offsetof(gpu::PbfParams, vorticity), GL_FLOAT}},
         {"pbf.iterations", {offsetof(gpu::PbfParams, iterations), GL_UNSIGNED_INT}},
-        {"pbf.pad0", {offsetof(gpu::PbfParams, pad0), GL_UNSIGNED_INT}},
+        {"pbf.warm_start", {offsetof(gpu::PbfParams, warm_start), GL_FLOAT}},
     };
     return table;
 }
@@ -236,6 +237,7 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_UBO_DFSPH", RANRYU_UBO_DFSPH},
     {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
     {"RANRYU_UBO_PBF", RANRYU_UBO_PBF},
+    {"RANRYU_PBF_WARM_CAP", std::bit_cast<std::uint32_t>(float(RANRYU_PBF_WARM_CAP))},
 };
 
 const Program& probe() {
@@ -444,7 +446,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     for (std::uint32_t* u : {&rs.rows, &rs.count, &rs.epoch, &rs.pad0}) *u = d.u();
     gpu::PbfParams bp{};
     for (float* f : {&bp.epsilon, &bp.s_corr_scale, &bp.s_corr_n, &bp.inv_w_dq, &bp.xsph, &bp.vorticity}) *f = d.f();
-    for (std::uint32_t* u : {&bp.iterations, &bp.pad0}) *u = d.u();
+    bp.iterations = d.u();
+    bp.warm_start = d.f();
 
     Words expect;
     expect.put(lp.m); expect.put(lp.v); expect.put(lp.u); expect.put(lp.f0); expect.put(lp.f1);
@@ -492,7 +495,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
     const std::size_t rows_end = expect.w.size();
     expect.put(bp.epsilon); expect.put(bp.s_corr_scale); expect.put(bp.s_corr_n); expect.put(bp.inv_w_dq);
-    expect.put(bp.xsph); expect.put(bp.vorticity); expect.put(bp.iterations); expect.put(bp.pad0);
+    expect.put(bp.xsph); expect.put(bp.vorticity); expect.put(bp.iterations); expect.put(bp.warm_start);
     const std::size_t pbf_end = expect.w.size();
     for (const auto& [name, value] : kMacros) expect.put(value);
     // The word counts of probe_layout.comp's header: every member of each struct was put.

@@ -119,22 +119,33 @@ Magnitudes magnitudes(const std::vector<dvec3>& x, const pb::Neighbours& n, cons
 // The stages of one step of two iterations on the state (x, v), everything read back after each.
 struct Stages {
     std::vector<glm::vec4> start, v0, xstar, density1, x1, density2, x2, xproj, vstep, vend, omega;
+    // With the warm start (P10), which starts from `warm` (the upload's order): the prediction and
+    // PbfWarm before the sort, PbfWarm after it (d_i), and at the step's end (a^p_i).
+    std::vector<glm::vec4> xstar_unsorted, warm_predicted, warm_sorted, warm_end;
     std::vector<double> lambda1, lambda2;
     float dt = 0.0f;
     std::uint32_t max_density = 0;   // StepState.frame_max_density: the bits of the largest ρ/ρ0 recorded
 };
 
-Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, float dt) {
+Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, float dt,
+                  const std::vector<glm::vec4>& warm = {}) {
     Stages s;
     auto& pbf = rig.pbf();
     REQUIRE(pbf.iterations() == 2);
+    const bool warm_start = pbf.params().warm_start > 0.0f;
     rig.fluid.upload_state(x, v);
+    if (warm_start) pbf.warm().upload(warm.data(), warm.size() * sizeof(glm::vec4));
     rig.fluid.set_fixed_dt(dt);
     rig.timer.begin_frame();
     rig.sim.begin_frame(0);
     rig.fluid.choose_time_step();
     pbf.predict(rig.fluid);
+    if (warm_start) {
+        s.xstar_unsorted = rig.read(rig.fluid.positions());
+        s.warm_predicted = rig.read(pbf.warm());
+    }
     rig.fluid.rebuild_grid();
+    if (warm_start) s.warm_sorted = rig.read(pbf.warm());
     s.start = rig.read(pbf.start());
     s.v0 = rig.read(rig.fluid.velocities());
     s.xstar = rig.read(rig.fluid.positions());
@@ -151,6 +162,7 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     pbf.update_velocities(rig.fluid);
     s.xproj = rig.read(rig.fluid.positions());
     s.vstep = rig.read(pbf.step_velocities());
+    if (warm_start) s.warm_end = rig.read(pbf.warm());
     pbf.apply_viscosity(rig.fluid);
     s.vend = rig.read(rig.fluid.velocities());
     if (pbf.params().vorticity > 0.0f) s.omega = rig.read(pbf.vorticity());
@@ -395,6 +407,61 @@ TEST_CASE("pbf: the step's velocities, XSPH and vorticity confinement match the 
         for (std::size_t i = 0; i < N; ++i) moved = std::max(moved, glm::length(want[i] - smooth[i]));
         CHECK(moved > 1e3 * kU);
     }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("pbf: the warm start (P10) adds w a^p to the prediction and leaves the step's capped pressure acceleration", "[pbf]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig(R"("warm_start": 0.75)");
+    // A block 0.5 % compressed, jittered by ±0.03 dx, at up to 0.05 m/s, over a step of 4 ms (the
+    // scene's frame_dt / 4): corrections of the order of the cap's 2 g dt² = 0.3 mm, some above it and
+    // some below.
+    const float dt = 4e-3f;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.02f, 0.03f, 0.025f), 0.995f, 0.03f, 0.05f, dt, x, v);
+    // The last step's a^p: random, up to 1.5 |g| (below the cap).
+    const double g = 9.81, w = 0.75, cap = RANRYU_PBF_WARM_CAP * g;
+    std::vector<glm::vec4> warm(x.size());
+    for (glm::vec4& a : warm) a = glm::vec4(rng.uniform(-0.85f, 0.85f), rng.uniform(-0.85f, 0.85f), rng.uniform(-0.85f, 0.85f), 0.0f) * float(g);
+    const Stages s = run_stages(rig, x, v, dt, warm);
+    const double dtd = double(s.dt), u = kU;
+    REQUIRE(dtd == Approx(double(dt)).epsilon(1e-6));
+    // The prediction (P1) with (P10): x* = x + dt(v + dt(g + w a^p)); float: each of the few products and
+    // sums rounds once (a few u of |x| + dt|v| + dt²|a|), |x| ≤ 0.3 m. PbfWarm then holds
+    // d = x* − x − w a^p dt², the same roundings over again.
+    const dvec3 gravity(0.0, -g, 0.0);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const dvec3 push = w * d3(warm[i]) * dtd * dtd;
+        const dvec3 want = d3(x[i]) + dtd * (d3(v[i]) + dtd * (gravity + w * d3(warm[i])));
+        const double e = 8.0 * u * (glm::length(d3(x[i])) + dtd * glm::length(d3(v[i])) + dtd * dtd * (g + glm::length(d3(warm[i]))));
+        CHECK(vec_error(s.xstar_unsorted[i], want) <= e);
+        CHECK(vec_error(s.warm_predicted[i], d3(s.xstar_unsorted[i]) - d3(x[i]) - push) <= 2.0 * e);
+    }
+    // The step's a^p (update_velocities.comp): (x − x_n − d)/dt² where the last lambda pass found
+    // the particle compressed, capped at RANRYU_PBF_WARM_CAP |g|; 0 elsewhere. The GPU forms x − x_n − d
+    // in float from numbers of size |x| ≤ 0.3 m: 4u·0.3 m, over dt².
+    const double e_a = 4.0 * u * 0.3 / (dtd * dtd);
+    int compressed = 0, capped = 0, free = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        INFO("particle " << i << ", density " << s.density2[i].x);
+        dvec3 want(0.0);
+        if (double(s.density2[i].x) > 1000.0) {
+            ++compressed;
+            want = (d3(s.x2[i]) - d3(s.start[i]) - d3(s.warm_sorted[i])) / (dtd * dtd);
+            if (glm::length(want) > cap) want *= cap / glm::length(want), ++capped;
+        } else {
+            ++free;
+        }
+        CHECK(vec_error(s.warm_end[i], want) <= e_a + 4.0 * u * glm::length(want));
+    }
+    // The block is what the test means: compressed inside, free at its faces, some accelerations capped
+    // and some not.
+    INFO(compressed << " compressed (" << capped << " capped), " << free << " not");
+    CHECK(compressed > 64);
+    CHECK(free > 0);
+    CHECK(capped > 0);
+    CHECK(capped < compressed);
     ranryu::test::require_no_gl_errors();
 }
 

@@ -11,8 +11,11 @@ namespace ranryu::sim {
 namespace {
 
 constexpr std::uint32_t kStartWords = 4;   // the carried step start x_n: a vec4 a particle
+constexpr std::uint32_t kWarmWords = 4;    // the carried warm start of (P10): a vec4 a particle
 
 std::string defines(const Fluid& fluid, const char* extra = "") { return fluid.neighbour_defines() + extra; }
+// The passes that read or write (P10)'s carried term declare it only when the scene warm-starts.
+std::string warm_defines(const scene::Scene& scene) { return scene.sph.pbf.warm_start > 0.0f ? "#define RANRYU_PBF_WARM 1\n" : ""; }
 
 // The cubic spline of docs/SPH.md (1) (glsl/sim/kernel.glsl), for (P5)'s W(|dq|).
 double kernel_w(double r, double h) {
@@ -35,6 +38,7 @@ gpu::PbfParams Pbf::params_for(const scene::Scene& scene) {
     p.xsph = s.xsph;
     p.vorticity = s.vorticity;
     p.iterations = std::uint32_t(s.iterations);
+    p.warm_start = s.warm_start;
     return p;
 }
 
@@ -47,16 +51,17 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
       viscosity_pass_(timer.pass("pbf.viscosity")),
       vorticity_pass_(timer.pass("pbf.vorticity")),
       vorticity_on_(scene.sph.pbf.vorticity > 0.0f),
-      predict_(shader::Program::compute(shaders, "sim/pbf/predict_positions.comp")),
+      predict_(shader::Program::compute(shaders, "sim/pbf/predict_positions.comp", warm_defines(scene))),
       lambda_walk_(shader::Program::compute(shaders, "sim/pbf/compute_lambda.comp", defines(fluid, "#define RANRYU_PBF_WALK 1\n"))),
       lambda_program_(shader::Program::compute(shaders, "sim/pbf/compute_lambda.comp", defines(fluid))),
       correct_(shader::Program::compute(shaders, "sim/pbf/correct_positions.comp", defines(fluid))),
-      velocity_update_(shader::Program::compute(shaders, "sim/pbf/update_velocities.comp")),
+      velocity_update_(shader::Program::compute(shaders, "sim/pbf/update_velocities.comp", warm_defines(scene))),
       viscosity_(shader::Program::compute(shaders, "sim/pbf/apply_viscosity.comp",
                                           defines(fluid, vorticity_on_ ? "#define RANRYU_PBF_VORTICITY 1\n" : ""))),
       params_(params_for(scene)),
       fluid_(fluid),
-      start_(fluid.carry("Start", kStartWords, std::vector<std::uint32_t>(kStartWords, 0u))) {
+      start_(fluid.carry("Start", kStartWords, std::vector<std::uint32_t>(kStartWords, 0u))),
+      warm_(scene.sph.pbf.warm_start > 0.0f ? fluid.carry("PbfWarm", kWarmWords, std::vector<std::uint32_t>(kWarmWords, 0u)) : -1) {
     if (vorticity_on_) vorticity_confine_ = shader::Program::compute(shaders, "sim/pbf/confine_vorticity.comp", defines(fluid));
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
     params_ubo_ = gl::Buffer(sizeof params_, GL_STATIC_DRAW, &params_, "PbfParams");
@@ -77,7 +82,8 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
 std::size_t Pbf::bytes_for(const scene::Scene& scene, std::size_t count) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's buffers
     return sizeof(gpu::PbfParams) + n * (sizeof(float) + sizeof(glm::vec4)) +
-           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + Fluid::carried_bytes(count, kStartWords);
+           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + Fluid::carried_bytes(count, kStartWords) +
+           (scene.sph.pbf.warm_start > 0.0f ? Fluid::carried_bytes(count, kWarmWords) : 0);
 }
 
 shader::StorageSet Pbf::state(Fluid& fluid) const {

@@ -51,6 +51,8 @@ public:
     const gl::Buffer& start() const { return fluid_.carried(start_); }   // vec4: x_n (P1)
     const gl::Buffer& step_velocities() const { return velocity_; }      // vec4: (x − x_n)/dt (P7) before XSPH
     const gl::Buffer& vorticity() const { return vorticity_; }           // vec4: omega_i, |omega_i| (P8)
+    const gl::Buffer& warm() const { return fluid_.carried(warm_); }     // vec4: (P10)'s carried term (warm_start > 0 only)
+    gl::Buffer& warm() { return fluid_.carried(warm_); }
 
 private:
     shader::StorageSet state(Fluid& fluid) const;
@@ -62,7 +64,7 @@ private:
     gpu::PbfParams params_{};
     gl::Buffer params_ubo_, lambda_, velocity_, vorticity_;
     Fluid& fluid_;
-    int start_;
+    int start_, warm_;
 };
 
 }  // namespace ranryu::sim

@@ -40,7 +40,7 @@ void main() {
         vec3 v = velocity[i].xyz + step.dt * a_;
         vec3 x = x0 + step.dt * v;
         keep_out_of_obstacles(x0, x, v);
-        keep_in_tank(x, v);
+        keep_in_tank(x0, x, v);
         next_position[i] = vec4(x, position[i].w);
         next_velocity[i] = vec4(v, velocity[i].w);
         vec2 w = vec2(kappa_i_, warm[i].y);

@@ -22,7 +22,7 @@ void main() {
         vec3 v = velocity[i].xyz + dt * accel[i].xyz;
         vec3 x = x0 + dt * v;
         keep_out_of_obstacles(x0, x, v);
-        keep_in_tank(x, v);
+        keep_in_tank(x0, x, v);
         position[i] = vec4(x, position[i].w);
         velocity[i] = vec4(v, velocity[i].w);
         bits = record_particle(i, x, v);

@@ -20,24 +20,29 @@ const float kSlack = 0.25;   // spacings a centre may lie inside a solid before 
 // sph_params), so the tank is the domain less that spacing. A wall is a slab as thick as its boundary
 // layers, ceil(h/dx) + 1 spacings (engine/sim/boundary.cpp); the side walls bound the fluid at every
 // height (the guard's domain does), so a splash thrown above an open top comes back down into the
-// tank. A particle beyond a slab's far face went through the wall: it is left where it is, for the
-// guard to report.
-void keep_in_tank(inout vec3 x, inout vec3 v) {
+// tank. Whether a particle is inside is decided by where its step began, x0, not by where it ended: a
+// step that began on the fluid's side of a slab's far face ends at the wall however far it went (PBF's
+// fixed step carries a splash particle further than a slab is thick, docs/PBF.md (P1)); a particle
+// whose step began beyond a far face went through a wall earlier: it is left where it is, for the guard
+// to report.
+void keep_in_tank(vec3 x0, inout vec3 x, inout vec3 v) {
     float slack = kSlack * sph.spacing;
     vec3 lo = sph.domain_min.xyz + sph.spacing - slack;
     vec3 hi = sph.domain_max.xyz - sph.spacing + slack;
     bool lid = sph.domain_max.w > 0.5;
     float thick = (ceil(sph.h / sph.spacing) + 1.0) * sph.spacing - slack;
     for (int a = 0; a < 3; ++a) {
-        if (x[a] < lo[a] && x[a] > lo[a] - thick) { x[a] = lo[a]; v[a] = max(v[a], 0.0); }
-        if ((a != 1 || lid) && x[a] > hi[a] && x[a] < hi[a] + thick) { x[a] = hi[a]; v[a] = min(v[a], 0.0); }
+        if (x[a] < lo[a] && x0[a] > lo[a] - thick) { x[a] = lo[a]; v[a] = max(v[a], 0.0); }
+        if ((a != 1 || lid) && x[a] > hi[a] && x0[a] < hi[a] + thick) { x[a] = hi[a]; v[a] = min(v[a], 0.0); }
     }
 }
 
 // Obstacles are solid throughout: a centre more than the slack inside one goes back to that depth
 // (a sphere: radially; a box: through the face it entered by, which is the face of least depth among
 // those the particle was outside of before the step, so it cannot tunnel through a thin box). The
-// slack is at most a quarter of a box's thickness or half a sphere's radius.
+// slack is at most a quarter of a box's thickness or half a sphere's radius. A step from x0 outside
+// that crosses the solid and leaves it again (a fast particle, or PBF's fixed step, docs/PBF.md (P1))
+// stops where the segment x0 -> x first meets it (enter_sphere, enter_box), as one inside would.
 //
 // The paddle (engine/sim/boundary.h) is a kinematic sphere that moves with velocity u: a moving wall
 // (docs/SPH.md (9)). It has no slack: a centre inside it goes out radially onto its surface,
@@ -55,6 +60,37 @@ void keep_out_of_paddle(vec3 x0, vec4 a, vec4 b, inout vec3 x, inout vec3 v) {
     v += max(dot(b.yzw, normal) - dot(v, normal), 0.0) * normal;
 }
 
+// The fraction t in [0, 1] of the segment x0 -> x at which it first meets the sphere (c, r) from
+// outside; 2 when it does not, or when x0 is inside (the static test's case).
+float enter_sphere(vec3 x0, vec3 x, vec3 c, float r) {
+    vec3 d = x - x0, m = x0 - c;
+    float a = dot(d, d), b = dot(m, d), e = dot(m, m) - r * r;
+    if (e <= 0.0 || a == 0.0 || b >= 0.0) return 2.0;   // inside, at rest, or moving away
+    float disc = b * b - a * e;
+    if (disc < 0.0) return 2.0;
+    float t = (-b - sqrt(disc)) / a;
+    return t <= 1.0 ? t : 2.0;
+}
+
+// The same for the box [lo, hi] (the slab method): t and the axis of the face entered, or t = 2.
+vec2 enter_box(vec3 x0, vec3 x, vec3 lo, vec3 hi) {
+    if (all(greaterThan(x0, lo)) && all(lessThan(x0, hi))) return vec2(2.0, 0.0);
+    vec3 d = x - x0;
+    float t0 = 0.0, t1 = 1.0;
+    int axis = -1;
+    for (int c = 0; c < 3; ++c) {
+        if (d[c] == 0.0) {
+            if (x0[c] <= lo[c] || x0[c] >= hi[c]) return vec2(2.0, 0.0);
+            continue;
+        }
+        float ta = (lo[c] - x0[c]) / d[c], tb = (hi[c] - x0[c]) / d[c];
+        float near = min(ta, tb), far = max(ta, tb);
+        if (near > t0) { t0 = near; axis = c; }
+        t1 = min(t1, far);
+    }
+    return axis >= 0 && t0 < t1 ? vec2(t0, float(axis)) : vec2(2.0, 0.0);
+}
+
 void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
     uint n = uint(obstacle[0].x);
     float slack = kSlack * sph.spacing;
@@ -64,6 +100,13 @@ void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
             keep_out_of_paddle(x0, a, b, x, v);
         } else if (a.w > 0.5) {   // sphere: centre a.xyz, radius b.x
             float inner = b.x - min(slack, 0.5 * b.x);
+            float t = enter_sphere(x0, x, a.xyz, inner);
+            if (t <= 1.0) {
+                x = x0 + t * (x - x0);
+                vec3 n = normalize(x - a.xyz);
+                v -= min(dot(v, n), 0.0) * n;
+                continue;
+            }
             vec3 d = x - a.xyz;
             float r = length(d);
             if (r >= inner) continue;
@@ -73,6 +116,15 @@ void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
         } else {           // box [a, b], its solid for this purpose [lo, hi]
             vec3 inset = min(vec3(slack), 0.25 * (b.xyz - a.xyz));
             vec3 lo = a.xyz + inset, hi = b.xyz - inset;
+            vec2 hit = enter_box(x0, x, lo, hi);
+            if (hit.x <= 1.0) {
+                int c = int(hit.y);
+                bool low = x0[c] <= lo[c];
+                x = x0 + hit.x * (x - x0);
+                x[c] = low ? lo[c] : hi[c];
+                v[c] = low ? min(v[c], 0.0) : max(v[c], 0.0);
+                continue;
+            }
             if (any(lessThanEqual(x, lo)) || any(greaterThanEqual(x, hi))) continue;
             vec3 below = x - lo, above = hi - x;   // depths past the lower and upper faces
             bool entered = any(lessThanEqual(x0, lo)) || any(greaterThanEqual(x0, hi));

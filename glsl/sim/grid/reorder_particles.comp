@@ -8,8 +8,8 @@
 //   - the gather of the particle arrays into sorted order,
 //     out[i] = in[value[i]],
 // so that the particles of one cell, and of neighbouring cells, are close in memory. With
-// RANRYU_CARRIED_ARRAYS = 1 or 2, that many more per-particle arrays move with them (the fluid's
-// carried arrays: the turbulence's noise seeds, a solver's warm start), each of carried_words[a]
+// RANRYU_CARRIED_ARRAYS = 1, 2 or 3, that many more per-particle arrays move with them (the fluid's
+// carried arrays: the turbulence's noise seeds, a solver's step start and warm start), each of carried_words[a]
 // 32-bit words a particle.
 #include "../../shared/bindings.h"
 
@@ -24,13 +24,17 @@ layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) writeonly buffer SortedPositions { vec4 sorted_position[]; };
 layout(std430) writeonly buffer SortedVelocities { vec4 sorted_velocity[]; };
 #if RANRYU_CARRIED_ARRAYS >= 1
-layout(location = RANRYU_LOC_AUX) uniform uvec2 carried_words;
+layout(location = RANRYU_LOC_AUX) uniform uvec3 carried_words;
 layout(std430) readonly buffer Carried0 { uint carried0[]; };
 layout(std430) writeonly buffer SortedCarried0 { uint sorted_carried0[]; };
 #endif
 #if RANRYU_CARRIED_ARRAYS >= 2
 layout(std430) readonly buffer Carried1 { uint carried1[]; };
 layout(std430) writeonly buffer SortedCarried1 { uint sorted_carried1[]; };
+#endif
+#if RANRYU_CARRIED_ARRAYS >= 3
+layout(std430) readonly buffer Carried2 { uint carried2[]; };
+layout(std430) writeonly buffer SortedCarried2 { uint sorted_carried2[]; };
 #endif
 
 void main() {
@@ -48,5 +52,8 @@ void main() {
 #endif
 #if RANRYU_CARRIED_ARRAYS >= 2
     for (uint w = 0u; w < carried_words.y; ++w) sorted_carried1[i * carried_words.y + w] = carried1[src * carried_words.y + w];
+#endif
+#if RANRYU_CARRIED_ARRAYS >= 3
+    for (uint w = 0u; w < carried_words.z; ++w) sorted_carried2[i * carried_words.z + w] = carried2[src * carried_words.z + w];
 #endif
 }

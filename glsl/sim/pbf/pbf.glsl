@@ -5,6 +5,8 @@
 //     Start           vec4 per particle, carried with it through the reorder: x_n, the step's start (P1)
 //     PbfVelocity     vec4: the velocity (x − x_n)/dt of (P7) before XSPH, gathered by neighbours
 //     Vorticity       vec4: omega_i of (P8), gathered by neighbours (with vorticity confinement only)
+//     PbfWarm         vec4 per particle, carried (warm_start > 0 only): a^p_i of (P10) between steps,
+//                     the prediction's displacement d_i within one
 #include "../fluid/fluid.glsl"
 
 layout(std140, binding = RANRYU_UBO_PBF) uniform PbfBlock { PbfParams pbf; };
