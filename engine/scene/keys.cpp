@@ -139,7 +139,7 @@ std::vector<Key> make_keys() {
         number("sph.speed_limit", "m/s", h.speed_limit, 0.0, 1e5,
                "The guard: the largest speed; 0: 5·(sqrt(2 g H_tank) + the largest initial speed)."),
         object("sph.pbf", "PBF's settings (`\"solver\": \"pbf\"`, docs/PBF.md): a fixed number of substeps and iterations, so a frame's cost is known."),
-        integer("sph.pbf.substeps", "", h.pbf.substeps, 1, 1000, "PBF: substeps a frame, each of frame_dt / substeps (docs/PBF.md (P1))."),
+        integer("sph.pbf.substeps", "", h.pbf.substeps, 1, 1000, "PBF: substeps a frame at the scene's particles.spacing, each of frame_dt / substeps (docs/PBF.md (P1)); another spacing (--spacing) scales them by the scene's spacing over it, rounded up (docs/PBF.md \"Resolution\")."),
         integer("sph.pbf.iterations", "", h.pbf.iterations, 1, 1000, "PBF: constraint iterations a substep, (P3)–(P6) each."),
         number("sph.pbf.relaxation", "1/dx²", h.pbf.relaxation, 0.0, 100.0,
                "PBF: the constraint's relaxation ε of (P4), in units of 1/Δx² (a full neighbourhood's Σ|∇C|² is about 0.42/Δx²)."),

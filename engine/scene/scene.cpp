@@ -560,6 +560,10 @@ Scene load(const std::string& name_or_path) {
 
 Scene with_spacing(Scene s, float dx, const std::string& what) {
     if (!(dx >= 1e-4f && dx <= 1.0f)) throw InputError(what + ": spacing " + fmt(dx) + " m is out of range [0.0001, 1]");
+    // PBF's fixed step keeps its Courant number: sph.pbf.substeps are the scene's at its own spacing,
+    // and the step may move the flow no more spacings at another (docs/PBF.md "Resolution").
+    const double substeps = std::ceil(double(s.sph.pbf.substeps) * double(s.spacing) / double(dx) - 1e-9);
+    s.sph.pbf.substeps = int(std::clamp(substeps, 1.0, 1000.0));
     s.spacing = dx;
     s.particle_radius = 0.5f * dx;
     const std::size_t n = s.particle_count();

@@ -179,7 +179,8 @@ Scene parse(const std::string& json_text, const std::string& origin);
 // `name_or_path`: a bundled scene's name ("falling-block") or a path to a .json file.
 Scene load(const std::string& name_or_path);
 
-// The same scene at another resolution: particle spacing `dx` (m), radius dx/2. Throws
+// The same scene at another resolution: particle spacing `dx` (m), radius dx/2, PBF's substeps scaled
+// by the old spacing over dx, rounded up (its step keeps its Courant number, docs/PBF.md). Throws
 // ranryu::InputError (naming `what`) when that leaves no particle or too many.
 Scene with_spacing(Scene s, float dx, const std::string& what);
 

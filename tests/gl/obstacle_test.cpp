@@ -271,10 +271,11 @@ Scene jet_scene(const std::string& name, const std::string& solver, float dx, bo
     // the path exists for (glsl/sim/fluid/motion.glsl, docs/PBF.md (P1)). Four iterations of so long a
     // step leave the impact compressed beyond the guard's 1.5 rho0 (up to 2.4 here: docs/PBF.md
     // "Resolution"), which is not what this test is about: its density bound is 4.
-    s.sph.pbf.substeps = dx < 0.02f ? 2 : 1;
     if (s.sph.solver == ranryu::scene::Solver::pbf) s.sph.density_limit = 4.0f;
     if (!obstacles) s.obstacles.clear();
-    return ranryu::scene::with_spacing(s, dx, "test");
+    s = ranryu::scene::with_spacing(s, dx, "test");
+    s.sph.pbf.substeps = dx < 0.02f ? 2 : 1;   // after with_spacing, which scales them
+    return s;
 }
 
 // Bounds. The projection (integrate_particles.comp) lets a centre lie kSlack = dx/4 inside a solid

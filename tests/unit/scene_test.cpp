@@ -70,3 +70,18 @@ TEST_CASE("substeps cover the frame exactly") {
     s = parse("{" + kBlock + ", \"time\": {\"frame_dt\": 0.02, \"substep_dt\": 0.005}}", "t");
     CHECK(s.substeps() == 4);
 }
+
+TEST_CASE("another spacing scales PBF's substeps in inverse proportion, rounding up") {
+    // docs/PBF.md "Resolution": the fixed step keeps its Courant number. The dam break's 4 substeps at
+    // 12.5 mm become 16 at 3.17 mm and 25 at 2 mm (24 was measured stable on the H100), 2 at 25 mm.
+    const Scene s = load("dam-break");
+    REQUIRE(s.spacing == Approx(0.0125f));
+    REQUIRE(s.sph.pbf.substeps == 4);
+    CHECK(with_spacing(s, 0.0125f, "t").sph.pbf.substeps == 4);
+    CHECK(with_spacing(s, 0.00317f, "t").sph.pbf.substeps == 16);
+    CHECK(with_spacing(s, 0.002f, "t").sph.pbf.substeps == 25);
+    CHECK(with_spacing(s, 0.025f, "t").sph.pbf.substeps == 2);
+    CHECK(with_spacing(s, 0.1f, "t").sph.pbf.substeps == 1);
+    // Twice over is the same as once: the substeps follow the spacing, not the path to it.
+    CHECK(with_spacing(with_spacing(s, 0.005f, "t"), 0.00317f, "t").sph.pbf.substeps >= 16);
+}
