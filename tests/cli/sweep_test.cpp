@@ -1,8 +1,10 @@
 // ranryu sweep (app/sweep.cpp) and its charts (scripts/sweep-charts.py): a tiny sweep's rows, a
 // deliberately unstable setting recorded with its cause while the sweep goes on, resuming, shards,
-// bad input, and the charts' files with their labels.
+// bad input, and the charts' files with their labels; the scene cases (scene:NAME) likewise.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_helper.h"
+#include "scene/scene.h"
 
 using namespace ranryu::test;
 using Catch::Matchers::Contains;
@@ -204,4 +207,139 @@ TEST_CASE("sweep: a PBF row's factor divides its fixed substeps and keeps its it
     const auto steps = [&](double f) { return by_factor.at(f)["steps"].get<double>(); };
     CHECK(steps(0.5) == Approx(2.0 * steps(1.0)).epsilon(0.02));
     CHECK(steps(1.0) == Approx(2.0 * steps(2.0)).epsilon(0.02));
+}
+
+TEST_CASE("sweep: a scene case runs the bundled scene for --seconds with its compression, the guard's verdict, the energy "
+          "criterion that fits it, and resumes only at the same --seconds",
+          "[sweep][scenes]") {
+    TempDir dir;
+    const fs::path out = dir.path() / "sw";
+    RunOptions slow;
+    slow.timeout = std::chrono::seconds(400);
+    // The dam break at a coarse spacing with WCSPH at factors 1 and 10 (10 leaves the tank within
+    // its first frames, as in the validation case), then the turbulent jet with PBF into the same folder.
+    const std::vector<std::string> dam = {"sweep", "--cases", "scene:dam-break", "--solvers", "wcsph", "--spacings", "0.025",
+                                          "--factors", "1,10", "--seconds", "1", "--quiet", "--out", out.string()};
+    const Result r = run_ranryu(dir.path(), dam, slow);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("2 run (1 unstable)"));
+    const Result jet = run_ranryu(dir.path(), {"sweep", "--cases", "scene:turbulent-jet", "--solvers", "pbf", "--spacings", "0.04",
+                                               "--factors", "1", "--seconds", "1", "--quiet", "--out", out.string()}, slow);
+    INFO(jet.out << jet.err);
+    REQUIRE(jet.exit_code == 0);
+    CHECK_THAT(jet.out, Contains("1 run (0 unstable), 0 already done"));
+
+    const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+    REQUIRE(j["rows"].size() == 3);
+    std::map<std::string, nlohmann::json> rows;
+    for (const auto& row : j["rows"]) rows[row["key"].get<std::string>()] = row;
+    REQUIRE(rows.count("scene:dam-break/wcsph/0.025/1"));
+    REQUIRE(rows.count("scene:dam-break/wcsph/0.025/10"));
+    REQUIRE(rows.count("scene:turbulent-jet/pbf/0.04/1"));
+    for (const auto& [key, row] : rows) {
+        INFO(row.dump());
+        CHECK(row["seconds"].get<double>() == 1.0);
+        for (const char* f : {"case", "solver", "spacing", "factor", "cfl", "status", "device", "date", "energy_check", "particles"})
+            CHECK(row.contains(f));
+    }
+    const nlohmann::json& bad = rows["scene:dam-break/wcsph/0.025/10"];
+    CHECK(bad["status"] == "unstable");
+    CHECK(bad["failure_frame"].get<int>() >= 0);
+    CHECK(bad["failure_time"].get<double>() < 1.0);
+    CHECK_THAT(bad["failure_message"].get<std::string>(), Contains("unstable at frame"));
+    CHECK_FALSE(bad.contains("mean_density_deviation_peak"));
+    for (const char* key : {"scene:dam-break/wcsph/0.025/1", "scene:turbulent-jet/pbf/0.04/1"}) {
+        const nlohmann::json& row = rows[key];
+        INFO(row.dump());
+        CHECK(row["status"] == "stable");
+        CHECK(row["simulated_seconds"].get<double>() == Approx(1.0).epsilon(1e-3));
+        CHECK(row["steps"].get<int>() > 0);
+        CHECK(row["gpu_ms_per_simulated_second"].get<double>() >= 0.0);
+        // The worst frame's mean compression: at least the average's and the end's, at most the worst particle's.
+        const double peak = row["mean_density_deviation_peak"].get<double>();
+        CHECK(peak >= row["mean_density_deviation_average"].get<double>());
+        CHECK(peak >= row["mean_density_deviation"].get<double>());
+        CHECK(peak <= row["max_density_deviation"].get<double>());
+        CHECK(peak < 0.05);
+        CHECK(row["mean_density_deviation_peak_time"].get<double>() > 0.0);
+        CHECK(row["error"].get<double>() == peak);
+        CHECK(row["error_max"].get<double>() == row["max_density_deviation"].get<double>());
+        CHECK_THAT(row["error_name"].get<std::string>(), Contains("mean compression"));
+    }
+    // The energy criterion: a closed tank under gravity is checked for a gain; the jet, whose
+    // turbulence force does work on the fluid, is not.
+    CHECK_THAT(rows["scene:dam-break/wcsph/0.025/1"]["energy_check"].get<std::string>(), Contains("gain above 1 %"));
+    CHECK(rows["scene:dam-break/wcsph/0.025/1"]["energy_drift"].get<double>() < 0.0);
+    CHECK_THAT(rows["scene:turbulent-jet/pbf/0.04/1"]["energy_check"].get<std::string>(), Contains("turbulence force"));
+    CHECK(rows["scene:turbulent-jet/pbf/0.04/1"]["pbf_substeps"] == 4);
+    const std::vector<std::string> csv = lines(read_file(out / "sweep.csv"));
+    REQUIRE(csv.size() == 4);
+    CHECK_THAT(csv[0], Contains("seconds,mean_density_deviation_peak"));
+
+    // Resumed at the same --seconds: nothing runs. At another: refused before any run, naming the
+    // folder's file, the row and both durations; the rows stay as they were.
+    const Result again = run_ranryu(dir.path(), dam, slow);
+    INFO(again.out << again.err);
+    CHECK(again.exit_code == 0);
+    CHECK_THAT(again.out, Contains("0 run (0 unstable), 2 already done"));
+    std::vector<std::string> longer = dam;
+    REQUIRE(longer[9] == "--seconds");
+    longer[10] = "2";
+    const std::string before = read_file(out / "sweep.json");
+    const Result refused = run_ranryu(dir.path(), longer, slow);
+    INFO(refused.out << refused.err);
+    CHECK(refused.exit_code == 2);
+    CHECK(lines(refused.err).size() == 1);
+    CHECK_THAT(refused.err, Contains((out / "sweep.json").string()));
+    CHECK_THAT(refused.err, Contains("scene:dam-break/wcsph/0.025/1 ran 1 simulated seconds, and --seconds asks for 2"));
+    CHECK(read_file(out / "sweep.json") == before);
+}
+
+TEST_CASE("sweep: the scene cases are the bundled SPH scenes at their own spacings, and bad scene cases are refused",
+          "[sweep][scenes]") {
+    TempDir dir;
+    const Result r = run_ranryu(dir.path(), {"sweep", "--cases", "scenes", "--solvers", "dfsph", "--factors", "1", "--list"});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    std::set<std::string> listed;
+    for (const std::string& l : lines(r.out)) listed.insert(l.substr(l.find(' ') + 1));
+    std::set<std::string> want;
+    for (const ranryu::scene::BundledScene& b : ranryu::scene::bundled()) {
+        const ranryu::scene::Scene s = ranryu::scene::load(b.name);
+        if (s.model != ranryu::scene::Model::sph) continue;
+        char key[200];
+        std::snprintf(key, sizeof key, "scene:%s/dfsph/%.6g/1", b.name.c_str(), s.spacing);
+        want.insert(key);
+    }
+    CHECK(want.size() >= 4);
+    CHECK(listed == want);
+    CHECK_FALSE(r.out.find("falling-block") != std::string::npos);   // no SPH, no solver to sweep
+    // --shard partitions scene rows like any others.
+    std::multiset<std::string> union_;
+    for (int i = 1; i <= 2; ++i)
+        for (const std::string& l : lines(run_ranryu(dir.path(), {"sweep", "--cases", "scenes", "--solvers", "dfsph", "--factors",
+                                                                  "1", "--list", "--shard", std::to_string(i) + "/2"}).out))
+            union_.insert(l);
+    const std::vector<std::string> all_rows = lines(r.out);
+    CHECK(union_ == std::multiset<std::string>(all_rows.begin(), all_rows.end()));
+
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+        {{"--cases", "scene:falling-block"}, "ballistic model"},
+        {{"--cases", "scene:tsunami"}, "no bundled SPH scene of that name"},
+        {{"--cases", "scenes,scene:drop"}, "named twice"},
+        {{"--cases", "dam-break", "--seconds", "2"}, "--seconds: only the scene cases"},
+        {{"--cases", "scene:drop", "--seconds", "0"}, "--seconds 0"},
+        {{"--cases", "scene:drop", "--seconds", "x"}, "--seconds x"},
+    };
+    for (const auto& [args, says] : bad) {
+        std::vector<std::string> all = {"sweep", "--list"};
+        all.insert(all.end(), args.begin(), args.end());
+        const Result b = run_ranryu(dir.path(), all);
+        INFO(b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(lines(b.err).size() == 1);
+        CHECK_THAT(b.err, Contains(says));
+    }
+    CHECK(fs::is_empty(dir.path()));
 }
