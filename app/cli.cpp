@@ -361,7 +361,8 @@ std::string command_help(const std::string& cmd) {
     if (cmd == "scenes")
         return R"(usage: ranryu scenes [--schema | --markdown]
 
-List the bundled scenes with their descriptions.
+List the bundled scenes with their descriptions, and under a scene whose file says why its solver and
+step settings are its own (sph.why, docs/SCENES.md) that line.
 
   --schema            print instead the JSON Schema of scene files (media/scenes/scene.schema.json)
   --markdown          print instead the reference of every scene key (docs/SCENES.md)
@@ -394,6 +395,8 @@ having made more than 1 % of its energy (not where the turbulence force does wor
 rows go to sweep.json and sweep.csv in DIR after each run; a second invocation with the same DIR
 skips the rows already there (docs/SWEEP.md).
 Charts: scripts/sweep-charts.py DIR --out CHARTS (accuracy against cost, and the stability map).
+A scene's cheapest sound setting: scripts/scene-settings.py DIR (docs/SWEEP.md "Choosing a scene's
+settings").
 
   --out DIR           the sweep's folder (made if missing)
   --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and

@@ -1,8 +1,9 @@
 // `ranryu sweep`: the validation cases (engine/validation/cases.h) over case x solver x spacing x
 // time-step factor, one row a run, for the speed/accuracy chart and the stability map
 // (scripts/sweep-charts.py); and the scene cases, "scene:NAME", the bundled SPH scenes run as they
-// are for --seconds (docs/SWEEP.md). Rows are written after every run and a second invocation skips
-// the rows its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
+// are for --seconds, from whose rows scripts/scene-settings.py chooses each scene's cheapest sound
+// setting (docs/SWEEP.md). Rows are written after every run and a second invocation skips the rows
+// its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

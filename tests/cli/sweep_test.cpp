@@ -343,3 +343,114 @@ TEST_CASE("sweep: the scene cases are the bundled SPH scenes at their own spacin
     }
     CHECK(fs::is_empty(dir.path()));
 }
+
+TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest eligible setting and the keys to put in its file",
+          "[sweep][scenes][script]") {
+    // tests/data/sweeps/scene-settings.json: rows made up to meet each clause of the rule once
+    // (docs/SWEEP.md "Choosing a scene's settings").
+    TempDir dir;
+    const fs::path script = source_dir() / "scripts" / "scene-settings.py";
+    const fs::path rows = kData / "sweeps" / "scene-settings.json";
+    const Result r = run({"/usr/bin/python3", script.string(), rows.string(), "--json", (dir / "choices.json").string()});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    const auto j = nlohmann::json::parse(read_file(dir / "choices.json"));
+    CHECK(j["max_compression"] == 0.01);
+    CHECK(j["seconds"] == 10.0);
+    std::map<std::string, nlohmann::json> by;
+    for (const auto& s : j["scenes"]) {
+        char key[120];
+        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
+        by[key] = s;
+    }
+    // The validation case's row is not a scene's: four scenes, the dam break at two spacings.
+    REQUIRE(by.size() == 5);
+    auto verdict = [](const nlohmann::json& scene, const std::string& key) {
+        for (const auto& row : scene["rows"])
+            if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
+        return std::string("absent");
+    };
+
+    // The dam break: the cheaper rows fail one clause each, and wcsph x2 is chosen by its GPU time.
+    const nlohmann::json& dam = by.at("dam-break@0.0125");
+    INFO(dam.dump(1));
+    CHECK(dam["cost_measure"] == "gpu_ms_per_simulated_second");
+    CHECK(dam["chosen"] == "scene:dam-break/wcsph/0.0125/2");
+    CHECK(dam["own_spacing"] == true);
+    CHECK(dam["sph"]["solver"] == "wcsph");
+    CHECK(dam["sph"]["cfl"] == 0.8);   // the row's 0.80000001192... as the file should say it
+    CHECK(dam["sph"]["force_factor"] == 0.5);
+    CHECK(dam["sph"]["max_time_step"] == 0.01);
+    const std::string why = dam["sph"]["why"].get<std::string>();
+    for (const char* says : {"NVIDIA H100", "2026-12-01", "10 s stable", "at most 1 %", "2000 GPU ms a simulated second",
+                             "against 2500 for dfsph x2", "docs/SWEEP.md"})
+        CHECK_THAT(why, Contains(says));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/1"), Contains("mean compression reached 2 %"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/0.5"), Contains("a smaller factor, x0.25, is not sound"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/0.25"), Contains("unstable: energy gain"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/3"), Contains("sph.cfl = 1.2 is outside the scene key's bounds [0.01, 1]"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.5"), Contains("unstable: simulation unstable at frame 7"));
+    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1") == "eligible");
+    CHECK_THAT(r.out, Contains("merge into media/scenes/dam-break.json's \"sph\": {\"solver\": \"wcsph\", \"cfl\": 0.8,"));
+
+    // The same scene at a spacing its file does not have: chosen, and said to need that spacing.
+    const nlohmann::json& fine = by.at("dam-break@0.00625");
+    CHECK(fine["chosen"] == "scene:dam-break/dfsph/0.00625/1");
+    CHECK(fine["own_spacing"] == false);
+    CHECK(fine["sph"] == nlohmann::json{{"solver", "dfsph"}, {"why", fine["sph"]["why"]}});   // factor 1: the step keys stay the scene's
+    CHECK_THAT(r.out, Contains("only if its spacing becomes 0.00625 (the file's is 0.0125"));
+
+    // The jet gains energy from its turbulence force, which is no instability there: PBF is chosen,
+    // with its substeps and iterations.
+    const nlohmann::json& jet = by.at("turbulent-jet@0.025");
+    CHECK(jet["chosen"] == "scene:turbulent-jet/pbf/0.025/1");
+    CHECK(jet["sph"]["pbf"] == nlohmann::json{{"substeps", 4}, {"iterations", 4}});
+    CHECK_FALSE(jet["sph"].contains("cfl"));
+
+    // The drop ran 2 of the 10 seconds asked: no choice, and the output says to keep the scene's.
+    const nlohmann::json& drop = by.at("drop@0.015");
+    CHECK(drop["chosen"].is_null());
+    CHECK(drop["sph"].is_null());
+    CHECK_THAT(verdict(drop, "scene:drop/dfsph/0.015/1"), Contains("ran 2 s of the 10 s asked"));
+    CHECK_THAT(r.out, Contains("no setting is eligible"));
+    // ... unless the rule is asked for 2 seconds.
+    const Result two = run({"/usr/bin/python3", script.string(), rows.string(), "--seconds", "2", "--json", (dir / "two.json").string()});
+    REQUIRE(two.exit_code == 0);
+    for (const auto& s : nlohmann::json::parse(read_file(dir / "two.json"))["scenes"])
+        if (s["scene"] == "drop") CHECK(s["chosen"] == "scene:drop/wcsph/0.015/1");
+
+    // A row timed on llvmpipe makes the tank at rest's costs steps: DFSPH's fewer steps win over
+    // WCSPH's smaller (software) time.
+    const nlohmann::json& tank = by.at("hydrostatic@0.0125");
+    CHECK(tank["cost_measure"] == "steps");
+    CHECK(tank["chosen"] == "scene:hydrostatic/dfsph/0.0125/1");
+    CHECK_THAT(tank["sph"]["why"].get<std::string>(), Contains("250 steps a simulated second against 5000 for wcsph x1"));
+
+    // A stricter bound on the compression moves the dam break's choice to DFSPH.
+    const Result strict = run({"/usr/bin/python3", script.string(), rows.string(), "--max-compression", "0.001", "--json",
+                               (dir / "strict.json").string()});
+    REQUIRE(strict.exit_code == 0);
+    for (const auto& s : nlohmann::json::parse(read_file(dir / "strict.json"))["scenes"])
+        if (s["scene"] == "dam-break" && s["spacing"] == 0.0125) CHECK(s["chosen"] == "scene:dam-break/dfsph/0.0125/2");
+
+    // Bad input: one line on stderr naming it, exit code 2.
+    write_file(dir / "foreign.json", "{\"not\": \"a sweep\"}");
+    write_file(dir / "no-scenes.json", "{\"rows\": []}");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+        {{(dir / "foreign.json").string()}, (dir / "foreign.json").string() + ": not a sweep's rows"},
+        {{(dir / "missing").string()}, "missing"},
+        {{(dir / "no-scenes.json").string()}, "no scene case's rows"},
+        {{rows.string(), "--max-compression", "2"}, "--max-compression 2"},
+        {{rows.string(), "--seconds", "x"}, "--seconds"},
+    };
+    for (const auto& [args, says] : bad) {
+        std::vector<std::string> argv = {"/usr/bin/python3", script.string()};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const Result b = run(argv);
+        INFO(b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(lines(b.err).size() == 1);
+        CHECK_THAT(b.err, Contains(says));
+    }
+}
