@@ -454,3 +454,36 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
         CHECK_THAT(b.err, Contains(says));
     }
 }
+
+TEST_CASE("scripts/gpu/scene-settings.sh smoke: the GPU host's scene sweep and its choice run end to end on llvmpipe",
+          "[sweep][scenes][script]") {
+    // The script the lead runs on the H100, at 0.1 s a row and spacing 0.04, one factor a solver:
+    // every scene and solver swept into one folder, the rule applied, its six files written.
+    TempDir dir;
+    RunOptions opt;
+    opt.timeout = std::chrono::seconds(300);
+    opt.set_env = {{"OUT", dir.str("out")}, {"RANRYU_BIN", kBin}};
+    const Result r = run({"/bin/bash", (source_dir() / "scripts" / "gpu" / "scene-settings.sh").string(), "smoke"}, opt);
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    for (const char* f : {"sweep.json", "sweep.csv", "sweep.log", "scene-settings.txt", "scene-settings.json", "summary.txt"})
+        CHECK(fs::exists(dir / "out" / f));
+    const auto rows = nlohmann::json::parse(read_file(dir / "out" / "sweep.json"))["rows"];
+    std::size_t sph_scenes = 0;
+    for (const ranryu::scene::BundledScene& b : ranryu::scene::bundled())
+        if (ranryu::scene::load(b.name).model == ranryu::scene::Model::sph) ++sph_scenes;
+    CHECK(rows.size() == 3 * sph_scenes);   // pbf, dfsph and wcsph at factor 1, each scene
+    const auto choices = nlohmann::json::parse(read_file(dir / "out" / "scene-settings.json"));
+    CHECK(choices["seconds"].get<double>() == Approx(0.1));
+    CHECK(choices["scenes"].size() == sph_scenes);
+    CHECK_THAT(r.out, Contains("scene-settings.py: rc 0"));
+    CHECK_THAT(r.out, !Contains("not run or cut short"));
+
+    // No budget: no sweep runs, and the summary says what was not run.
+    opt.set_env = {{"OUT", dir.str("none")}, {"RANRYU_BIN", kBin}, {"BUDGET_SECONDS", "0"}};
+    const Result none = run({"/bin/bash", (source_dir() / "scripts" / "gpu" / "scene-settings.sh").string(), "smoke"}, opt);
+    INFO(none.describe());
+    CHECK_THAT(none.out, Contains("not run or cut short"));
+    CHECK_THAT(none.out, Contains("scene:dam-break pbf"));
+    CHECK_FALSE(fs::exists(dir / "none" / "sweep.json"));
+}
