@@ -89,6 +89,14 @@ public:
     StatsTally(const scene::Scene& scene, frame::Pipeline& pipeline) : scene_(scene), pipeline_(pipeline) {
         stats_.energy_start = energy(pipeline.simulation()->fluid(), scene);
     }
+    // The fluid's records into this tally, and the solver's steps into `steps`: the record sink of a
+    // case that reads nothing else from them. `steps` outlives the run.
+    void listen(sim::Fluid& fluid, std::uint64_t& steps) {
+        fluid.set_record_sink([this, &steps](const gpu::StepState& s) {
+            record(s);
+            steps += s.frame_substeps;
+        });
+    }
     void record(const gpu::StepState& s) {
         stats_.max_density_deviation = std::max(stats_.max_density_deviation, double(bits_to_float(s.frame_max_density)) - 1.0);
         stats_.simulated_seconds = double(s.time);
@@ -166,10 +174,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
     StatsTally tally(scene, pipeline);
-    fluid.set_record_sink([&](const gpu::StepState& s) {
-        tally.record(s);
-        r.steps += s.frame_substeps;
-    });
+    tally.listen(fluid, r.steps);
     const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
     const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     if (progress) progress->expect(std::uint64_t(settle_frames + average_frames));
@@ -290,10 +295,7 @@ SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& sh
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
     StatsTally tally(scene, pipeline);
-    fluid.set_record_sink([&](const gpu::StepState& s) {
-        tally.record(s);
-        r.steps += s.frame_substeps;
-    });
+    tally.listen(fluid, r.steps);
     if (progress) progress->expect(std::uint64_t(r.frames));
     const auto start = std::chrono::steady_clock::now();
     double sum = 0.0;
@@ -333,10 +335,7 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
     }
     fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
     StatsTally tally(scene, pipeline);
-    fluid.set_record_sink([&](const gpu::StepState& s) {
-        tally.record(s);
-        r.steps += s.frame_substeps;
-    });
+    tally.listen(fluid, r.steps);
     auto moment = [&](double t) {
         const std::vector<glm::vec4> p = fluid.positions().read<glm::vec4>(fluid.count());
         double m = 0.0;
