@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "record/particle_files.h"
 #include "input/commands.h"
+#include "validation/cases.h"
 
 namespace ranryu::app {
 namespace {
@@ -24,7 +25,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                  "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
-    {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--shard", "--list", "--quiet",
+    {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--seconds", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
@@ -177,15 +178,33 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--quick") o.quick = true;
         else if (opt == "--list") o.list = true;
-        else if (opt == "--cases" || opt == "--solvers") {
-            std::vector<std::string>& names = opt == "--cases" ? o.cases : o.solvers;
-            const std::set<std::string> known = opt == "--cases" ? std::set<std::string>{"dam-break", "hydrostatic", "standing-wave"}
-                                                                 : std::set<std::string>{"dfsph", "wcsph", "pbf"};
-            names = split_list(opt, value);
-            for (const std::string& n : names)
-                if (!known.count(n))
-                    throw InputError(opt + " " + value + ": unknown " + (opt == "--cases" ? "case \"" : "solver \"") + n + "\" (" +
-                                     (opt == "--cases" ? "dam-break, hydrostatic, standing-wave" : "dfsph, wcsph, pbf") + ")");
+        else if (opt == "--cases") {
+            // The validation cases, and the scene cases: "scene:NAME" of a bundled SPH scene, or
+            // "scenes" for all of them (validation/cases.h), expanded here in `ranryu scenes` order.
+            o.cases.clear();
+            for (const std::string& n : split_list(opt, value)) {
+                if (n == "scenes") {
+                    for (const std::string& c : validation::scene_cases()) o.cases.push_back(c);
+                    continue;
+                }
+                try {
+                    validation::case_scene(n);
+                } catch (const InputError& e) {
+                    throw InputError("--cases " + value + ": " + e.what());
+                }
+                o.cases.push_back(n);
+            }
+            std::set<std::string> seen;
+            for (const std::string& n : o.cases)
+                if (!seen.insert(n).second) throw InputError("--cases " + value + ": case \"" + n + "\" named twice");
+        } else if (opt == "--solvers") {
+            o.solvers = split_list(opt, value);
+            for (const std::string& n : o.solvers)
+                if (n != "dfsph" && n != "wcsph" && n != "pbf")
+                    throw InputError(opt + " " + value + ": unknown solver \"" + n + "\" (dfsph, wcsph, pbf)");
+        } else if (opt == "--seconds") {
+            o.seconds = parse_float(opt, value, 0.0f, 3600.0f, "simulated seconds in (0, 3600]");
+            if (!(*o.seconds > 0.0f)) throw InputError("--seconds " + value + ": expected simulated seconds in (0, 3600]");
         } else if (opt == "--spacings" || opt == "--factors") {
             std::vector<float>& numbers = opt == "--spacings" ? o.spacings : o.factors;
             numbers.clear();
@@ -215,6 +234,9 @@ Options parse(const std::vector<std::string>& args) {
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave)");
     if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
+    if (o.seconds && std::none_of(o.cases.begin(), o.cases.end(), validation::is_scene_case))
+        throw InputError("--seconds: only the scene cases (--cases scene:NAME or scenes) run for a given time; the validation cases "
+                         "run their own length");
     if (o.schema && o.markdown) throw InputError("--schema, --markdown: give one of them");
     if (o.command == "export-field" && o.out.empty() && !o.help)
         throw InputError("--out: export-field needs --out FILE.npy");
@@ -339,7 +361,8 @@ std::string command_help(const std::string& cmd) {
     if (cmd == "scenes")
         return R"(usage: ranryu scenes [--schema | --markdown]
 
-List the bundled scenes with their descriptions.
+List the bundled scenes with their descriptions, and under a scene whose file says why its solver and
+step settings are its own (sph.why, docs/SCENES.md) that line.
 
   --schema            print instead the JSON Schema of scene files (media/scenes/scene.schema.json)
   --markdown          print instead the reference of every scene key (docs/SCENES.md)
@@ -368,21 +391,29 @@ Run the validation cases headless over case x solver x spacing x time-step facto
 row a run, the accuracy (the case's error against its reference, the mean and max density
 deviation, the energy drift) and the cost (GPU ms per simulated second, wall seconds), or the guard's
 verdict when the run went unstable (frame, time, cause), or "energy gain" when it ran to the end
-having made more than 1 % of its energy. The rows go to sweep.json and sweep.csv in DIR after each
-run; a second invocation with the same DIR skips the rows already there (docs/SWEEP.md).
+having made more than 1 % of its energy (not where the turbulence force does work on the fluid). The
+rows go to sweep.json and sweep.csv in DIR after each run; a second invocation with the same DIR
+skips the rows already there (docs/SWEEP.md).
 Charts: scripts/sweep-charts.py DIR --out CHARTS (accuracy against cost, and the stability map).
+A scene's cheapest sound setting: scripts/scene-settings.py DIR (docs/SWEEP.md "Choosing a scene's
+settings").
 
   --out DIR           the sweep's folder (made if missing)
   --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and
                       0.025 m, factors 1 and 10 (wcsph at 10 goes unstable): a first look in a minute
-  --cases LIST        dam-break,hydrostatic,standing-wave (default all three)
+  --cases LIST        dam-break,hydrostatic,standing-wave (default all three), and the scene cases:
+                      scene:NAME runs the bundled SPH scene NAME as it is for --seconds, checked for
+                      stability and compression (no reference); scenes names every bundled SPH scene
   --solvers LIST      dfsph,wcsph,pbf (default all three; --quick: dfsph,wcsph)
-  --spacings LIST     spacings in metres (default: each case's own spacing and half of it)
+  --spacings LIST     spacings in metres (default: each validation case's own spacing and half of
+                      it; a scene case's own spacing)
   --factors LIST      time-step factors: each multiplies every bound on the step, the Courant number
                       sph.cfl, the force condition's sph.force_factor and the largest step
                       sph.max_time_step (docs/SPH.md (7), docs/DFSPH.md (D8)); for pbf, whose step
                       is fixed, the substeps a frame are divided by it (docs/SWEEP.md); default
                       0.5,1,1.5,2
+  --seconds S         the scene cases' simulated seconds (default 10); a folder's rows must have run
+                      as long to be resumed
   --shard I/N         run only rows k with k mod N = I - 1 (k counts from 0 in the order --list
                       prints): one shard a job of a Slurm array or GNU parallel, each with its own --out
   --list              print the rows (and which are done) without running any

@@ -49,7 +49,8 @@ struct Options {
     std::uint32_t seed = 1;       // --seed S: the noise tiles' std::mt19937 seed
     // sweep (app/sweep.cpp): the grid of runs, empty for the defaults; --out is its folder.
     bool quick = false;                    // --quick: the small preset
-    std::vector<std::string> cases, solvers;
+    std::vector<std::string> cases, solvers;   // cases: validation case names, "scene:NAME", "scenes" expanded
+    std::optional<float> seconds;          // --seconds S: the scene cases' simulated time (default 10)
     std::vector<float> spacings, factors;
     int shard_index = 1, shard_count = 1;  // --shard I/N: rows k with k mod N = I - 1
     bool list = false;                     // --list: print the rows, run none

@@ -139,7 +139,10 @@ scene::Scene with_options(scene::Scene s, const Options& o) {
 int scenes(const Options& o) {
     if (o.schema) return std::fputs(scene::json_schema().c_str(), stdout), 0;
     if (o.markdown) return std::fputs(scene::markdown().c_str(), stdout), 0;
-    for (const scene::BundledScene& s : scene::bundled()) std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
+    for (const scene::BundledScene& s : scene::bundled()) {
+        std::printf("%-20s %s\n", s.name.c_str(), s.description.c_str());
+        if (!s.why.empty()) std::printf("%-20s why its settings: %s\n", "", s.why.c_str());
+    }
     return 0;
 }
 
@@ -383,6 +386,14 @@ int profile_cmd(const Options& o) {
         skipped.push_back({{"passes", st.passes}, {"why", st.why}});
     }
     extra["not_run"] = skipped;
+    // Why the scene's solver and step settings are its own (sph.why, docs/SCENES.md); said to hold
+    // for the scene as shipped, so a run at another spacing or with another solver says so.
+    if (scene.model == scene::Model::sph && !scene.sph.why.empty()) {
+        const bool as_shipped = !o.spacing && o.solver.empty();
+        std::printf("why its settings: %s%s\n", scene.sph.why.c_str(),
+                    as_shipped ? "" : " (said of the scene as shipped; --spacing or --solver changed it for this run)");
+        extra["settings_why"] = {{"why", scene.sph.why}, {"as_shipped", as_shipped}};
+    }
     extra["device_memory"] = memory_json(pipeline.memory());
     if (o.overlay) {
         // Its GPU time is the pass "overlay" in the table; this is the CPU's side of it.

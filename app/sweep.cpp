@@ -1,12 +1,15 @@
 // `ranryu sweep`: the validation cases (engine/validation/cases.h) over case x solver x spacing x
 // time-step factor, one row a run, for the speed/accuracy chart and the stability map
-// (scripts/sweep-charts.py). Rows are written after every run and a second invocation skips the
-// rows its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
+// (scripts/sweep-charts.py); and the scene cases, "scene:NAME", the bundled SPH scenes run as they
+// are for --seconds, from whose rows scripts/scene-settings.py chooses each scene's cheapest sound
+// setting (docs/SWEEP.md). Rows are written after every run and a second invocation skips the rows
+// its folder already holds, so a sweep resumes; --shard splits the rows between jobs.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -24,6 +27,7 @@ namespace ranryu::app {
 namespace {
 
 constexpr double kEnergyGain = 0.01;   // see run_row()
+constexpr float kSceneSeconds = 10.0f;  // a scene case's simulated time without --seconds
 
 struct Row {
     std::string case_name, solver;
@@ -52,8 +56,10 @@ std::vector<Row> grid(const Options& o) {
     for (const std::string& c : cases) {
         std::vector<float> dx = spacings;
         if (dx.empty()) {
+            // A validation case at its own spacing and half of it; a scene case at its own: the
+            // spacing its file ships with is the one its settings are chosen for.
             const float own = validation::case_scene(c).spacing;
-            dx = {own, 0.5f * own};
+            dx = validation::is_scene_case(c) ? std::vector<float>{own} : std::vector<float>{own, 0.5f * own};
         }
         for (const std::string& s : solvers)
             for (float d : dx)
@@ -85,7 +91,9 @@ nlohmann::json read_rows(const std::filesystem::path& file) {
 const std::vector<std::string> kColumns = {"key", "case", "solver", "spacing", "factor", "particles", "status", "error", "error_max",
                                            "error_name", "mean_density_deviation", "max_density_deviation", "energy_drift",
                                            "gpu_ms_per_simulated_second", "simulated_seconds", "wall_seconds", "steps",
-                                           "failure_frame", "failure_time", "failure_cause", "failure_message", "device"};
+                                           "failure_frame", "failure_time", "failure_cause", "failure_message", "device",
+                                           "seconds", "mean_density_deviation_peak", "mean_density_deviation_peak_time",
+                                           "mean_density_deviation_average", "energy_check"};
 
 std::string csv_field(const nlohmann::json& v) {
     if (v.is_null()) return "";
@@ -123,8 +131,9 @@ void put_stats(nlohmann::json& j, const Result& r) {
               {"steps", r.steps}});
 }
 
-// One run: its row, stable or not. Bad input and interrupts propagate.
-nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSource& shaders, const std::string& device) {
+// One run: its row, stable or not. Bad input and interrupts propagate. `seconds`: a scene case's
+// simulated time.
+nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSource& shaders, const std::string& device, float seconds) {
     scene::Scene scene = scene::with_spacing(validation::case_scene(row.case_name), row.spacing, "--spacings");
     scene.sph.solver = scene::parse_solver(row.solver, "--solvers");
     scene.sph.cfl *= row.factor;             // every bound on the step scales (the frame's length stays one)
@@ -137,12 +146,25 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
     nlohmann::json j = {{"key", row.key()}, {"case", row.case_name}, {"solver", row.solver}, {"spacing", row.spacing},
                         {"factor", row.factor}, {"cfl", scene.sph.cfl}, {"force_factor", scene.sph.force_factor}, {"max_time_step", scene.sph.max_time_step}, {"device", device}, {"date", profile::utc_now_iso8601()}};
     if (scene.sph.solver == scene::Solver::pbf) j.update({{"pbf_substeps", pbf.substeps}, {"pbf_iterations", pbf.iterations}});
+    // A closed system under gravity only loses energy (viscosity, impacts), so a gain is an
+    // instability; the turbulence force does work on the fluid, and there a gain says nothing.
+    const bool energy_checked = !scene.turbulence.enabled();
+    j["energy_check"] = energy_checked ? "gain above 1 % is unstable" : "none: the turbulence force does work on the fluid";
+    if (validation::is_scene_case(row.case_name)) j["seconds"] = seconds;
     frame::Progress progress = make_progress(o, "ranryu sweep " + row.key());
     try {
         if (row.case_name == "dam-break") {
             const validation::DamBreakResult r = validation::dam_break(scene, shaders, &progress);
             put_stats(j, r);
             j.update({{"error", r.rms_error}, {"error_max", r.max_error}, {"error_name", "surge front rms error in Z (Martin & Moyce 1952)"}});
+        } else if (validation::is_scene_case(row.case_name)) {
+            // No reference: the error is the scene's own accuracy, its worst frame's mean compression.
+            const validation::SceneRunResult r = validation::scene_run(scene, shaders, seconds, &progress);
+            put_stats(j, r);
+            j.update({{"error", r.peak_mean_compression}, {"error_max", r.stats.max_density_deviation},
+                      {"error_name", "largest mean compression over the frames (no reference; max density deviation as error_max)"},
+                      {"mean_density_deviation_peak", r.peak_mean_compression}, {"mean_density_deviation_peak_time", r.peak_time},
+                      {"mean_density_deviation_average", r.average_mean_compression}});
         } else if (row.case_name == "standing-wave") {
             const validation::StandingWaveResult r = validation::standing_wave(scene, shaders, &progress);
             put_stats(j, r);
@@ -156,9 +178,9 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
         }
         progress.finish();
         j["status"] = "stable";
-        // A closed tank under gravity only loses energy (viscosity, impacts): a run that made more
-        // than kEnergyGain of its start went unstable though no guard bound fired.
-        if (j["energy_drift"].get<double>() > kEnergyGain) {
+        // A run that made more than kEnergyGain of its start went unstable though no guard bound
+        // fired (where the energy is checked, above).
+        if (energy_checked && j["energy_drift"].get<double>() > kEnergyGain) {
             char msg[200];
             std::snprintf(msg, sizeof msg, "energy gain: the fluid's energy grew by %.1f %% over %.2f s (bound %.0f %%)",
                           100.0 * j["energy_drift"].get<double>(), j["simulated_seconds"].get<double>(), 100.0 * kEnergyGain);
@@ -183,11 +205,25 @@ int sweep(const Options& o) {
     const std::vector<Row> rows = grid(o);
     const std::filesystem::path dir = o.out.empty() ? std::filesystem::path() : std::filesystem::path(o.out);
     nlohmann::json done = dir.empty() ? nlohmann::json::array() : read_rows(dir / "sweep.json");
-    std::set<std::string> finished;
-    for (const auto& r : done) finished.insert(r["key"].get<std::string>());
+    std::map<std::string, nlohmann::json> finished;
+    for (const auto& r : done) finished[r["key"].get<std::string>()] = r;
     std::vector<std::size_t> mine;
     for (std::size_t k = 0; k < rows.size(); ++k)
         if (int(k % std::size_t(o.shard_count)) == o.shard_index - 1) mine.push_back(k);
+    // A scene case's row is done only if it ran as long as asked: a folder of 2-second rows does not
+    // stand for a 10-second sweep. Checked before any run.
+    const float seconds = o.seconds.value_or(kSceneSeconds);
+    for (std::size_t k : mine) {
+        const auto f = finished.find(rows[k].key());
+        if (f == finished.end() || !validation::is_scene_case(rows[k].case_name)) continue;
+        const double ran = f->second.value("seconds", -1.0);
+        if (std::abs(ran - double(seconds)) > 1e-6 * double(seconds)) {
+            char msg[400];
+            std::snprintf(msg, sizeof msg, "%s: row %s ran %g simulated seconds, and --seconds asks for %g; choose another --out",
+                          (dir / "sweep.json").c_str(), rows[k].key().c_str(), ran, double(seconds));
+            throw InputError(msg);
+        }
+    }
     if (o.list) {
         for (std::size_t k : mine) std::printf("%zu %s%s\n", k, rows[k].key().c_str(), finished.count(rows[k].key()) ? " (done)" : "");
         return 0;
@@ -205,17 +241,19 @@ int sweep(const Options& o) {
             ++skipped;
             continue;
         }
-        const nlohmann::json row = run_row(rows[k], o, shaders, device);
+        const nlohmann::json row = run_row(rows[k], o, shaders, device, seconds);
         done.push_back(row);
         write_rows(dir, done);
         ++ran;
         const bool stable = row["status"] == "stable";
         if (!stable) ++unstable;
-        std::printf("sweep [%zu/%zu] %s: %s\n", n, mine.size(), rows[k].key().c_str(),
-                    stable ? ("error " + std::to_string(row["error"].get<double>()) + ", " +
-                              std::to_string(row["gpu_ms_per_simulated_second"].get<double>()) + " GPU ms per simulated s")
-                                 .c_str()
-                           : row["failure_message"].get<std::string>().c_str());
+        char what[400];
+        if (!stable) std::snprintf(what, sizeof what, "%s", row["failure_message"].get<std::string>().c_str());
+        else
+            std::snprintf(what, sizeof what, "%s %.6g, %.6g GPU ms per simulated s, %llu steps",
+                          validation::is_scene_case(rows[k].case_name) ? "largest mean compression" : "error", row["error"].get<double>(),
+                          row["gpu_ms_per_simulated_second"].get<double>(), row["steps"].get<unsigned long long>());
+        std::printf("sweep [%zu/%zu] %s: %s\n", n, mine.size(), rows[k].key().c_str(), what);
         std::fflush(stdout);
     }
     std::printf("sweep: %zu run (%zu unstable), %zu already done, rows in %s\n", ran, unstable, skipped, (dir / "sweep.json").c_str());

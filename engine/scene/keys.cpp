@@ -150,6 +150,10 @@ std::vector<Key> make_keys() {
         number("sph.pbf.vorticity", "m/s", h.pbf.vorticity, 0.0, 100.0, "PBF: the vorticity confinement's ε (P8); 0: off."),
         number("sph.pbf.warm_start", "", h.pbf.warm_start, 0.0, 1.0,
                "PBF: the weight w of the warm start (P10), the last step's pressure acceleration in the prediction; 0: none."),
+        string("sph.why", h.why, {},
+               "Why the solver and its step settings are the scene's: the evidence, e.g. the sweep's rows that chose them "
+               "(docs/SWEEP.md \"Choosing a scene's settings\"). A comment: the simulation does not read it; `ranryu scenes` and "
+               "`profile` print it."),
 
         object("turbulence", "The wavelet turbulence force (docs/METHOD.md §5, docs/TURBULENCE.md): off unless `amplitude` > 0."),
         number("turbulence.amplitude", "1/m", u.amplitude, 0.0, 1e4, "A: the force per unit mass is A·ê·y (engine/turbulence/force.h); 0: off."),

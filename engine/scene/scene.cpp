@@ -455,6 +455,7 @@ Scene parse(const std::string& text, const std::string& origin) {
             q.warm_start = float(b.number("warm_start"));
             b.finish();
         }
+        h.why = p.string("why");
         p.finish();
     }
     {
@@ -586,7 +587,7 @@ std::vector<BundledScene> bundled() {
         if (!path.starts_with("scenes/") || !path.ends_with(".json")) continue;
         const std::string name = path.substr(7, path.size() - 12);
         const Scene s = parse(std::string(kEmbeddedFiles[i].text), name + " (bundled)");
-        out.push_back({name, s.description});
+        out.push_back({name, s.description, s.sph.why});
     }
     return out;
 }

@@ -81,6 +81,7 @@ struct SphSettings {
     float density_limit = 1.5f;     // guard: rho/rho0 bound
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
     PbfSettings pbf;
+    std::string why;                // sph.why: why these settings (a comment; nothing simulated reads it)
 };
 
 // Sub-particles (docs/METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches
@@ -190,6 +191,7 @@ std::string bundled_file(const std::string& path);
 struct BundledScene {
     std::string name;
     std::string description;
+    std::string why;   // its sph.why, "" when it has none
 };
 std::vector<BundledScene> bundled();
 

@@ -73,6 +73,15 @@ double energy(const sim::Fluid& fluid, const scene::Scene& scene) {
     return e;
 }
 
+// The compression now: mean over the fluid's particles of max(rho/rho0 - 1, 0), read back (a
+// validation run, not the frame path).
+double mean_compression(const sim::Fluid& fluid, const scene::Scene& scene) {
+    const std::vector<glm::vec4> d = fluid.densities().read<glm::vec4>(fluid.count());
+    double excess = 0.0;
+    for (const glm::vec4& di : d) excess += std::max(double(di.x) / scene.sph.rest_density - 1.0, 0.0);
+    return excess / double(std::max<std::size_t>(d.size(), 1));
+}
+
 // RunStats around one case's frames: begin() before the first, record() from the case's record
 // sink, end() after the last frame has been drained.
 class StatsTally {
@@ -80,16 +89,21 @@ public:
     StatsTally(const scene::Scene& scene, frame::Pipeline& pipeline) : scene_(scene), pipeline_(pipeline) {
         stats_.energy_start = energy(pipeline.simulation()->fluid(), scene);
     }
+    // The fluid's records into this tally, and the solver's steps into `steps`: the record sink of a
+    // case that reads nothing else from them. `steps` outlives the run.
+    void listen(sim::Fluid& fluid, std::uint64_t& steps) {
+        fluid.set_record_sink([this, &steps](const gpu::StepState& s) {
+            record(s);
+            steps += s.frame_substeps;
+        });
+    }
     void record(const gpu::StepState& s) {
         stats_.max_density_deviation = std::max(stats_.max_density_deviation, double(bits_to_float(s.frame_max_density)) - 1.0);
         stats_.simulated_seconds = double(s.time);
     }
     RunStats end() {
         const sim::Fluid& fluid = pipeline_.simulation()->fluid();
-        const std::vector<glm::vec4> d = fluid.densities().read<glm::vec4>(fluid.count());
-        double excess = 0.0;
-        for (const glm::vec4& di : d) excess += std::max(double(di.x) / scene_.sph.rest_density - 1.0, 0.0);
-        stats_.mean_density_deviation = excess / double(std::max<std::size_t>(d.size(), 1));
+        stats_.mean_density_deviation = mean_compression(fluid, scene_);
         stats_.energy_end = energy(fluid, scene_);
         stats_.energy_drift = stats_.energy_start > 0.0 ? (stats_.energy_end - stats_.energy_start) / stats_.energy_start : 0.0;
         pipeline_.timer().drain();
@@ -160,10 +174,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
     StatsTally tally(scene, pipeline);
-    fluid.set_record_sink([&](const gpu::StepState& s) {
-        tally.record(s);
-        r.steps += s.frame_substeps;
-    });
+    tally.listen(fluid, r.steps);
     const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
     const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
     if (progress) progress->expect(std::uint64_t(settle_frames + average_frames));
@@ -245,10 +256,59 @@ scene::Scene standing_wave_scene() {
     })", "the standing-wave case");
 }
 
+bool is_scene_case(const std::string& case_name) { return case_name.starts_with(kScenePrefix); }
+
+std::vector<std::string> scene_cases() {
+    std::vector<std::string> out;
+    for (const scene::BundledScene& b : scene::bundled())
+        if (scene::load(b.name).model == scene::Model::sph) out.push_back(kScenePrefix + b.name);
+    return out;
+}
+
 scene::Scene case_scene(const std::string& name) {
     if (name == "standing-wave") return standing_wave_scene();
     if (name == "dam-break" || name == "hydrostatic") return scene::load(name);
-    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave)");
+    if (is_scene_case(name)) {
+        const std::vector<std::string> sph = scene_cases();
+        std::string list;
+        for (const std::string& c : sph) list += (list.empty() ? "" : ", ") + c;
+        const std::string scene_name = name.substr(std::string(kScenePrefix).size());
+        if (std::find(sph.begin(), sph.end(), name) == sph.end()) {
+            for (const scene::BundledScene& b : scene::bundled())
+                if (b.name == scene_name)
+                    throw InputError("case \"" + name + "\": the bundled scene " + scene_name +
+                                     " uses the ballistic model, which has no pressure solver to sweep (scene cases: " + list + ")");
+            throw InputError("case \"" + name + "\": no bundled SPH scene of that name (scene cases: " + list + ")");
+        }
+        return scene::load(scene_name);
+    }
+    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, scene:NAME of a bundled SPH scene)");
+}
+
+SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& shaders, double seconds, frame::Progress* progress) {
+    if (scene.model != scene::Model::sph) throw InputError("scene " + scene.name + ": a scene case must be an SPH scene");
+    if (!(seconds > 0.0)) throw InputError("scene " + scene.name + ": a scene case runs for a positive time");
+    SceneRunResult r;
+    r.frames = std::max(1, int(std::lround(seconds / scene.frame_dt)));
+    r.energy_conserving = !scene.turbulence.enabled();
+    frame::Pipeline pipeline = simulation_only(scene, shaders);
+    sim::Fluid& fluid = pipeline.simulation()->fluid();
+    r.particles = fluid.count();
+    StatsTally tally(scene, pipeline);
+    tally.listen(fluid, r.steps);
+    if (progress) progress->expect(std::uint64_t(r.frames));
+    const auto start = std::chrono::steady_clock::now();
+    double sum = 0.0;
+    for (int f = 0; f < r.frames; ++f) {
+        run(pipeline, 1, progress);
+        const double c = mean_compression(fluid, scene);
+        sum += c;
+        if (c > r.peak_mean_compression) r.peak_mean_compression = c, r.peak_time = double(f + 1) * scene.frame_dt;
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.stats = tally.end();
+    r.average_mean_compression = sum / double(r.frames);
+    return r;
 }
 
 StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
@@ -275,10 +335,7 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
     }
     fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
     StatsTally tally(scene, pipeline);
-    fluid.set_record_sink([&](const gpu::StepState& s) {
-        tally.record(s);
-        r.steps += s.frame_substeps;
-    });
+    tally.listen(fluid, r.steps);
     auto moment = [&](double t) {
         const std::vector<glm::vec4> p = fluid.positions().read<glm::vec4>(fluid.count());
         double m = 0.0;

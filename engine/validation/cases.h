@@ -3,6 +3,7 @@
 // solution, with the error. `ranryu validate` prints them; tests assert bounds on them.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -85,8 +86,37 @@ struct StandingWaveResult {
 };
 scene::Scene standing_wave_scene();
 
-// A case's own scene: the bundled one of its name, or standing_wave_scene(). InputError for another name.
+// A case's own scene: the bundled one of its name, standing_wave_scene(), or for a scene case
+// "scene:NAME" the bundled SPH scene NAME. InputError for another name, or a scene:NAME that is not
+// a bundled SPH scene.
 scene::Scene case_scene(const std::string& name);
 StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
+
+// Scene cases (docs/SWEEP.md "Scene cases"): "scene:NAME" runs the bundled SPH scene NAME as it is.
+constexpr const char* kScenePrefix = "scene:";
+bool is_scene_case(const std::string& case_name);
+// Every bundled SPH scene as a scene case ("scene:dam-break", ...), in `ranryu scenes` order.
+std::vector<std::string> scene_cases();
+
+// A scene run as it is for `seconds` of simulated time (whole frames, at least one), with no
+// reference to compare with: whether it holds together (the guard, as in every case) and how far it
+// compresses. The compression, mean over particles of max(rho/rho0 - 1, 0), is read back after every
+// frame (a validation run, not the frame path): its largest value and when, and its average over the
+// frames. With PBF the densities are those of each step's last iteration, as the guard reads them.
+struct SceneRunResult {
+    std::size_t particles = 0;
+    int frames = 0;
+    double peak_mean_compression = 0.0;      // max over frames of the mean compression
+    double peak_time = 0.0;                  // the simulated time of that frame (s)
+    double average_mean_compression = 0.0;   // the mean compression averaged over the frames
+    // Whether a gain of energy means an instability: true for a closed system under gravity (it only
+    // loses energy); false where a force does work on the fluid (the turbulence force, amplitude > 0).
+    bool energy_conserving = true;
+    std::uint64_t steps = 0;
+    double seconds = 0.0;                    // the run on the wall clock
+    RunStats stats;
+};
+SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& shaders, double seconds,
+                         frame::Progress* progress = nullptr);
 
 }  // namespace ranryu::validation

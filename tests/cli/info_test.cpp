@@ -2,9 +2,11 @@
 // say what they should.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <regex>
 
 #include "run_helper.h"
+#include "scene/scene.h"
 
 using namespace ranryu::test;
 using Catch::Matchers::Contains;
@@ -122,6 +124,17 @@ TEST_CASE("ranryu scenes lists the bundled scenes with descriptions", "[cli][inf
             CHECK(line.find_first_not_of(' ', std::string("falling-block").size()) != std::string::npos);
         }
     CHECK(found);
+    // A scene whose file says why its settings are what they are (sph.why) has that on the next
+    // line, and one without has none.
+    const std::vector<std::string> lines = r.out_lines();
+    for (const ranryu::scene::BundledScene& b : ranryu::scene::bundled()) {
+        INFO(b.name);
+        const auto at = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.starts_with(b.name + " "); });
+        REQUIRE(at != lines.end());
+        const bool has = at + 1 != lines.end() && (at + 1)->find("why its settings: ") != std::string::npos;
+        CHECK(has == !b.why.empty());
+        if (has) CHECK_THAT(*(at + 1), Contains(b.why));
+    }
 }
 
 TEST_CASE("ranryu scenes --schema and --markdown print the committed scene schema and docs/SCENES.md", "[cli][info]") {

@@ -266,6 +266,41 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     CHECK(timed.count("dfsph.density"));
 }
 
+TEST_CASE("ranryu profile prints a scene's sph.why, and says when --spacing or --solver changed the scene it speaks of",
+          "[cli][profile]") {
+    TempDir tmp;
+    // The bundled dam break at a coarse spacing of its own, with a comment on its settings.
+    auto scene = nlohmann::json::parse(read_file(source_dir() / "media" / "scenes" / "dam-break.json"));
+    scene.erase("$schema");
+    scene["particles"]["spacing"] = 0.04;
+    const std::string why = "dfsph x1: the cheapest setting the sweep found sound (a test's words)";
+    scene["sph"]["why"] = why;
+    write_file(tmp / "commented.json", scene.dump());
+    const std::vector<std::string> args = {"profile", "--scene", (tmp / "commented.json").string(), "--shading", "particles", "--size",
+                                           "64x48", "--frames", "1", "--warmup", "0", "--quiet", "--json", "p.json"};
+    const Result r = run_ranryu(tmp.path(), args);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("why its settings: " + why + "\n"));
+    const auto j = nlohmann::json::parse(read_file(tmp / "p.json"));
+    CHECK(j["settings_why"]["why"] == why);
+    CHECK(j["settings_why"]["as_shipped"] == true);
+
+    std::vector<std::string> other = args;
+    other.insert(other.end(), {"--solver", "pbf"});
+    const Result o = run_ranryu(tmp.path(), other);
+    INFO(o.out << o.err);
+    REQUIRE(o.exit_code == 0);
+    CHECK_THAT(o.out, Contains("why its settings: " + why + " (said of the scene as shipped; --spacing or --solver changed it"));
+    CHECK(nlohmann::json::parse(read_file(tmp / "p.json"))["settings_why"]["as_shipped"] == false);
+
+    // A scene without one prints no such line.
+    const Result none = run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.04", "--shading", "particles",
+                                                "--size", "64x48", "--frames", "1", "--warmup", "0", "--quiet"});
+    REQUIRE(none.exit_code == 0);
+    CHECK_THAT(none.out, !Contains("why its settings"));
+}
+
 TEST_CASE("ranryu profile --overlay draws the window's panel offscreen as the pass \"overlay\" and times its CPU side",
           "[cli][profile][overlay]") {
     TempDir tmp;

@@ -1,8 +1,10 @@
 // ranryu sweep (app/sweep.cpp) and its charts (scripts/sweep-charts.py): a tiny sweep's rows, a
 // deliberately unstable setting recorded with its cause while the sweep goes on, resuming, shards,
-// bad input, and the charts' files with their labels.
+// bad input, and the charts' files with their labels; the scene cases (scene:NAME) likewise.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_helper.h"
+#include "scene/scene.h"
 
 using namespace ranryu::test;
 using Catch::Matchers::Contains;
@@ -208,4 +211,283 @@ TEST_CASE("sweep: a PBF row's factor divides its fixed substeps and keeps its it
     const auto steps = [&](double f) { return by_factor.at(f)["steps"].get<double>(); };
     CHECK(steps(0.5) == Approx(2.0 * steps(1.0)).epsilon(0.02));
     CHECK(steps(1.0) == Approx(2.0 * steps(2.0)).epsilon(0.02));
+}
+
+TEST_CASE("sweep: a scene case runs the bundled scene for --seconds with its compression, the guard's verdict, the energy "
+          "criterion that fits it, and resumes only at the same --seconds",
+          "[sweep][scenes]") {
+    TempDir dir;
+    const fs::path out = dir.path() / "sw";
+    RunOptions slow;
+    slow.timeout = std::chrono::seconds(400);
+    // The dam break at a coarse spacing with WCSPH at factors 1 and 10 (10 leaves the tank within
+    // its first frames, as in the validation case), then the turbulent jet with PBF into the same folder.
+    const std::vector<std::string> dam = {"sweep", "--cases", "scene:dam-break", "--solvers", "wcsph", "--spacings", "0.025",
+                                          "--factors", "1,10", "--seconds", "1", "--quiet", "--out", out.string()};
+    const Result r = run_ranryu(dir.path(), dam, slow);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("2 run (1 unstable)"));
+    const Result jet = run_ranryu(dir.path(), {"sweep", "--cases", "scene:turbulent-jet", "--solvers", "pbf", "--spacings", "0.04",
+                                               "--factors", "1", "--seconds", "1", "--quiet", "--out", out.string()}, slow);
+    INFO(jet.out << jet.err);
+    REQUIRE(jet.exit_code == 0);
+    CHECK_THAT(jet.out, Contains("1 run (0 unstable), 0 already done"));
+
+    const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+    REQUIRE(j["rows"].size() == 3);
+    std::map<std::string, nlohmann::json> rows;
+    for (const auto& row : j["rows"]) rows[row["key"].get<std::string>()] = row;
+    REQUIRE(rows.count("scene:dam-break/wcsph/0.025/1"));
+    REQUIRE(rows.count("scene:dam-break/wcsph/0.025/10"));
+    REQUIRE(rows.count("scene:turbulent-jet/pbf/0.04/1"));
+    for (const auto& [key, row] : rows) {
+        INFO(row.dump());
+        CHECK(row["seconds"].get<double>() == 1.0);
+        for (const char* f : {"case", "solver", "spacing", "factor", "cfl", "status", "device", "date", "energy_check", "particles"})
+            CHECK(row.contains(f));
+    }
+    const nlohmann::json& bad = rows["scene:dam-break/wcsph/0.025/10"];
+    CHECK(bad["status"] == "unstable");
+    CHECK(bad["failure_frame"].get<int>() >= 0);
+    CHECK(bad["failure_time"].get<double>() < 1.0);
+    CHECK_THAT(bad["failure_message"].get<std::string>(), Contains("unstable at frame"));
+    CHECK_FALSE(bad.contains("mean_density_deviation_peak"));
+    for (const char* key : {"scene:dam-break/wcsph/0.025/1", "scene:turbulent-jet/pbf/0.04/1"}) {
+        const nlohmann::json& row = rows[key];
+        INFO(row.dump());
+        CHECK(row["status"] == "stable");
+        CHECK(row["simulated_seconds"].get<double>() == Approx(1.0).epsilon(1e-3));
+        CHECK(row["steps"].get<int>() > 0);
+        CHECK(row["gpu_ms_per_simulated_second"].get<double>() >= 0.0);
+        // The worst frame's mean compression: at least the average's and the end's, at most the worst particle's.
+        const double peak = row["mean_density_deviation_peak"].get<double>();
+        CHECK(peak >= row["mean_density_deviation_average"].get<double>());
+        CHECK(peak >= row["mean_density_deviation"].get<double>());
+        CHECK(peak <= row["max_density_deviation"].get<double>());
+        CHECK(peak < 0.05);
+        CHECK(row["mean_density_deviation_peak_time"].get<double>() > 0.0);
+        CHECK(row["error"].get<double>() == peak);
+        CHECK(row["error_max"].get<double>() == row["max_density_deviation"].get<double>());
+        CHECK_THAT(row["error_name"].get<std::string>(), Contains("mean compression"));
+    }
+    // The energy criterion: a closed tank under gravity is checked for a gain; the jet, whose
+    // turbulence force does work on the fluid, is not.
+    CHECK_THAT(rows["scene:dam-break/wcsph/0.025/1"]["energy_check"].get<std::string>(), Contains("gain above 1 %"));
+    CHECK(rows["scene:dam-break/wcsph/0.025/1"]["energy_drift"].get<double>() < 0.0);
+    CHECK_THAT(rows["scene:turbulent-jet/pbf/0.04/1"]["energy_check"].get<std::string>(), Contains("turbulence force"));
+    CHECK(rows["scene:turbulent-jet/pbf/0.04/1"]["pbf_substeps"] == 4);
+    const std::vector<std::string> csv = lines(read_file(out / "sweep.csv"));
+    REQUIRE(csv.size() == 4);
+    CHECK_THAT(csv[0], Contains("seconds,mean_density_deviation_peak"));
+
+    // Resumed at the same --seconds: nothing runs. At another: refused before any run, naming the
+    // folder's file, the row and both durations; the rows stay as they were.
+    const Result again = run_ranryu(dir.path(), dam, slow);
+    INFO(again.out << again.err);
+    CHECK(again.exit_code == 0);
+    CHECK_THAT(again.out, Contains("0 run (0 unstable), 2 already done"));
+    std::vector<std::string> longer = dam;
+    REQUIRE(longer[9] == "--seconds");
+    longer[10] = "2";
+    const std::string before = read_file(out / "sweep.json");
+    const Result refused = run_ranryu(dir.path(), longer, slow);
+    INFO(refused.out << refused.err);
+    CHECK(refused.exit_code == 2);
+    CHECK(lines(refused.err).size() == 1);
+    CHECK_THAT(refused.err, Contains((out / "sweep.json").string()));
+    CHECK_THAT(refused.err, Contains("scene:dam-break/wcsph/0.025/1 ran 1 simulated seconds, and --seconds asks for 2"));
+    CHECK(read_file(out / "sweep.json") == before);
+}
+
+TEST_CASE("sweep: the scene cases are the bundled SPH scenes at their own spacings, and bad scene cases are refused",
+          "[sweep][scenes]") {
+    TempDir dir;
+    const Result r = run_ranryu(dir.path(), {"sweep", "--cases", "scenes", "--solvers", "dfsph", "--factors", "1", "--list"});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    std::set<std::string> listed;
+    for (const std::string& l : lines(r.out)) listed.insert(l.substr(l.find(' ') + 1));
+    std::set<std::string> want;
+    for (const ranryu::scene::BundledScene& b : ranryu::scene::bundled()) {
+        const ranryu::scene::Scene s = ranryu::scene::load(b.name);
+        if (s.model != ranryu::scene::Model::sph) continue;
+        char key[200];
+        std::snprintf(key, sizeof key, "scene:%s/dfsph/%.6g/1", b.name.c_str(), s.spacing);
+        want.insert(key);
+    }
+    CHECK(want.size() >= 4);
+    CHECK(listed == want);
+    CHECK_FALSE(r.out.find("falling-block") != std::string::npos);   // no SPH, no solver to sweep
+    // --shard partitions scene rows like any others.
+    std::multiset<std::string> union_;
+    for (int i = 1; i <= 2; ++i)
+        for (const std::string& l : lines(run_ranryu(dir.path(), {"sweep", "--cases", "scenes", "--solvers", "dfsph", "--factors",
+                                                                  "1", "--list", "--shard", std::to_string(i) + "/2"}).out))
+            union_.insert(l);
+    const std::vector<std::string> all_rows = lines(r.out);
+    CHECK(union_ == std::multiset<std::string>(all_rows.begin(), all_rows.end()));
+
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+        {{"--cases", "scene:falling-block"}, "ballistic model"},
+        {{"--cases", "scene:tsunami"}, "no bundled SPH scene of that name"},
+        {{"--cases", "scenes,scene:drop"}, "named twice"},
+        {{"--cases", "dam-break", "--seconds", "2"}, "--seconds: only the scene cases"},
+        {{"--cases", "scene:drop", "--seconds", "0"}, "--seconds 0"},
+        {{"--cases", "scene:drop", "--seconds", "x"}, "--seconds x"},
+    };
+    for (const auto& [args, says] : bad) {
+        std::vector<std::string> all = {"sweep", "--list"};
+        all.insert(all.end(), args.begin(), args.end());
+        const Result b = run_ranryu(dir.path(), all);
+        INFO(b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(lines(b.err).size() == 1);
+        CHECK_THAT(b.err, Contains(says));
+    }
+    CHECK(fs::is_empty(dir.path()));
+}
+
+TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest eligible setting and the keys to put in its file",
+          "[sweep][scenes][script]") {
+    // tests/data/sweeps/scene-settings.json: rows made up to meet each clause of the rule once
+    // (docs/SWEEP.md "Choosing a scene's settings").
+    TempDir dir;
+    const fs::path script = source_dir() / "scripts" / "scene-settings.py";
+    const fs::path rows = kData / "sweeps" / "scene-settings.json";
+    const Result r = run({"/usr/bin/python3", script.string(), rows.string(), "--json", (dir / "choices.json").string()});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    const auto j = nlohmann::json::parse(read_file(dir / "choices.json"));
+    CHECK(j["max_compression"] == 0.01);
+    CHECK(j["seconds"] == 10.0);
+    std::map<std::string, nlohmann::json> by;
+    for (const auto& s : j["scenes"]) {
+        char key[120];
+        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
+        by[key] = s;
+    }
+    // The validation case's row is not a scene's: four scenes, the dam break at two spacings.
+    REQUIRE(by.size() == 5);
+    auto verdict = [](const nlohmann::json& scene, const std::string& key) {
+        for (const auto& row : scene["rows"])
+            if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
+        return std::string("absent");
+    };
+
+    // The dam break: the cheaper rows fail one clause each, and wcsph x2 is chosen by its GPU time.
+    const nlohmann::json& dam = by.at("dam-break@0.0125");
+    INFO(dam.dump(1));
+    CHECK(dam["cost_measure"] == "gpu_ms_per_simulated_second");
+    CHECK(dam["chosen"] == "scene:dam-break/wcsph/0.0125/2");
+    CHECK(dam["own_spacing"] == true);
+    CHECK(dam["sph"]["solver"] == "wcsph");
+    CHECK(dam["sph"]["cfl"] == 0.8);   // the row's 0.80000001192... as the file should say it
+    CHECK(dam["sph"]["force_factor"] == 0.5);
+    CHECK(dam["sph"]["max_time_step"] == 0.01);
+    const std::string why = dam["sph"]["why"].get<std::string>();
+    for (const char* says : {"NVIDIA H100", "2026-12-01", "10 s stable", "at most 1 %", "2000 GPU ms a simulated second",
+                             "against 2500 for dfsph x2", "docs/SWEEP.md"})
+        CHECK_THAT(why, Contains(says));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/1"), Contains("mean compression reached 2 %"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/0.5"), Contains("a smaller factor, x0.25, is not sound"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/pbf/0.0125/0.25"), Contains("unstable: energy gain"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/3"), Contains("sph.cfl = 1.2 is outside the scene key's bounds [0.01, 1]"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.5"), Contains("unstable: simulation unstable at frame 7"));
+    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1") == "eligible");
+    CHECK_THAT(r.out, Contains("merge into media/scenes/dam-break.json's \"sph\": {\"solver\": \"wcsph\", \"cfl\": 0.8,"));
+
+    // The same scene at a spacing its file does not have: chosen, and said to need that spacing.
+    const nlohmann::json& fine = by.at("dam-break@0.00625");
+    CHECK(fine["chosen"] == "scene:dam-break/dfsph/0.00625/1");
+    CHECK(fine["own_spacing"] == false);
+    CHECK(fine["sph"] == nlohmann::json{{"solver", "dfsph"}, {"why", fine["sph"]["why"]}});   // factor 1: the step keys stay the scene's
+    CHECK_THAT(r.out, Contains("only if its spacing becomes 0.00625 (the file's is 0.0125"));
+
+    // The jet gains energy from its turbulence force, which is no instability there: PBF is chosen,
+    // with its substeps and iterations.
+    const nlohmann::json& jet = by.at("turbulent-jet@0.025");
+    CHECK(jet["chosen"] == "scene:turbulent-jet/pbf/0.025/1");
+    CHECK(jet["sph"]["pbf"] == nlohmann::json{{"substeps", 4}, {"iterations", 4}});
+    CHECK_FALSE(jet["sph"].contains("cfl"));
+
+    // The drop ran 2 of the 10 seconds asked: no choice, and the output says to keep the scene's.
+    const nlohmann::json& drop = by.at("drop@0.015");
+    CHECK(drop["chosen"].is_null());
+    CHECK(drop["sph"].is_null());
+    CHECK_THAT(verdict(drop, "scene:drop/dfsph/0.015/1"), Contains("ran 2 s of the 10 s asked"));
+    CHECK_THAT(r.out, Contains("no setting is eligible"));
+    // ... unless the rule is asked for 2 seconds.
+    const Result two = run({"/usr/bin/python3", script.string(), rows.string(), "--seconds", "2", "--json", (dir / "two.json").string()});
+    REQUIRE(two.exit_code == 0);
+    for (const auto& s : nlohmann::json::parse(read_file(dir / "two.json"))["scenes"])
+        if (s["scene"] == "drop") CHECK(s["chosen"] == "scene:drop/wcsph/0.015/1");
+
+    // A row timed on llvmpipe makes the tank at rest's costs steps: DFSPH's fewer steps win over
+    // WCSPH's smaller (software) time.
+    const nlohmann::json& tank = by.at("hydrostatic@0.0125");
+    CHECK(tank["cost_measure"] == "steps");
+    CHECK(tank["chosen"] == "scene:hydrostatic/dfsph/0.0125/1");
+    CHECK_THAT(tank["sph"]["why"].get<std::string>(), Contains("250 steps a simulated second against 5000 for wcsph x1"));
+
+    // A stricter bound on the compression moves the dam break's choice to DFSPH.
+    const Result strict = run({"/usr/bin/python3", script.string(), rows.string(), "--max-compression", "0.001", "--json",
+                               (dir / "strict.json").string()});
+    REQUIRE(strict.exit_code == 0);
+    for (const auto& s : nlohmann::json::parse(read_file(dir / "strict.json"))["scenes"])
+        if (s["scene"] == "dam-break" && s["spacing"] == 0.0125) CHECK(s["chosen"] == "scene:dam-break/dfsph/0.0125/2");
+
+    // Bad input: one line on stderr naming it, exit code 2.
+    write_file(dir / "foreign.json", "{\"not\": \"a sweep\"}");
+    write_file(dir / "no-scenes.json", "{\"rows\": []}");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+        {{(dir / "foreign.json").string()}, (dir / "foreign.json").string() + ": not a sweep's rows"},
+        {{(dir / "missing").string()}, "missing"},
+        {{(dir / "no-scenes.json").string()}, "no scene case's rows"},
+        {{rows.string(), "--max-compression", "2"}, "--max-compression 2"},
+        {{rows.string(), "--seconds", "x"}, "--seconds"},
+    };
+    for (const auto& [args, says] : bad) {
+        std::vector<std::string> argv = {"/usr/bin/python3", script.string()};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const Result b = run(argv);
+        INFO(b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(lines(b.err).size() == 1);
+        CHECK_THAT(b.err, Contains(says));
+    }
+}
+
+TEST_CASE("scripts/gpu/scene-settings.sh smoke: the GPU host's scene sweep and its choice run end to end on llvmpipe",
+          "[sweep][scenes][script]") {
+    // The script the lead runs on the H100, at 0.1 s a row and spacing 0.04, one factor a solver:
+    // every scene and solver swept into one folder, the rule applied, its six files written.
+    TempDir dir;
+    RunOptions opt;
+    opt.timeout = std::chrono::seconds(300);
+    opt.set_env = {{"OUT", dir.str("out")}, {"RANRYU_BIN", kBin}};
+    const Result r = run({"/bin/bash", (source_dir() / "scripts" / "gpu" / "scene-settings.sh").string(), "smoke"}, opt);
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    for (const char* f : {"sweep.json", "sweep.csv", "sweep.log", "scene-settings.txt", "scene-settings.json", "summary.txt"})
+        CHECK(fs::exists(dir / "out" / f));
+    const auto rows = nlohmann::json::parse(read_file(dir / "out" / "sweep.json"))["rows"];
+    std::size_t sph_scenes = 0;
+    for (const ranryu::scene::BundledScene& b : ranryu::scene::bundled())
+        if (ranryu::scene::load(b.name).model == ranryu::scene::Model::sph) ++sph_scenes;
+    CHECK(rows.size() == 3 * sph_scenes);   // pbf, dfsph and wcsph at factor 1, each scene
+    const auto choices = nlohmann::json::parse(read_file(dir / "out" / "scene-settings.json"));
+    CHECK(choices["seconds"].get<double>() == Approx(0.1));
+    CHECK(choices["scenes"].size() == sph_scenes);
+    CHECK_THAT(r.out, Contains("scene-settings.py: rc 0"));
+    CHECK_THAT(r.out, !Contains("not run or cut short"));
+
+    // No budget: no sweep runs, and the summary says what was not run.
+    opt.set_env = {{"OUT", dir.str("none")}, {"RANRYU_BIN", kBin}, {"BUDGET_SECONDS", "0"}};
+    const Result none = run({"/bin/bash", (source_dir() / "scripts" / "gpu" / "scene-settings.sh").string(), "smoke"}, opt);
+    INFO(none.describe());
+    CHECK_THAT(none.out, Contains("not run or cut short"));
+    CHECK_THAT(none.out, Contains("scene:dam-break pbf"));
+    CHECK_FALSE(fs::exists(dir / "none" / "sweep.json"));
 }

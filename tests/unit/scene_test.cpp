@@ -55,6 +55,17 @@ TEST_CASE("scene errors name the input and the key") {
     CHECK(!parse("{" + kBlock + ", \"sph\": {\"neighbour_masks\": false}}", "t").sph.neighbour_masks);
 }
 
+TEST_CASE("sph.why is a comment on the settings: kept as written, a string, and nothing else changes") {
+    const Scene plain = parse("{" + kBlock + ", \"model\": \"sph\"}", "t");
+    CHECK(plain.sph.why.empty());
+    const Scene s = parse("{" + kBlock + ", \"model\": \"sph\", \"sph\": {\"why\": \"wcsph x2: the cheapest sound setting\"}}", "t");
+    CHECK(s.sph.why == "wcsph x2: the cheapest sound setting");
+    CHECK(s.sph.solver == plain.sph.solver);
+    CHECK(s.sph.cfl == plain.sph.cfl);
+    CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"why\": 2}}"), Catch::Contains("\"sph.why\" must be a string"));
+    for (const BundledScene& b : bundled()) CHECK(b.why == load(b.name).sph.why);
+}
+
 TEST_CASE("an unknown bundled name lists the bundled scenes") {
     try {
         load("no-such-scene");
