@@ -120,7 +120,8 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
       tank_pass_(timer.pass("draw-tank")),
       particles_pass_(timer.pass("draw-particles")),
       floor_(shader::Program::graphics(shaders, "render/floor.vert", "render/floor.frag")),
-      tank_(shader::Program::graphics(shaders, "render/tank.vert", "render/tank.frag")),
+      tank_(shader::Program::graphics(shaders, "render/tank.vert", "render/tank.frag",
+                                      shading == Shading::water ? "#define SUN_SHARE\n" : "")),
       impostor_(shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag")),
       frame_ubo_(sizeof(gpu::FrameParams), GL_DYNAMIC_DRAW, nullptr, "FrameParams"),
       water_(water) {
@@ -219,9 +220,9 @@ std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions w
     const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
     const int d = water.thickness_divisor;
     const std::size_t thickness = std::size_t(reduced(width, d)) * std::size_t(reduced(height, d));
-    // The scene cache (colour, position and q, depth), the scene with the shadow, the thickness, the shadow map.
-    return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_RGBA32F) +
-                     gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) + gl::Texture2D::texel_bytes(GL_RGBA16F)) +
+    // The scene cache (C_lit and q, depth), the scene with the shadow, the thickness, the shadow map.
+    return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) +
+                     gl::Texture2D::texel_bytes(GL_RGBA16F)) +
            thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
 }
 
@@ -229,7 +230,6 @@ void Renderer::resize(int width, int height) {
     if (shading_ != Shading::water) return;
     if (scene_color_.width() == width && scene_color_.height() == height) return;
     lit_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.lit");
-    lit_position_ = gl::Texture2D(GL_RGBA32F, width, height, "scene.position");
     scene_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.color");
     scene_depth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height, "scene.depth");
     const int d = water_.thickness_divisor;
@@ -241,7 +241,7 @@ void Renderer::resize(int width, int height) {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
     glBindTexture(GL_TEXTURE_2D, 0);
-    const gl::Texture2D* scene[] = {&lit_color_, &lit_position_};
+    const gl::Texture2D* scene[] = {&lit_color_};
     scene_fbo_ = gl::Framebuffer(scene, &scene_depth_, "scene.cache");
     ++generation_;   // a new cache, not drawn yet
     const gl::Texture2D* thick[] = {&thickness_};
@@ -323,16 +323,14 @@ void Renderer::fill(const gl::Texture2D& r32f, float value) {
 }
 
 void Renderer::draw_scene() {
-    // The scene cache (R13): C_lit and (x, q) of every pixel, with its depth. Expects the frame UBO
-    // and the shadow map bound (the redraw path's floor and walls read it).
+    // The scene cache (R13): C_lit and q of every pixel, with its depth. Expects the frame UBO and the
+    // shadow map bound (the redraw path's floor and walls read it).
     glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_.id());
     glViewport(0, 0, scene_depth_.width(), scene_depth_.height());
     {
+        // The depth alone: the sky covers every pixel's colour.
         auto pass = timer_.scope(clear_pass_);
         glDepthMask(GL_TRUE);
-        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearBufferfv(GL_COLOR, 0, black);
-        glClearBufferfv(GL_COLOR, 1, zero);
         glClearDepth(1.0);
         glClear(GL_DEPTH_BUFFER_BIT);
     }
@@ -419,7 +417,6 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         // (R13): the cache with this frame's shadow, into the scene the surface refracts and the frame.
         auto pass = timer_.scope(compose_pass_);
         bind_texture(RANRYU_TEX_SCENE_LIT, lit_color_);
-        bind_texture(RANRYU_TEX_SCENE_POSITION, lit_position_);
         glBindImageTexture(RANRYU_IMG_SCENE, scene_color_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(RANRYU_IMG_FRAME, target.color().id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
         compose_.use();
@@ -450,7 +447,7 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         glDisable(GL_CULL_FACE);
     }
     for (GLuint unit : {RANRYU_TEX_SCENE_COLOR, RANRYU_TEX_SCENE_DEPTH, RANRYU_TEX_THICKNESS, RANRYU_TEX_SHADOW_NEAR,
-                        RANRYU_TEX_SHADOW_THICKNESS, RANRYU_TEX_SCENE_LIT, RANRYU_TEX_SCENE_POSITION}) {
+                        RANRYU_TEX_SHADOW_THICKNESS, RANRYU_TEX_SCENE_LIT}) {
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(GL_TEXTURE_2D, 0);
     }

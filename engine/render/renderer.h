@@ -164,12 +164,12 @@ private:
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};
     // The water mode's passes, programs and targets (docs/RENDERING.md). The scene cache: lit_color_
-    // (C_lit of (R13), RGBA16F), lit_position_ (x, q; RGBA32F) and scene_depth_, drawn when
-    // drawn_generation_ falls behind generation_, which set_frame() and resize() advance.
+    // (C_lit and q of (R13), RGBA16F) and scene_depth_, drawn when drawn_generation_ falls behind
+    // generation_, which set_frame() and resize() advance.
     WaterOptions water_;
     profile::PassId shadow_pass_{}, sky_pass_{}, walls_pass_{}, thickness_pass_{}, compose_pass_{};
     shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_, fill_;
-    gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, lit_position_, scene_color_, scene_depth_, thickness_;
+    gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, scene_color_, scene_depth_, thickness_;
     gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;
     std::uint64_t generation_ = 1, drawn_generation_ = 0;
 };

@@ -48,8 +48,7 @@
 #define RANRYU_TEX_THICKNESS 2        // the liquid's thickness along each view ray (m, R32F)
 #define RANRYU_TEX_SHADOW_NEAR 3      // the sun depth s of the liquid nearest the sun (m, R32F)
 #define RANRYU_TEX_SHADOW_THICKNESS 4 // the liquid's thickness along the sunlight (m, R32F)
-#define RANRYU_TEX_SCENE_LIT 5        // the scene cache: the opaque scene lit with no liquid, C_lit (R13; RGBA16F)
-#define RANRYU_TEX_SCENE_POSITION 6   // the scene cache: xyz the receiver's world position, w its sun share q (R13; RGBA32F)
+#define RANRYU_TEX_SCENE_LIT 5        // the scene cache: rgb the opaque scene lit with no liquid, C_lit; a its sun share q (R13; RGBA16F)
 // Image units of the water mode's compute passes (fill_image.comp, compose.comp).
 #define RANRYU_IMG_TARGET 0           // fill_image.comp: the R32F image it fills
 #define RANRYU_IMG_SCENE 0            // compose.comp: the opaque scene with this frame's shadow, linear (RGBA16F)

@@ -1,17 +1,16 @@
 #version 430
 // The water mode's floor and tank walls: tiles (R9) inside the tank, plain ground outside its
-// footprint, into the opaque scene's targets (linear). Built with WALLS for the walls (walls.vert),
+// footprint, into the opaque scene's target (linear). Built with WALLS for the walls (walls.vert),
 // which are tiled everywhere.
-//   location 0: the scene cache's C_lit of (R13), the colour (R11) gives with no liquid's shadow;
-//               built with SHADOW_INLINE (the redraw path), (R11) with the shadow (R10) itself.
-//   location 1: xyz the world position x, w the sun's share q of (R13) (0 with SHADOW_INLINE: the
-//               shadow is applied already); compose.comp applies c = C_lit·(1 − q·(1 − S(x))).
+//   rgb: the scene cache's C_lit of (R13), the colour (R11) gives with no liquid's shadow; built with
+//        SHADOW_INLINE (the redraw path), (R11) with the shadow (R10) itself;
+//   a:   the sun's share q of (R13) (0 with SHADOW_INLINE: the shadow is in already). compose.comp
+//        applies c = C_lit·(1 − q·(1 − S(x))) at the x the depth holds.
 #include "water.glsl"
 
 in vec3 v_world;
 in vec3 v_normal;
 layout(location = 0) out vec4 out_color;
-layout(location = 1) out vec4 out_position;
 
 void main() {
     vec3 n = normalize(v_normal);
@@ -23,11 +22,8 @@ void main() {
     vec3 albedo = inside ? tile_albedo(uv) : vec3(RANRYU_GROUND_ALBEDO);
 #endif
 #ifdef SHADOW_INLINE
-    out_color = vec4(lit_matte(albedo, n, v_world), 1.0);
-    out_position = vec4(v_world, 0.0);
+    out_color = vec4(lit_matte(albedo, n, v_world), 0.0);
 #else
-    vec4 lit = lit_unshadowed(albedo, n);
-    out_color = vec4(lit.rgb, 1.0);
-    out_position = vec4(v_world, lit.w);
+    out_color = lit_unshadowed(albedo, n);
 #endif
 }

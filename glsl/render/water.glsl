@@ -72,3 +72,11 @@ float eye_distance(vec2 frag, float depth) {
     vec2 ndc = frag * frame.viewport.zw * 2.0 - 1.0;
     return view_z * length(vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0));
 }
+
+// (R12) The world point the depth buffer holds at window position `frag`: the eye plus the eye
+// distance along the pixel's view ray, turned into world space (the view matrix is rigid).
+vec3 world_position(vec2 frag, float depth) {
+    vec2 ndc = frag * frame.viewport.zw * 2.0 - 1.0;
+    vec3 ray = transpose(mat3(frame.view)) * vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0);
+    return frame.eye.xyz + eye_distance(frag, depth) * normalize(ray);
+}

@@ -23,8 +23,9 @@
 //     (the floor and walls whose shadow-map taps reach the box's outline seen from the sun), both grown
 //     by 2 px, and differ inside; their opaque scenes agree exactly outside the shadow and differ in it.
 //   - The scene cache (R13) against the full redraw (WaterOptions::reference()) after a change of view:
-//     the linear scene within 1.6e-3 relative (two half roundings against one), the frame within one
-//     8-bit step; the opaque scene's passes run only in the frames whose view changed.
+//     the linear scene within 1.6e-3·c + 3e-4·C_lit (two half roundings against one), or, at no more than 4 %
+//     of the shadow's texels, one shadow-map tap apart (x from the depth, (R12)); the frame within one
+//     8-bit step elsewhere; the opaque scene's passes run only in the frames whose view changed.
 //   - The thickness at half size, upsampled: within the full-size thickness's range over the 5x5 pixels
 //     around (± 1 mm) wherever the opaque depth is continuous, and within 1 mm of it where the chord is
 //     one smooth function over the footprint read.
@@ -696,35 +697,46 @@ TEST_CASE("water: the scene cache gives the frame the full redraw gives, and is 
     CHECK(frames_with(timer, "compose") == 4);
     CHECK(frames_with(timer, "shadow-map") == 4);
 
-    // The linear scene: the cache rounds C_lit to half (2^-11 relative), and compose rounds
-    // C_lit·(1 − q·(1 − S)) to half again; the reference rounds (R11) once. The float arithmetic
-    // between (S is the same taps of the same map at the same x) adds ~1e-6: tolerance 1.6e-3 relative.
-    // The frame: display-encoded to 8 bits from those, a difference of at most one step.
-    int scene_failures = 0, frame_failures = 0, equal_frame = 0;
+    // The linear scene: the cache rounds C_lit to half (2^-11 relative) and q (by up to 2^-12), and
+    // compose rounds C_lit·(1 − q·(1 − S)) to half again; the reference rounds (R11) once, c. So
+    // |cached − redrawn| <= 3·2^-11·c + 2^-12·C_lit: tolerance 1.6e-3·c + 3e-4·C_lit.
+    // compose finds x from the depth (R12), within ~2e-5 m of the raster's interpolated x at these
+    // distances: where that moves x across a shadow-map texel's edge, one of the 9 taps may change, by at
+    // most C_lit/9 (C_lit: the scene without the liquid), at a few texels along the shadow's edges.
+    // The frame: display-encoded to 8 bits from those, a difference of at most one step elsewhere.
+    const Frame bare = render_water(second, false, kFullSizeThickness);
+    int scene_failures = 0, frame_failures = 0, equal_frame = 0, one_tap = 0, in_shadow = 0;
     double worst = 0.0;
     for (int j = 0; j < kHeight; ++j)
         for (int i = 0; i < kWidth; ++i) {
-            const glm::dvec3 g = got.scene_texel(i, j), w = want.scene_texel(i, j);
-            const glm::dvec3 rel = glm::abs(g - w) / glm::max(glm::abs(w), glm::dvec3(1e-3));
-            worst = std::max({worst, rel.r, rel.g, rel.b});
-            if (std::max({rel.r, rel.g, rel.b}) > 1.6e-3 && ++scene_failures <= 8)
-                FAIL_CHECK("scene texel (" << i << ", " << j << "): cached " << describe(g) << ", redrawn " << describe(w));
+            const glm::dvec3 g = got.scene_texel(i, j), w = want.scene_texel(i, j), lit = bare.scene_texel(i, j);
+            in_shadow += lit != w;
+            const glm::dvec3 err = glm::abs(g - w), tol = 1.6e-3 * glm::abs(w) + 3e-4 * lit;
+            const glm::dvec3 rel = err / glm::max(glm::abs(w), glm::dvec3(1e-3));
+            bool tap = false;
+            if (std::max({err.r - tol.r, err.g - tol.g, err.b - tol.b}) > 0.0) {
+                const glm::dvec3 over = err - (tol + lit / 9.0);
+                tap = std::max({over.r, over.g, over.b}) <= 0.0 && lit != w;
+                one_tap += tap;
+                if (!tap && ++scene_failures <= 8)
+                    FAIL_CHECK("scene texel (" << i << ", " << j << "): cached " << describe(g) << ", redrawn " << describe(w));
+            } else {
+                worst = std::max({worst, rel.r, rel.g, rel.b});
+            }
             const glm::dvec3 d = glm::abs(got.final_color(i, j) - want.final_color(i, j));
-            if (std::max({d.r, d.g, d.b}) > 1.0 && ++frame_failures <= 8)
+            if (!tap && std::max({d.r, d.g, d.b}) > 1.0 && ++frame_failures <= 8)
                 FAIL_CHECK("pixel (" << i << ", " << j << "): cached " << describe(got.final_color(i, j)) << ", redrawn "
                                      << describe(want.final_color(i, j)));
             equal_frame += got.final_color(i, j) == want.final_color(i, j);
         }
-    // The liquid's shadow is in the compared scene: it differs from the scene without the liquid.
-    const Frame bare = render_water(second, false, kFullSizeThickness);
-    int in_shadow = 0;
-    for (int j = 0; j < kHeight; ++j)
-        for (int i = 0; i < kWidth; ++i) in_shadow += bare.scene_texel(i, j) != want.scene_texel(i, j);
-    INFO("largest relative difference of the scene " << worst << "; " << equal_frame << " of " << kWidth * kHeight
-                                                     << " frame pixels equal; " << in_shadow << " scene texels in the liquid's shadow");
+    INFO("largest relative difference of the scene " << worst << " (" << one_tap << " texels a shadow-map tap apart); " << equal_frame
+                                                     << " of " << kWidth * kHeight << " frame pixels equal; " << in_shadow
+                                                     << " scene texels in the liquid's shadow");
     CHECK(scene_failures == 0);
     CHECK(frame_failures == 0);
+    // The liquid's shadow is in the compared scene, and the texels a tap apart are a few of it.
     CHECK(in_shadow > 20);
+    CHECK(one_tap <= std::max(4, in_shadow / 25));
 }
 
 TEST_CASE("water: the thickness drawn at half size and upsampled stays within the full-size thickness around each pixel") {
