@@ -322,6 +322,17 @@ void Renderer::fill(const gl::Texture2D& r32f, float value) {
     glBindImageTexture(RANRYU_IMG_TARGET, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
 }
 
+void Renderer::draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
+                           const shader::Program& program) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glViewport(0, 0, size_of.width(), size_of.height());
+    program.use();
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    draw_mesh(surface, mesh_position_vao_);
+    glDisable(GL_BLEND);
+}
+
 void Renderer::draw_scene() {
     // The scene cache (R13): C_lit and q of every pixel, with its depth. Expects the frame UBO and the
     // shadow map bound (the redraw path's floor and walls read it).
@@ -380,16 +391,10 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         fill(shadow_thickness_, 0.0f);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         if (surface) {
-            glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.id());
-            glViewport(0, 0, shadow_near_.width(), shadow_near_.height());
-            shadow_.use();
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
             glBlendEquationi(0, GL_MIN);
             glBlendEquationi(1, GL_FUNC_ADD);
-            draw_mesh(*surface, mesh_position_vao_);
+            draw_layers(*surface, shadow_fbo_, shadow_near_, shadow_);
             glBlendEquation(GL_FUNC_ADD);
-            glDisable(GL_BLEND);
         }
     }
     bind_texture(RANRYU_TEX_SHADOW_NEAR, shadow_near_);
@@ -403,14 +408,8 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         fill(thickness_, 0.0f);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         if (surface) {
-            glBindFramebuffer(GL_FRAMEBUFFER, thickness_fbo_.id());
-            glViewport(0, 0, thickness_.width(), thickness_.height());
-            thickness_prog_.use();
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
             glBlendEquation(GL_FUNC_ADD);
-            draw_mesh(*surface, mesh_position_vao_);
-            glDisable(GL_BLEND);
+            draw_layers(*surface, thickness_fbo_, thickness_, thickness_prog_);
         }
     }
     {

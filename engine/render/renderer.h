@@ -154,6 +154,10 @@ private:
     void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
     void draw_scene();   // the water mode's scene cache: "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"
     void fill(const gl::Texture2D& r32f, float value);   // fill_image.comp over the whole texture
+    // Every layer of the mesh, by its positions alone, into `fbo` at the size of `size_of`, blended
+    // (ONE, ONE) with the equations the caller set: the shadow map and the thickness.
+    void draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
+                     const shader::Program& program);
     void draw_mesh(const SurfaceMesh& surface, const gl::VertexArray& vao);
 
     profile::GpuTimer& timer_;

@@ -10,6 +10,7 @@
 //     of what they show (floor/wall/sky, a grout line, the tank's footprint), a tank edge line (within
 //     2.5 px), or a texel whose centre lies within 0.05 texel of the box's outline seen from the sun.
 //     (The sky is compared where it is in view; the camera looks down 25°..55°, so it may not be.)
+//     The shadow is taken at the point the GPU's depth holds (R12), where compose.comp takes it (R13).
 //     Tolerance: 2e-3 relative + 2e-3 (half float keeps 11 bits; the GPU's floats against doubles).
 //   - The thickness along each view ray (R5): the box's chord clipped to the opaque scene's distance,
 //     with the box floating and with it sunk into the floor. Tolerance 5e-4 m: the opaque distance
@@ -347,21 +348,31 @@ public:
                sun_depth(x) > sun_depth(0.5 * (r_.box.lo + r_.box.hi)) - glm::length(r_.box.hi - r_.box.lo);
     }
 
-    // (R9), (R11): the lit floor or wall, linear.
-    std::optional<glm::dvec3> matte(const Opaque& o) const {
+    // (R9), (R11): the lit floor or wall, linear; its shadow (R10) taken at `shadow_at` (default: o.p).
+    std::optional<glm::dvec3> matte(const Opaque& o, std::optional<glm::dvec3> shadow_at = std::nullopt) const {
         const glm::dvec3 albedo = o.albedo_class == 2 ? kGroundAlbedo : o.albedo_class == 1 ? kGrout : kTile;
         const double ndl = std::max(glm::dot(o.n, glm::dvec3(f_.light_dir)), 0.0);
         glm::dvec3 sun(0.0);
         if (ndl > 0.0) {
-            const auto s = sun_transmittance(o.p);
+            const auto s = sun_transmittance(shadow_at.value_or(o.p));
             if (!s) return std::nullopt;
             sun = *s;
         }
         return glm::dvec3(f_.light_color) * albedo * (double(f_.light_color.a) + double(f_.material.x) * ndl * sun);
     }
 
-    // The opaque scene at pixel (i, j), linear, or nothing where ambiguous (see the top).
-    std::optional<glm::dvec3> opaque_pixel(int i, int j, Opaque* out = nullptr) const {
+    // (R12), (R13): the world point a depth-buffer value holds at pixel (i, j)'s centre, as compose.comp
+    // finds the receiver whose shadow it applies.
+    glm::dvec3 depth_point(int i, int j, double depth) const {
+        const glm::dvec2 ndc((i + 0.5) / kWidth * 2.0 - 1.0, (j + 0.5) / kHeight * 2.0 - 1.0);
+        const double view_z = double(f_.proj[3][2]) / ((2.0 * depth - 1.0) + double(f_.proj[2][2]));
+        const double t = view_z * glm::length(glm::dvec3(ndc.x / f_.proj[0][0], ndc.y / f_.proj[1][1], -1.0));
+        return eye() + t * ray(i + 0.5, j + 0.5);
+    }
+
+    // The opaque scene at pixel (i, j), linear, or nothing where ambiguous (see the top). `depth`: the
+    // GPU's depth there, whose point (depth_point) takes the shadow, as in the scene cache (R13).
+    std::optional<glm::dvec3> opaque_pixel(int i, int j, Opaque* out = nullptr, std::optional<double> depth = std::nullopt) const {
         const glm::dvec3 d = ray(i + 0.5, j + 0.5);
         const Opaque o = opaque(d);
         for (int c = 0; c < 4; ++c) {
@@ -371,7 +382,7 @@ public:
         if (near_edge_line(i, j)) return std::nullopt;
         if (out) *out = o;
         if (o.kind == 0) return sky(d);
-        return matte(o);
+        return matte(o, depth ? std::optional<glm::dvec3>(depth_point(i, j, *depth)) : std::nullopt);
     }
 
     // Whether a tank edge (a 1-px line) passes within 2.5 px of the pixel centre.
@@ -437,7 +448,7 @@ TEST_CASE("water: the opaque scene's sky, tiles and the liquid's coloured shadow
     for (int j = 0; j < kHeight; ++j)
         for (int i = 0; i < kWidth; ++i) {
             Cpu::Opaque o;
-            const auto want = cpu.opaque_pixel(i, j, &o);
+            const auto want = cpu.opaque_pixel(i, j, &o, double(f.depth[std::size_t(j) * kWidth + std::size_t(i)]));
             if (!want) continue;
             const glm::dvec3 got = f.scene_texel(i, j);
             const glm::dvec3 err = glm::abs(got - *want) - (2e-3 * glm::abs(*want) + 2e-3);
