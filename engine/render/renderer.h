@@ -80,7 +80,7 @@ struct WaterOptions {
     // own shadow (R11): the reference the tests compare the cache with.
     bool cache_scene = true;
     // The liquid's thickness (R5) is drawn at 1/thickness_divisor of the frame's size along each axis
-    // (1 or 2; rounded up) and upsampled bilinearly by the surface pass.
+    // (1 to 4; sizes rounded up) and upsampled bilinearly by the surface pass.
     int thickness_divisor = 2;
     // The drawing before these options: the scene every frame, the thickness at the frame's size.
     static WaterOptions reference() { return WaterOptions{false, 1}; }
