@@ -11,9 +11,10 @@
 //                                 // (surface/level_set.h, surface/marching_cubes.h) mesh the liquid
 //     pipeline.draw();            // "clear", "draw-floor", "draw-tank", "draw-particles" (with the
 //                                 // sub-particles, coloured by level) or "draw-surface"; the water
-//                                 // shading: "shadow-map", "clear", "draw-sky", "draw-floor",
-//                                 // "draw-walls", "draw-tank", "liquid-thickness", "compose",
-//                                 // "draw-surface"; with sub-particles, "draw-spray"
+//                                 // shading: "shadow-map", ("clear", "draw-sky", "draw-floor",
+//                                 // "draw-walls", "draw-tank": in frames whose view changed),
+//                                 // "liquid-thickness", "compose", "draw-surface"; with
+//                                 // sub-particles, "draw-spray"
 //                                 // after the surface, and with the paddle on (run), "draw-paddle"
 //                                 // (render/renderer.h)
 //     recorder.capture(...);      // "readback"   (record only)

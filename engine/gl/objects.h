@@ -165,6 +165,7 @@ public:
     static std::size_t bytes_for(int width, int height);
     GLuint framebuffer() const { return fbo_.id(); }
     const Texture2D& color() const { return color_; }
+    const Texture2D& depth() const { return depth_; }
     int width() const { return color_.width(); }
     int height() const { return color_.height(); }
 

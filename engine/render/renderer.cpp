@@ -1,6 +1,8 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -23,13 +25,19 @@ constexpr ShadingName kShadingNames[] = {{Shading::water, "water"},
                                          {Shading::gouraud, "gouraud"},
                                          {Shading::particles, "particles"}};
 
-shader::Program surface_program(const shader::FileSource& shaders, Shading s) {
+// The define that sizes the liquid's thickness (liquid_thickness.frag, surface_water.frag).
+std::string thickness_define(const WaterOptions& w) {
+    return "#define THICKNESS_DIVISOR " + std::to_string(w.thickness_divisor) + "\n";
+}
+
+shader::Program surface_program(const shader::FileSource& shaders, Shading s, const WaterOptions& w) {
     switch (s) {
         case Shading::phong: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_phong.frag");
         case Shading::gouraud:
             return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_gouraud.frag", "#define GOURAUD\n");
         case Shading::fresnel: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_fresnel.frag");
-        case Shading::water: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_water.frag");
+        case Shading::water:
+            return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_water.frag", thickness_define(w));
         case Shading::particles: break;
     }
     return {};
@@ -49,6 +57,21 @@ const char* shading_name(Shading s) {
 }
 
 const char* shading_names() { return "water, fresnel, phong, gouraud, particles"; }
+
+WaterOptions WaterOptions::from_environment() {
+    WaterOptions w;
+    if (const char* v = std::getenv("RANRYU_WATER_CACHE")) {
+        if (std::string_view(v) != "0" && std::string_view(v) != "1")
+            throw InputError(std::string("RANRYU_WATER_CACHE=") + v + ": expected 0 or 1");
+        w.cache_scene = *v == '1';
+    }
+    if (const char* v = std::getenv("RANRYU_WATER_THICKNESS_DIVISOR")) {
+        if (std::string_view(v).size() != 1 || *v < '1' || *v > '4')
+            throw InputError(std::string("RANRYU_WATER_THICKNESS_DIVISOR=") + v + ": expected 1, 2, 3 or 4");
+        w.thickness_divisor = *v - '0';
+    }
+    return w;
+}
 
 Shading default_shading(const scene::Scene& s) { return s.model == scene::Model::sph ? Shading::water : Shading::particles; }
 
@@ -88,7 +111,8 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
     return p;
 }
 
-Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles, bool paddle)
+Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles, bool paddle,
+                   WaterOptions water)
     : timer_(timer),
       shading_(shading),
       clear_pass_(timer.pass("clear")),
@@ -96,9 +120,13 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
       tank_pass_(timer.pass("draw-tank")),
       particles_pass_(timer.pass("draw-particles")),
       floor_(shader::Program::graphics(shaders, "render/floor.vert", "render/floor.frag")),
-      tank_(shader::Program::graphics(shaders, "render/tank.vert", "render/tank.frag")),
+      tank_(shader::Program::graphics(shaders, "render/tank.vert", "render/tank.frag",
+                                      shading == Shading::water ? "#define SUN_SHARE\n" : "")),
       impostor_(shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag")),
-      frame_ubo_(sizeof(gpu::FrameParams), GL_DYNAMIC_DRAW, nullptr, "FrameParams") {
+      frame_ubo_(sizeof(gpu::FrameParams), GL_DYNAMIC_DRAW, nullptr, "FrameParams"),
+      water_(water) {
+    if (water_.thickness_divisor < 1 || water_.thickness_divisor > 4)
+        throw Error("Renderer: WaterOptions::thickness_divisor " + std::to_string(water_.thickness_divisor) + " is not 1 to 4");
     // Per-instance position and velocity attributes; the buffers are attached at draw time.
     glBindVertexArray(particle_vao_.id());
     glEnableVertexAttribArray(RANRYU_ATTR_POSITION);
@@ -135,7 +163,7 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
 
     if (needs_surface(shading_)) {
         surface_pass_ = timer.pass("draw-surface");
-        surface_ = surface_program(shaders, shading_);
+        surface_ = surface_program(shaders, shading_, water_);
         // gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32; buffer attached at draw time.
         glBindVertexArray(mesh_vao_.id());
         glEnableVertexAttribArray(RANRYU_ATTR_MESH_POSITION);
@@ -146,6 +174,13 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         glVertexAttribBinding(RANRYU_ATTR_MESH_NORMAL, 0);
         glBindVertexArray(0);
         gl::label(GL_VERTEX_ARRAY, mesh_vao_.id(), "surface.vao");
+        // The same vertices by their positions alone (mesh_position.vert): the passes that need no normal.
+        glBindVertexArray(mesh_position_vao_.id());
+        glEnableVertexAttribArray(RANRYU_ATTR_MESH_POSITION);
+        glVertexAttribFormat(RANRYU_ATTR_MESH_POSITION, 4, GL_FLOAT, GL_FALSE, offsetof(gpu::MeshVertex, position));
+        glVertexAttribBinding(RANRYU_ATTR_MESH_POSITION, 0);
+        glBindVertexArray(0);
+        gl::label(GL_VERTEX_ARRAY, mesh_position_vao_.id(), "surface.positions.vao");
         if (subparticles) {
             spray_pass_ = timer.pass("draw-spray");
             spray_ = shader::Program::graphics(shaders, "render/spray.vert", "render/spray.frag");
@@ -158,12 +193,15 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         walls_pass_ = timer.pass("draw-walls");
         thickness_pass_ = timer.pass("liquid-thickness");
         compose_pass_ = timer.pass("compose");
-        shadow_ = shader::Program::graphics(shaders, "render/shadow_map.vert", "render/shadow_map.frag");
+        shadow_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/shadow_map.frag", "#define SUN_VIEW\n");
         sky_ = shader::Program::graphics(shaders, "render/sky.vert", "render/sky.frag");
-        tiles_floor_ = shader::Program::graphics(shaders, "render/floor.vert", "render/tiles.frag");
-        tiles_walls_ = shader::Program::graphics(shaders, "render/walls.vert", "render/tiles.frag", "#define WALLS\n");
-        thickness_prog_ = shader::Program::graphics(shaders, "render/surface.vert", "render/liquid_thickness.frag");
-        compose_ = shader::Program::graphics(shaders, "render/sky.vert", "render/compose.frag");
+        const std::string inline_shadow = water_.cache_scene ? "" : "#define SHADOW_INLINE\n";
+        tiles_floor_ = shader::Program::graphics(shaders, "render/floor.vert", "render/tiles.frag", inline_shadow);
+        tiles_walls_ = shader::Program::graphics(shaders, "render/walls.vert", "render/tiles.frag", "#define WALLS\n" + inline_shadow);
+        thickness_prog_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/liquid_thickness.frag",
+                                                    thickness_define(water_));
+        compose_ = shader::Program::compute(shaders, "render/compose.comp");
+        fill_ = shader::Program::compute(shaders, "render/fill_image.comp");
         constexpr int n = RANRYU_SHADOW_MAP_SIZE;
         shadow_near_ = gl::Texture2D(GL_R32F, n, n, "shadow.near");
         shadow_thickness_ = gl::Texture2D(GL_R32F, n, n, "shadow.thickness");
@@ -173,27 +211,39 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
     if (needs_surface(shading_)) set_absorption(glm::vec3(0.0f));
 }
 
-std::size_t Renderer::bytes_for(Shading s, int width, int height) {
+namespace {
+int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
+}  // namespace
+
+std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions water) {
     if (s != Shading::water) return 0;
     const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
+    const int d = water.thickness_divisor;
+    const std::size_t thickness = std::size_t(reduced(width, d)) * std::size_t(reduced(height, d));
+    // The scene cache (C_lit and q, depth), the scene with the shadow, the thickness, the shadow map.
     return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) +
-                     gl::Texture2D::texel_bytes(GL_R32F)) +
-           2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
+                     gl::Texture2D::texel_bytes(GL_RGBA16F)) +
+           thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
 }
 
 void Renderer::resize(int width, int height) {
     if (shading_ != Shading::water) return;
     if (scene_color_.width() == width && scene_color_.height() == height) return;
+    lit_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.lit");
     scene_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.color");
     scene_depth_ = gl::Texture2D(GL_DEPTH_COMPONENT32F, width, height, "scene.depth");
-    thickness_ = gl::Texture2D(GL_R32F, width, height, "liquid.thickness");
-    // The refraction's lookup may land on the border: clamp there.
-    glBindTexture(GL_TEXTURE_2D, scene_color_.id());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const int d = water_.thickness_divisor;
+    thickness_ = gl::Texture2D(GL_R32F, reduced(width, d), reduced(height, d), "liquid.thickness");
+    // The refraction's lookup and the thickness's upsampling may land on the border: clamp there.
+    for (const gl::Texture2D* t : {&scene_color_, &thickness_}) {
+        glBindTexture(GL_TEXTURE_2D, t->id());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     glBindTexture(GL_TEXTURE_2D, 0);
-    const gl::Texture2D* scene[] = {&scene_color_};
-    scene_fbo_ = gl::Framebuffer(scene, &scene_depth_, "scene");
+    const gl::Texture2D* scene[] = {&lit_color_};
+    scene_fbo_ = gl::Framebuffer(scene, &scene_depth_, "scene.cache");
+    ++generation_;   // a new cache, not drawn yet
     const gl::Texture2D* thick[] = {&thickness_};
     thickness_fbo_ = gl::Framebuffer(thick, nullptr, "liquid.thickness");
 }
@@ -231,23 +281,25 @@ void Renderer::set_absorption(glm::vec3 sigma) {
     if (shading_ == Shading::fresnel || shading_ == Shading::water)
         glProgramUniform4f(surface_.id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
     if (shading_ == Shading::water)
-        for (const shader::Program* p : {&tiles_floor_, &tiles_walls_})
+        for (const shader::Program* p : {&tiles_floor_, &tiles_walls_, &compose_})
             glProgramUniform4f(p->id(), RANRYU_LOC_ABSORPTION, sigma.x, sigma.y, sigma.z, 0.0f);
 }
 
 void Renderer::set_frame(const gpu::FrameParams& p) {
+    // FrameParams is vec4s and mat4s, no padding: equal bytes, equal view.
+    if (std::memcmp(&p, &frame_, sizeof p) != 0) ++generation_;
     frame_ = p;
     frame_ubo_.upload_value(frame_);
     if (shading_ != Shading::water) return;
     const SunView sun = sun_view(p);
-    for (const shader::Program* prog : {&shadow_, &tiles_floor_, &tiles_walls_}) {
+    for (const shader::Program* prog : {&shadow_, &tiles_floor_, &tiles_walls_, &compose_}) {
         glProgramUniformMatrix4fv(prog->id(), RANRYU_LOC_SHADOW_MATRIX, 1, GL_FALSE, &sun.matrix[0][0]);
         glProgramUniform4f(prog->id(), RANRYU_LOC_SHADOW_ORIGIN, sun.origin.x, sun.origin.y, sun.origin.z, 0.0f);
     }
 }
 
-void Renderer::draw_mesh(const SurfaceMesh& surface) {
-    glBindVertexArray(mesh_vao_.id());
+void Renderer::draw_mesh(const SurfaceMesh& surface, const gl::VertexArray& vao) {
+    glBindVertexArray(vao.id());
     glBindVertexBuffer(0, surface.vertices.id(), 0, sizeof(gpu::MeshVertex));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, surface.indirect.id());
     glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(surface.draw_offset));
@@ -261,41 +313,35 @@ void bind_texture(GLuint unit, const gl::Texture2D& t) {
 }
 }  // namespace
 
-void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface) {
-    if (scene_color_.width() != target.width() || scene_color_.height() != target.height())
-        throw Error("Renderer::draw: the water mode's targets are " + std::to_string(scene_color_.width()) + "x" +
-                    std::to_string(scene_color_.height()) + ", the frame is " + std::to_string(target.width()) + "x" +
-                    std::to_string(target.height()) + " (Renderer::resize first)");
-    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
+void Renderer::fill(const gl::Texture2D& r32f, float value) {
+    fill_.use();
+    glProgramUniform4f(fill_.id(), RANRYU_LOC_FILL_VALUE, value, 0.0f, 0.0f, 0.0f);
+    glBindImageTexture(RANRYU_IMG_TARGET, r32f.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    const auto local = fill_.local_size();
+    glDispatchCompute(GLuint(r32f.width() + int(local[0]) - 1) / local[0], GLuint(r32f.height() + int(local[1]) - 1) / local[1], 1);
+    glBindImageTexture(RANRYU_IMG_TARGET, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+}
+
+void Renderer::draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
+                           const shader::Program& program) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glViewport(0, 0, size_of.width(), size_of.height());
+    program.use();
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    draw_mesh(surface, mesh_position_vao_);
     glDisable(GL_BLEND);
-    {
-        // (R8), (R10): every layer of the liquid, seen from the sun.
-        auto pass = timer_.scope(shadow_pass_);
-        glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.id());
-        glViewport(0, 0, shadow_near_.width(), shadow_near_.height());
-        const float far[4] = {1e30f, 0.0f, 0.0f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearBufferfv(GL_COLOR, 0, far);
-        glClearBufferfv(GL_COLOR, 1, zero);
-        if (surface) {
-            shadow_.use();
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
-            glBlendEquationi(0, GL_MIN);
-            glBlendEquationi(1, GL_FUNC_ADD);
-            draw_mesh(*surface);
-            glBlendEquation(GL_FUNC_ADD);
-            glDisable(GL_BLEND);
-        }
-    }
+}
+
+void Renderer::draw_scene() {
+    // The scene cache (R13): C_lit and q of every pixel, with its depth. Expects the frame UBO and the
+    // shadow map bound (the redraw path's floor and walls read it).
     glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_.id());
-    glViewport(0, 0, target.width(), target.height());
+    glViewport(0, 0, scene_depth_.width(), scene_depth_.height());
     {
+        // The depth alone: the sky covers every pixel's colour.
         auto pass = timer_.scope(clear_pass_);
         glDepthMask(GL_TRUE);
-        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-        glClearBufferfv(GL_COLOR, 0, black);
         glClearDepth(1.0);
         glClear(GL_DEPTH_BUFFER_BIT);
     }
@@ -307,8 +353,6 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
     }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    bind_texture(RANRYU_TEX_SHADOW_NEAR, shadow_near_);
-    bind_texture(RANRYU_TEX_SHADOW_THICKNESS, shadow_thickness_);
     {
         auto pass = timer_.scope(floor_pass_);
         tiles_floor_.use();
@@ -328,46 +372,81 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         glDrawArrays(GL_LINES, 0, 24);
     }
     glDisable(GL_DEPTH_TEST);
-    bind_texture(RANRYU_TEX_SCENE_DEPTH, scene_depth_);
+    drawn_generation_ = generation_;
+}
+
+void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface) {
+    if (scene_color_.width() != target.width() || scene_color_.height() != target.height())
+        throw Error("Renderer::draw: the water mode's targets are " + std::to_string(scene_color_.width()) + "x" +
+                    std::to_string(scene_color_.height()) + ", the frame is " + std::to_string(target.width()) + "x" +
+                    std::to_string(target.height()) + " (Renderer::resize first)");
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
     {
-        // (R5): the thickness of the liquid in front of the opaque scene.
-        auto pass = timer_.scope(thickness_pass_);
-        glBindFramebuffer(GL_FRAMEBUFFER, thickness_fbo_.id());
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearBufferfv(GL_COLOR, 0, zero);
+        // (R8), (R10): every layer of the liquid, seen from the sun. Cleared by a compute fill.
+        auto pass = timer_.scope(shadow_pass_);
+        fill(shadow_near_, 1e30f);
+        fill(shadow_thickness_, 0.0f);
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         if (surface) {
-            thickness_prog_.use();
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
+            glBlendEquationi(0, GL_MIN);
+            glBlendEquationi(1, GL_FUNC_ADD);
+            draw_layers(*surface, shadow_fbo_, shadow_near_, shadow_);
             glBlendEquation(GL_FUNC_ADD);
-            draw_mesh(*surface);
-            glDisable(GL_BLEND);
         }
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    bind_texture(RANRYU_TEX_SCENE_COLOR, scene_color_);
+    bind_texture(RANRYU_TEX_SHADOW_NEAR, shadow_near_);
+    bind_texture(RANRYU_TEX_SHADOW_THICKNESS, shadow_thickness_);
+    // (R13): the opaque scene only when the view changed (a CPU decision: set_frame, resize).
+    if (!water_.cache_scene || drawn_generation_ != generation_) draw_scene();
+    bind_texture(RANRYU_TEX_SCENE_DEPTH, scene_depth_);
     {
-        auto pass = timer_.scope(compose_pass_);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_ALWAYS);
-        glDepthMask(GL_TRUE);
-        compose_.use();
-        glBindVertexArray(empty_vao_.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glDepthFunc(GL_LESS);
+        // (R5): the thickness of the liquid in front of the opaque scene, at 1/thickness_divisor of the size.
+        auto pass = timer_.scope(thickness_pass_);
+        fill(thickness_, 0.0f);
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        if (surface) {
+            glBlendEquation(GL_FUNC_ADD);
+            draw_layers(*surface, thickness_fbo_, thickness_, thickness_prog_);
+        }
     }
+    {
+        // (R13): the cache with this frame's shadow, into the scene the surface refracts and the frame.
+        auto pass = timer_.scope(compose_pass_);
+        bind_texture(RANRYU_TEX_SCENE_LIT, lit_color_);
+        glBindImageTexture(RANRYU_IMG_SCENE, scene_color_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(RANRYU_IMG_FRAME, target.color().id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        compose_.use();
+        const auto local = compose_.local_size();
+        glDispatchCompute(GLuint(target.width() + int(local[0]) - 1) / local[0], GLuint(target.height() + int(local[1]) - 1) / local[1], 1);
+        for (GLuint unit : {GLuint(RANRYU_IMG_SCENE), GLuint(RANRYU_IMG_FRAME)})
+            glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glCopyImageSubData(scene_depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                           target.width(), target.height(), 1);
+        // The frame is drawn over, blended, blitted and read back; the scene is sampled and read back.
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_PIXEL_BUFFER_BARRIER_BIT);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, target.width(), target.height());
     if (surface) {
         // (R1)-(R7): the front faces nearest the eye, over the opaque scene.
         auto pass = timer_.scope(surface_pass_);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
         bind_texture(RANRYU_TEX_THICKNESS, thickness_);
+        bind_texture(RANRYU_TEX_SCENE_COLOR, scene_color_);
         surface_.use();
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        draw_mesh(*surface);
+        draw_mesh(*surface, mesh_vao_);
         glDisable(GL_CULL_FACE);
     }
     for (GLuint unit : {RANRYU_TEX_SCENE_COLOR, RANRYU_TEX_SCENE_DEPTH, RANRYU_TEX_THICKNESS, RANRYU_TEX_SHADOW_NEAR,
-                        RANRYU_TEX_SHADOW_THICKNESS}) {
+                        RANRYU_TEX_SHADOW_THICKNESS, RANRYU_TEX_SCENE_LIT}) {
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(GL_TEXTURE_2D, 0);
     }
@@ -409,7 +488,7 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
     if (needs_surface(shading_) && surface) {
         auto pass = timer_.scope(surface_pass_);
         surface_.use();
-        draw_mesh(*surface);
+        draw_mesh(*surface, mesh_vao_);
     } else if (sub) {
         if (!impostor_levels_.id()) throw Error("Renderer::draw: sub-particles given to a renderer built without them");
         auto pass = timer_.scope(particles_pass_);

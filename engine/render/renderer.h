@@ -1,6 +1,7 @@
 #pragma once
 // The raster stage: floor, tank, and either the particles (per-pixel Phong on sphere impostors) or
 // the liquid surface that marching cubes meshed, shaded in one of the Shading modes.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,29 +72,52 @@ struct SunView {
 };
 SunView sun_view(const gpu::FrameParams& p);
 
+// The water mode's cost options (docs/RENDERING.md (R5), (R13); docs/PERFORMANCE.md).
+struct WaterOptions {
+    // true: the opaque scene (sky, floor, walls, tank edges) is drawn into the scene cache only when
+    // the view changes (set_frame() with other parameters, resize()); "compose" applies the liquid's
+    // shadow to it every frame, (R13). false: drawn every frame, the floor and walls shading their
+    // own shadow (R11): the reference the tests compare the cache with.
+    bool cache_scene = true;
+    // The liquid's thickness (R5) is drawn at 1/thickness_divisor of the frame's size along each axis
+    // (1 to 4; sizes rounded up) and upsampled bilinearly by the surface pass.
+    int thickness_divisor = 2;
+    // The drawing before these options: the scene every frame, the thickness at the frame's size.
+    static WaterOptions reference() { return WaterOptions{false, 1}; }
+    // The defaults, or what the environment sets (to measure each option on one build):
+    // RANRYU_WATER_CACHE=0|1 (cache_scene), RANRYU_WATER_THICKNESS_DIVISOR=1..4; throws InputError for
+    // another value. Start-up only.
+    static WaterOptions from_environment();
+};
+
 class Renderer {
 public:
     // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
     // its pass "draw-surface") when it is not particles. `subparticles`: also the impostor variant that
     // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL). `paddle`: also the one
     // that draw_sphere() draws with (RANRYU_RADIUS_IN_W).
+    // `water`: the water mode's options.
     Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
-             bool subparticles = false, bool paddle = false);
+             bool subparticles = false, bool paddle = false, WaterOptions water = {});
 
-    void set_frame(const gpu::FrameParams& p);   // copied into the FrameParams UBO (and the sun's view)
+    // Copied into the FrameParams UBO (and the sun's view). Parameters other than the last ones make
+    // the water mode's scene cache stale: the next draw() draws it again (a CPU decision, no readback).
+    void set_frame(const gpu::FrameParams& p);
     const gpu::FrameParams& frame() const { return frame_; }
     // Fresnel and water modes: Beer-Lambert absorption coefficients of the water (1/m, per channel).
     void set_absorption(glm::vec3 sigma);
     Shading shading() const { return shading_; }
 
-    // Water mode: allocates the targets of a width x height frame (the opaque scene's colour and
-    // depth, the liquid's thickness); draw() requires them at its target's size. Start-up or resize
+    // Water mode: allocates the targets of a width x height frame (the scene cache, the opaque scene's
+    // colour, the liquid's thickness); draw() requires them at its target's size. Start-up or resize
     // only: nothing is allocated while drawing. Other modes: nothing.
     void resize(int width, int height);
     // Device memory of the water mode's targets for a width x height frame (0 for the other modes).
-    static std::size_t bytes_for(Shading s, int width, int height);
-    // Water mode, for tests: the opaque scene (RGBA16F, linear; its depth), the liquid's thickness along each
-    // view ray (R32F, m), and the sun's map of the liquid: nearest sun depth and thickness (R32F, m).
+    static std::size_t bytes_for(Shading s, int width, int height, WaterOptions water = {});
+    const WaterOptions& water_options() const { return water_; }
+    // Water mode, for tests: the opaque scene with this frame's shadow (RGBA16F, linear) and its depth
+    // (the cache's), the liquid's thickness along each view ray (R32F, m; at 1/thickness_divisor of
+    // the frame's size), and the sun's map of the liquid: nearest sun depth and thickness (R32F, m).
     const gl::Texture2D& scene_color() const { return scene_color_; }
     const gl::Texture2D& scene_depth() const { return scene_depth_; }
     const gl::Texture2D& thickness() const { return thickness_; }
@@ -103,9 +127,10 @@ public:
     // Passes "clear", "draw-floor", "draw-tank", then "draw-particles" into `target` (`count`
     // particles whose positions and velocities are vec4 arrays) or, when the shading is not
     // particles and `surface` is given, "draw-surface": glDrawArraysIndirect of the mesh, no readback.
-    // Water mode: "shadow-map", "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank" (the
-    // opaque scene, offscreen), "liquid-thickness", "compose" (into `target`), "draw-surface"; without
-    // `surface`, the scene with no liquid.
+    // Water mode: "shadow-map"; "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank" (the
+    // opaque scene, into the scene cache) only in a frame whose view changed (every frame without
+    // WaterOptions::cache_scene); "liquid-thickness", "compose" (the cache with this frame's shadow,
+    // into `target` with its depth), "draw-surface"; without `surface`, the scene with no liquid.
     // With `sub` (particles shading, built with subparticles), "draw-particles" draws the parents
     // that were not split and then the sub-particles (glDrawArraysIndirect), coloured by level and of
     // radius r/2^level.
@@ -127,20 +152,30 @@ public:
 
 private:
     void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
-    void draw_mesh(const SurfaceMesh& surface);
+    void draw_scene();   // the water mode's scene cache: "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"
+    void fill(const gl::Texture2D& r32f, float value);   // fill_image.comp over the whole texture
+    // Every layer of the mesh, by its positions alone, into `fbo` at the size of `size_of`, blended
+    // (ONE, ONE) with the equations the caller set: the shadow map and the thickness.
+    void draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
+                     const shader::Program& program);
+    void draw_mesh(const SurfaceMesh& surface, const gl::VertexArray& vao);
 
     profile::GpuTimer& timer_;
     Shading shading_;
     profile::PassId clear_pass_, floor_pass_, tank_pass_, particles_pass_, surface_pass_{}, spray_pass_{}, paddle_pass_{};
     shader::Program floor_, tank_, impostor_, surface_, impostor_levels_, spray_, impostor_sphere_;
-    gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, parent_vao_;
+    gl::VertexArray empty_vao_, particle_vao_, mesh_vao_, mesh_position_vao_, parent_vao_;
     gl::Buffer frame_ubo_;
     gpu::FrameParams frame_{};
-    // The water mode's passes, programs and targets (docs/RENDERING.md).
+    // The water mode's passes, programs and targets (docs/RENDERING.md). The scene cache: lit_color_
+    // (C_lit and q of (R13), RGBA16F) and scene_depth_, drawn when drawn_generation_ falls behind
+    // generation_, which set_frame() and resize() advance.
+    WaterOptions water_;
     profile::PassId shadow_pass_{}, sky_pass_{}, walls_pass_{}, thickness_pass_{}, compose_pass_{};
-    shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_;
-    gl::Texture2D shadow_near_, shadow_thickness_, scene_color_, scene_depth_, thickness_;
+    shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_, fill_;
+    gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, scene_color_, scene_depth_, thickness_;
     gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;
+    std::uint64_t generation_ = 1, drawn_generation_ = 0;
 };
 
 }  // namespace ranryu::render

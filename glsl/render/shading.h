@@ -48,6 +48,13 @@
 #define RANRYU_TEX_THICKNESS 2        // the liquid's thickness along each view ray (m, R32F)
 #define RANRYU_TEX_SHADOW_NEAR 3      // the sun depth s of the liquid nearest the sun (m, R32F)
 #define RANRYU_TEX_SHADOW_THICKNESS 4 // the liquid's thickness along the sunlight (m, R32F)
+#define RANRYU_TEX_SCENE_LIT 5        // the scene cache: rgb the opaque scene lit with no liquid, C_lit; a its sun share q (R13; RGBA16F)
+// Image units of the water mode's compute passes (fill_image.comp, compose.comp).
+#define RANRYU_IMG_TARGET 0           // fill_image.comp: the R32F image it fills
+#define RANRYU_IMG_SCENE 0            // compose.comp: the opaque scene with this frame's shadow, linear (RGBA16F)
+#define RANRYU_IMG_FRAME 1            // compose.comp: the frame's colour, display-encoded (RGBA8)
+// Uniform location of fill_image.comp's value (vec4; .r is stored).
+#define RANRYU_LOC_FILL_VALUE 12
 
 // Mesh vertex attributes (gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32).
 #define RANRYU_ATTR_MESH_POSITION 0

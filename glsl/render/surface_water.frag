@@ -4,7 +4,8 @@
 //   R = fresnel_schlick(n·v, n_air, n_water)                                         (R1)
 //   reflected = sky(reflect(−v, n)), the sky with its sun (common/frame.glsl)        (R2)
 //   highlight = k_s·max(n·h, 0)^α·L, h = normalize(l + v), where n·l > 0             (R4)
-//   d = the liquid's thickness along this pixel's ray (liquid_thickness.frag)        (R5)
+//   d = the liquid's thickness along this pixel's ray (liquid_thickness.frag; drawn at
+//     1/THICKNESS_DIVISOR of the frame's size, defined by the renderer, and upsampled here)  (R5)
 //   refracted: t = refract(−v, n, n_air / n_water); the opaque scene is looked up where the point
 //     x + d·t projects (screen-space refraction), or straight behind where that point is off screen
 //     or the scene there is nearer than x                                             (R5)
@@ -27,8 +28,13 @@ void main() {
     vec3 h = normalize(l + v);
     float highlight = dot(n, l) > 0.0 ? RANRYU_WATER_SPECULAR * pow(max(dot(n, h), 0.0), RANRYU_WATER_SHININESS) : 0.0;
 
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float d = max(texelFetch(t_thickness, pixel, 0).r, 0.0);
+#if THICKNESS_DIVISOR == 1
+    float d = max(texelFetch(t_thickness, ivec2(gl_FragCoord.xy), 0).r, 0.0);
+#else
+    // Upsampled bilinearly: the frame's position x_w lies at x_w / THICKNESS_DIVISOR in its texels.
+    vec2 at = gl_FragCoord.xy / (float(THICKNESS_DIVISOR) * vec2(textureSize(t_thickness, 0)));
+    float d = max(texture(t_thickness, at).r, 0.0);
+#endif
     vec3 t = refract(-v, n, RANRYU_IOR_AIR / RANRYU_IOR_WATER);
     vec4 clip = frame.view_proj * vec4(v_world + d * t, 1.0);
     vec2 uv = (clip.xy / clip.w) * 0.5 + 0.5;

@@ -1,7 +1,11 @@
 #version 430
 // The water mode's floor and tank walls: tiles (R9) inside the tank, plain ground outside its
-// footprint, lit by (R11) with the liquid's shadow (R10); linear, into the opaque scene's target.
-// Built with WALLS for the walls (walls.vert), which are tiled everywhere.
+// footprint, into the opaque scene's target (linear). Built with WALLS for the walls (walls.vert),
+// which are tiled everywhere.
+//   rgb: the scene cache's C_lit of (R13), the colour (R11) gives with no liquid's shadow; built with
+//        SHADOW_INLINE (the redraw path), (R11) with the shadow (R10) itself;
+//   a:   the sun's share q of (R13) (0 with SHADOW_INLINE: the shadow is in already). compose.comp
+//        applies c = C_lit·(1 − q·(1 − S(x))) at the x the depth holds.
 #include "water.glsl"
 
 in vec3 v_world;
@@ -17,5 +21,9 @@ void main() {
     bool inside = all(greaterThanEqual(v_world.xz, frame.tank_min.xz)) && all(lessThan(v_world.xz, frame.tank_max.xz));
     vec3 albedo = inside ? tile_albedo(uv) : vec3(RANRYU_GROUND_ALBEDO);
 #endif
-    out_color = vec4(lit_matte(albedo, n, v_world), 1.0);
+#ifdef SHADOW_INLINE
+    out_color = vec4(lit_matte(albedo, n, v_world), 0.0);
+#else
+    out_color = lit_unshadowed(albedo, n);
+#endif
 }

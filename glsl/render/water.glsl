@@ -55,6 +55,15 @@ vec3 lit_matte(vec3 albedo, vec3 n, vec3 x) {
     return frame.light_color.rgb * albedo * (frame.light_color.a + frame.material.x * ndl * sun);
 }
 
+// (R13) The scene cache's split of (R11) into what the liquid does not change and what it does:
+//     c = C_lit·(1 − q·(1 − S(x))),   C_lit = L·albedo·(k_a + k_d·max(n·l, 0)),
+//     q = k_d·max(n·l, 0) / (k_a + k_d·max(n·l, 0))   (0 where both terms are 0),
+// C_lit the colour (R11) gives with S = 1 and q the sun's share of it. Returns (C_lit, q).
+vec4 lit_unshadowed(vec3 albedo, vec3 n) {
+    float sun = frame.material.x * max(dot(n, frame.light_dir.xyz), 0.0), all_light = frame.light_color.a + sun;
+    return vec4(frame.light_color.rgb * albedo * all_light, all_light > 0.0 ? sun / all_light : 0.0);
+}
+
 // (R12) The eye distance of what the depth buffer holds at window position `frag` (pixels) with
 // depth value `depth`: the view depth −z = P[3][2] / (z_ndc + P[2][2]) times the length of the
 // pixel's view ray (x_ndc / P[0][0], y_ndc / P[1][1], −1).
@@ -62,4 +71,12 @@ float eye_distance(vec2 frag, float depth) {
     float view_z = frame.proj[3][2] / ((2.0 * depth - 1.0) + frame.proj[2][2]);
     vec2 ndc = frag * frame.viewport.zw * 2.0 - 1.0;
     return view_z * length(vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0));
+}
+
+// (R12) The world point the depth buffer holds at window position `frag`: the eye plus the eye
+// distance along the pixel's view ray, turned into world space (the view matrix is rigid).
+vec3 world_position(vec2 frag, float depth) {
+    vec2 ndc = frag * frame.viewport.zw * 2.0 - 1.0;
+    vec3 ray = transpose(mat3(frame.view)) * vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0);
+    return frame.eye.xyz + eye_distance(frag, depth) * normalize(ray);
 }

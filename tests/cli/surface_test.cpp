@@ -161,6 +161,44 @@ TEST_CASE("profile names the surface passes in the surface modes and not in part
     }
 }
 
+TEST_CASE("profile draws the water mode's opaque scene once with the scene cache and every frame without, and refuses bad option values") {
+    TempDir tmp;
+    const std::vector<std::string> args = {"profile", "--scene", "dam-break", "--spacing", "0.04", "--frames", "4", "--warmup", "0",
+                                           "--size", "32x24", "--shading", "water", "--json", "profile.json"};
+    for (const std::string cache : {"1", "0"}) {
+        RunOptions opt;
+        opt.set_env = {{"RANRYU_WATER_CACHE", cache}, {"RANRYU_WATER_THICKNESS_DIVISOR", cache == "1" ? "2" : "1"}};
+        const Result r = run_ranryu(tmp.path(), args, opt);
+        INFO("RANRYU_WATER_CACHE=" << cache << "\n" << r.describe());
+        REQUIRE(r.exit_code == 0);
+        std::ifstream in(tmp / "profile.json");
+        const auto report = nlohmann::json::parse(in);
+        auto calls = [&](const std::string& pass) {
+            for (const auto& p : report.at("passes"))
+                if (p.at("name") == pass) return p.at("calls_per_frame").get<double>();
+            return 0.0;
+        };
+        // The camera stays: with the cache the opaque scene is drawn in the first frame alone.
+        for (const std::string p : {"clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"}) {
+            INFO("pass " << p);
+            CHECK(calls(p) == Approx(cache == "1" ? 0.25 : 1.0));
+        }
+        for (const std::string p : {"shadow-map", "liquid-thickness", "compose", "draw-surface"}) {
+            INFO("pass " << p);
+            CHECK(calls(p) == Approx(1.0));
+        }
+    }
+    for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{{"RANRYU_WATER_CACHE", "yes"},
+                                                                                    {"RANRYU_WATER_THICKNESS_DIVISOR", "8"}}) {
+        RunOptions opt;
+        opt.set_env = {{name, value}};
+        const Result r = run_ranryu(tmp.path(), args, opt);
+        INFO(r.describe());
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Contains(name + "=" + value));
+    }
+}
+
 TEST_CASE("record and profile take a shading mode of water, fresnel, phong, gouraud or particles, and a surface only for SPH scenes") {
     TempDir tmp;
     Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--shading", "bogus", "--out", "out"});

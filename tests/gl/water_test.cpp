@@ -10,6 +10,7 @@
 //     of what they show (floor/wall/sky, a grout line, the tank's footprint), a tank edge line (within
 //     2.5 px), or a texel whose centre lies within 0.05 texel of the box's outline seen from the sun.
 //     (The sky is compared where it is in view; the camera looks down 25°..55°, so it may not be.)
+//     The shadow is taken at the point the GPU's depth holds (R12), where compose.comp takes it (R13).
 //     Tolerance: 2e-3 relative + 2e-3 (half float keeps 11 bits; the GPU's floats against doubles).
 //   - The thickness along each view ray (R5): the box's chord clipped to the opaque scene's distance,
 //     with the box floating and with it sunk into the floor. Tolerance 5e-4 m: the opaque distance
@@ -22,6 +23,15 @@
 //   - Frames with and without the liquid agree exactly outside the liquid's projection ∪ its shadow
 //     (the floor and walls whose shadow-map taps reach the box's outline seen from the sun), both grown
 //     by 2 px, and differ inside; their opaque scenes agree exactly outside the shadow and differ in it.
+//   - The scene cache (R13) against the full redraw (WaterOptions::reference()) after a change of view:
+//     the linear scene within 1.6e-3·c + 3e-4·C_lit (two half roundings against one), or, at no more than 4 %
+//     of the shadow's texels, one shadow-map tap apart (x from the depth, (R12)); the frame within one
+//     8-bit step elsewhere; the opaque scene's passes run only in the frames whose view changed.
+//   - The thickness at half size, upsampled: within the full-size thickness's range over the 5x5 pixels
+//     around (± 1 mm) wherever the opaque depth is continuous, and within 1 mm of it where the chord is
+//     one smooth function over the footprint read.
+// The thickness and surface-pixel cases draw the thickness at the frame's size (their CPU d is the
+// chord at the pixel's centre); the others use the default options.
 #include "support/gl_fixture.h"
 #include "support/screen.h"
 
@@ -60,14 +70,15 @@ struct Box {
     glm::dvec3 lo, hi;
 };
 
-// The ray o + t·d inside the box: [t0, t1] with t1 > t0, or nothing. `axis`: the entry face's axis.
+// The ray o + t·d inside the box: [t0, t1] with t1 > t0, or nothing. `axis`, `exit_axis`: the entry
+// and exit faces' axes.
 struct Chord {
     double t0, t1;
-    int axis;
+    int axis, exit_axis;
 };
 std::optional<Chord> chord(glm::dvec3 o, glm::dvec3 d, const Box& b) {
     double t0 = -1e30, t1 = 1e30;
-    int axis = -1;
+    int axis = -1, exit_axis = -1;
     for (int a = 0; a < 3; ++a) {
         if (std::abs(d[a]) < 1e-12) {
             if (o[a] < b.lo[a] || o[a] > b.hi[a]) return std::nullopt;
@@ -76,10 +87,10 @@ std::optional<Chord> chord(glm::dvec3 o, glm::dvec3 d, const Box& b) {
         double u = (b.lo[a] - o[a]) / d[a], v = (b.hi[a] - o[a]) / d[a];
         if (u > v) std::swap(u, v);
         if (u > t0) t0 = u, axis = a;
-        t1 = std::min(t1, v);
+        if (v < t1) t1 = v, exit_axis = a;
     }
     if (t1 <= t0) return std::nullopt;
-    return Chord{t0, t1, axis};
+    return Chord{t0, t1, axis, exit_axis};
 }
 
 // A random tank, sun, camera, liquid box and absorption.
@@ -160,23 +171,25 @@ void read_texture(const ranryu::gl::Texture2D& t, GLenum format, std::vector<flo
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-Frame render_water(const Rig& r, bool with_liquid) {
-    GpuTimer timer;
-    render::Renderer renderer(FileSource::embedded(), timer, render::Shading::water);
-    renderer.resize(kWidth, kHeight);
-    renderer.set_frame(r.fp);
-    renderer.set_absorption(glm::vec3(r.sigma));
-    ranryu::gl::RenderTarget target(kWidth, kHeight, "water_test");
-    const std::vector<gpu::MeshVertex> mesh = box_mesh(r.box);
-    const Buffer vertices = Buffer::from(std::span<const gpu::MeshVertex>(mesh), GL_STATIC_DRAW, "water_test.mesh");
-    const std::uint32_t draw[4] = {std::uint32_t(mesh.size()), 1u, 0u, 0u};
-    const Buffer indirect(sizeof draw, GL_STATIC_DRAW, draw, "water_test.indirect");
-    const render::SurfaceMesh surface{vertices, indirect, 0};
-    const Buffer unused(16, GL_STATIC_DRAW, nullptr, "water_test.unused");
-    timer.begin_frame();
-    renderer.draw(target, unused, unused, 0, with_liquid ? &surface : nullptr);
-    timer.end_frame();
+// The box as a mesh to draw, and an unused particle buffer.
+struct BoxDraw {
+    std::vector<gpu::MeshVertex> mesh;
+    Buffer vertices, indirect, unused;
+    render::SurfaceMesh surface;
+    explicit BoxDraw(const Box& b)
+        : mesh(box_mesh(b)),
+          vertices(Buffer::from(std::span<const gpu::MeshVertex>(mesh), GL_STATIC_DRAW, "water_test.mesh")),
+          indirect(indirect_for(mesh.size())),
+          unused(16, GL_STATIC_DRAW, nullptr, "water_test.unused"),
+          surface{vertices, indirect, 0} {}
+    static Buffer indirect_for(std::size_t count) {
+        const std::uint32_t draw[4] = {std::uint32_t(count), 1u, 0u, 0u};
+        return Buffer(sizeof draw, GL_STATIC_DRAW, draw, "water_test.indirect");
+    }
+};
 
+// The frame in `target` and the renderer's opaque scene, its depth and the liquid's thickness.
+Frame read_frame(const ranryu::gl::RenderTarget& target, const render::Renderer& renderer) {
     Frame f;
     f.rgba.resize(std::size_t(kWidth) * kHeight * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer());
@@ -187,10 +200,29 @@ Frame render_water(const Rig& r, bool with_liquid) {
     read_texture(renderer.scene_color(), GL_RGBA, f.scene, 4);
     read_texture(renderer.scene_depth(), GL_DEPTH_COMPONENT, f.depth, 1);
     read_texture(renderer.thickness(), GL_RED, f.thickness, 1);
+    return f;
+}
+
+Frame render_water(const Rig& r, bool with_liquid, render::WaterOptions options = {}) {
+    GpuTimer timer;
+    render::Renderer renderer(FileSource::embedded(), timer, render::Shading::water, false, false, options);
+    renderer.resize(kWidth, kHeight);
+    renderer.set_frame(r.fp);
+    renderer.set_absorption(glm::vec3(r.sigma));
+    ranryu::gl::RenderTarget target(kWidth, kHeight, "water_test");
+    const BoxDraw box(r.box);
+    timer.begin_frame();
+    renderer.draw(target, box.unused, box.unused, 0, with_liquid ? &box.surface : nullptr);
+    timer.end_frame();
+    Frame f = read_frame(target, renderer);
     timer.drain();
     ranryu::test::require_no_gl_errors();
     return f;
 }
+
+// The default scene cache with the thickness at the frame's size, for the tests that compare the
+// thickness per pixel with the CPU's chord.
+const render::WaterOptions kFullSizeThickness{true, 1};
 
 // ---- the CPU side, in doubles
 
@@ -316,21 +348,31 @@ public:
                sun_depth(x) > sun_depth(0.5 * (r_.box.lo + r_.box.hi)) - glm::length(r_.box.hi - r_.box.lo);
     }
 
-    // (R9), (R11): the lit floor or wall, linear.
-    std::optional<glm::dvec3> matte(const Opaque& o) const {
+    // (R9), (R11): the lit floor or wall, linear; its shadow (R10) taken at `shadow_at` (default: o.p).
+    std::optional<glm::dvec3> matte(const Opaque& o, std::optional<glm::dvec3> shadow_at = std::nullopt) const {
         const glm::dvec3 albedo = o.albedo_class == 2 ? kGroundAlbedo : o.albedo_class == 1 ? kGrout : kTile;
         const double ndl = std::max(glm::dot(o.n, glm::dvec3(f_.light_dir)), 0.0);
         glm::dvec3 sun(0.0);
         if (ndl > 0.0) {
-            const auto s = sun_transmittance(o.p);
+            const auto s = sun_transmittance(shadow_at.value_or(o.p));
             if (!s) return std::nullopt;
             sun = *s;
         }
         return glm::dvec3(f_.light_color) * albedo * (double(f_.light_color.a) + double(f_.material.x) * ndl * sun);
     }
 
-    // The opaque scene at pixel (i, j), linear, or nothing where ambiguous (see the top).
-    std::optional<glm::dvec3> opaque_pixel(int i, int j, Opaque* out = nullptr) const {
+    // (R12), (R13): the world point a depth-buffer value holds at pixel (i, j)'s centre, as compose.comp
+    // finds the receiver whose shadow it applies.
+    glm::dvec3 depth_point(int i, int j, double depth) const {
+        const glm::dvec2 ndc((i + 0.5) / kWidth * 2.0 - 1.0, (j + 0.5) / kHeight * 2.0 - 1.0);
+        const double view_z = double(f_.proj[3][2]) / ((2.0 * depth - 1.0) + double(f_.proj[2][2]));
+        const double t = view_z * glm::length(glm::dvec3(ndc.x / f_.proj[0][0], ndc.y / f_.proj[1][1], -1.0));
+        return eye() + t * ray(i + 0.5, j + 0.5);
+    }
+
+    // The opaque scene at pixel (i, j), linear, or nothing where ambiguous (see the top). `depth`: the
+    // GPU's depth there, whose point (depth_point) takes the shadow, as in the scene cache (R13).
+    std::optional<glm::dvec3> opaque_pixel(int i, int j, Opaque* out = nullptr, std::optional<double> depth = std::nullopt) const {
         const glm::dvec3 d = ray(i + 0.5, j + 0.5);
         const Opaque o = opaque(d);
         for (int c = 0; c < 4; ++c) {
@@ -340,7 +382,7 @@ public:
         if (near_edge_line(i, j)) return std::nullopt;
         if (out) *out = o;
         if (o.kind == 0) return sky(d);
-        return matte(o);
+        return matte(o, depth ? std::optional<glm::dvec3>(depth_point(i, j, *depth)) : std::nullopt);
     }
 
     // Whether a tank edge (a 1-px line) passes within 2.5 px of the pixel centre.
@@ -389,7 +431,8 @@ struct Case {
     Rig rig;
     Cpu cpu;
     Frame frame;
-    explicit Case(ranryu::test::Random& rng, bool sunk = false) : rig(random_rig(rng, sunk)), cpu(rig), frame(render_water(rig, true)) {}
+    explicit Case(ranryu::test::Random& rng, bool sunk = false, render::WaterOptions options = {})
+        : rig(random_rig(rng, sunk)), cpu(rig), frame(render_water(rig, true, options)) {}
     Case(const Case&) = delete;
 };
 
@@ -405,7 +448,7 @@ TEST_CASE("water: the opaque scene's sky, tiles and the liquid's coloured shadow
     for (int j = 0; j < kHeight; ++j)
         for (int i = 0; i < kWidth; ++i) {
             Cpu::Opaque o;
-            const auto want = cpu.opaque_pixel(i, j, &o);
+            const auto want = cpu.opaque_pixel(i, j, &o, double(f.depth[std::size_t(j) * kWidth + std::size_t(i)]));
             if (!want) continue;
             const glm::dvec3 got = f.scene_texel(i, j);
             const glm::dvec3 err = glm::abs(got - *want) - (2e-3 * glm::abs(*want) + 2e-3);
@@ -431,7 +474,7 @@ TEST_CASE("water: the liquid's thickness along each view ray is the box's chord 
     INFO("seed " << rng.seed());
     for (const bool sunk : {false, true}) {
         INFO((sunk ? "box sunk 5 cm into the floor" : "box above the floor"));
-        const Case c(rng, sunk);
+        const Case c(rng, sunk, kFullSizeThickness);
         const auto& [rig, cpu, f] = c;
         int inside = 0, clipped = 0, outside = 0, failures = 0;
         for (int j = 0; j < kHeight; ++j)
@@ -467,10 +510,11 @@ TEST_CASE("water: the surface pixel is Fresnel-weighted sky reflection, absorbed
     ranryu::test::context();
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    const Case c(rng);
+    const Case c(rng, false, kFullSizeThickness);
     const auto& [rig, cpu, f] = c;
     const auto& fp = rig.fp;
     const glm::dvec3 l(fp.light_dir), light(fp.light_color);
+    // (The thickness at the frame's size: the CPU's d is the chord at the pixel's centre.)
     const double n1 = RANRYU_IOR_AIR, n2 = RANRYU_IOR_WATER;
     int compared = 0, failures = 0, refracted_aside = 0;
     std::array<int, 3> per_axis{};
@@ -599,4 +643,199 @@ TEST_CASE("water: frames with and without the liquid differ only where the liqui
     CHECK(differ_liquid > in_liquid / 2);
     // The shadow is there (seen in the frame, or under the liquid in the opaque scene).
     CHECK(scene_differ_shadow > 0);
+}
+
+namespace {
+// The pass's ms over the frames read back, or how many frames ran it.
+std::size_t frames_with(const GpuTimer& timer, const std::string& pass) {
+    for (const auto& p : timer.passes())
+        if (p.name == pass) return p.ms.size();
+    return 0;
+}
+}  // namespace
+
+TEST_CASE("water: the scene cache gives the frame the full redraw gives, and is drawn again only when the view changes") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const Rig first = random_rig(rng, false);
+    // The second view: the eye turned 20°..40° about the vertical through the target.
+    Rig second = first;
+    const float turn = glm::radians(rng.uniform(20.0f, 40.0f));
+    const glm::vec3 arm = first.camera.eye - first.camera.target;
+    second.camera.eye = first.camera.target + glm::vec3(std::cos(turn) * arm.x - std::sin(turn) * arm.z, arm.y,
+                                                        std::sin(turn) * arm.x + std::cos(turn) * arm.z);
+    second.fp = render::frame_params(second.scene, second.camera, kWidth, kHeight);
+    const BoxDraw box(first.box);
+    ranryu::gl::RenderTarget target(kWidth, kHeight, "water_test");
+
+    // The cache: a frame at the first view, then three at the second (set each frame, as a window
+    // does); the second view's last frame against a renderer that draws everything every frame.
+    GpuTimer timer;
+    render::Renderer cached(FileSource::embedded(), timer, render::Shading::water, false, false, kFullSizeThickness);
+    cached.resize(kWidth, kHeight);
+    cached.set_absorption(glm::vec3(first.sigma));
+    for (int frame = 0; frame < 4; ++frame) {
+        cached.set_frame(frame == 0 ? first.fp : second.fp);
+        timer.begin_frame();
+        cached.draw(target, box.unused, box.unused, 0, &box.surface);
+        timer.end_frame();
+    }
+    const Frame got = read_frame(target, cached);
+    timer.drain();
+    GpuTimer reference_timer;
+    render::Renderer reference(FileSource::embedded(), reference_timer, render::Shading::water, false, false,
+                               render::WaterOptions::reference());
+    reference.resize(kWidth, kHeight);
+    reference.set_absorption(glm::vec3(first.sigma));
+    for (int frame = 0; frame < 2; ++frame) {
+        reference.set_frame(second.fp);
+        reference_timer.begin_frame();
+        reference.draw(target, box.unused, box.unused, 0, &box.surface);
+        reference_timer.end_frame();
+    }
+    const Frame want = read_frame(target, reference);
+    reference_timer.drain();
+    ranryu::test::require_no_gl_errors();
+
+    // The opaque scene drawn in the first two frames only (the view changed), composed in all four;
+    // the reference draws it every frame.
+    for (const char* pass : {"clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"}) {
+        INFO(pass);
+        CHECK(frames_with(timer, pass) == 2);
+        CHECK(frames_with(reference_timer, pass) == 2);
+    }
+    CHECK(frames_with(timer, "compose") == 4);
+    CHECK(frames_with(timer, "shadow-map") == 4);
+
+    // The linear scene: the cache rounds C_lit to half (2^-11 relative) and q (by up to 2^-12), and
+    // compose rounds C_lit·(1 − q·(1 − S)) to half again; the reference rounds (R11) once, c. So
+    // |cached − redrawn| <= 3·2^-11·c + 2^-12·C_lit: tolerance 1.6e-3·c + 3e-4·C_lit.
+    // compose finds x from the depth (R12), within ~2e-5 m of the raster's interpolated x at these
+    // distances: where that moves x across a shadow-map texel's edge, one of the 9 taps may change, by at
+    // most C_lit/9 (C_lit: the scene without the liquid), at a few texels along the shadow's edges.
+    // The frame: display-encoded to 8 bits from those, a difference of at most one step elsewhere.
+    const Frame bare = render_water(second, false, kFullSizeThickness);
+    int scene_failures = 0, frame_failures = 0, equal_frame = 0, one_tap = 0, in_shadow = 0;
+    double worst = 0.0;
+    for (int j = 0; j < kHeight; ++j)
+        for (int i = 0; i < kWidth; ++i) {
+            const glm::dvec3 g = got.scene_texel(i, j), w = want.scene_texel(i, j), lit = bare.scene_texel(i, j);
+            in_shadow += lit != w;
+            const glm::dvec3 err = glm::abs(g - w), tol = 1.6e-3 * glm::abs(w) + 3e-4 * lit;
+            const glm::dvec3 rel = err / glm::max(glm::abs(w), glm::dvec3(1e-3));
+            bool tap = false;
+            if (std::max({err.r - tol.r, err.g - tol.g, err.b - tol.b}) > 0.0) {
+                const glm::dvec3 over = err - (tol + lit / 9.0);
+                tap = std::max({over.r, over.g, over.b}) <= 0.0 && lit != w;
+                one_tap += tap;
+                if (!tap && ++scene_failures <= 8)
+                    FAIL_CHECK("scene texel (" << i << ", " << j << "): cached " << describe(g) << ", redrawn " << describe(w));
+            } else {
+                worst = std::max({worst, rel.r, rel.g, rel.b});
+            }
+            const glm::dvec3 d = glm::abs(got.final_color(i, j) - want.final_color(i, j));
+            if (!tap && std::max({d.r, d.g, d.b}) > 1.0 && ++frame_failures <= 8)
+                FAIL_CHECK("pixel (" << i << ", " << j << "): cached " << describe(got.final_color(i, j)) << ", redrawn "
+                                     << describe(want.final_color(i, j)));
+            equal_frame += got.final_color(i, j) == want.final_color(i, j);
+        }
+    INFO("largest relative difference of the scene " << worst << " (" << one_tap << " texels a shadow-map tap apart); " << equal_frame
+                                                     << " of " << kWidth * kHeight << " frame pixels equal; " << in_shadow
+                                                     << " scene texels in the liquid's shadow");
+    CHECK(scene_failures == 0);
+    CHECK(frame_failures == 0);
+    // The liquid's shadow is in the compared scene, and the texels a tap apart are a few of it.
+    CHECK(in_shadow > 20);
+    CHECK(one_tap <= std::max(4, in_shadow / 25));
+}
+
+TEST_CASE("water: the thickness drawn at half size and upsampled stays within the full-size thickness around each pixel") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    int smooth_total = 0;
+    for (const bool sunk : {false, true}) {
+        INFO((sunk ? "box sunk 5 cm into the floor" : "box above the floor"));
+        const Case c(rng, sunk, kFullSizeThickness);
+        const auto& [rig, cpu, full] = c;
+        const Frame half = render_water(rig, true, render::WaterOptions{true, 2});
+        const int hw = (kWidth + 1) / 2, hh = (kHeight + 1) / 2;
+        REQUIRE(half.thickness.size() == std::size_t(hw) * std::size_t(hh));
+        auto texel = [&](int i, int j) {
+            return double(half.thickness[std::size_t(std::clamp(j, 0, hh - 1)) * hw + std::size_t(std::clamp(i, 0, hw - 1))]);
+        };
+        auto at = [&](int i, int j) {
+            const std::size_t k = std::size_t(std::clamp(j, 0, kHeight - 1)) * kWidth + std::size_t(std::clamp(i, 0, kWidth - 1));
+            return std::max(0.0, double(full.thickness[k]));
+        };
+        // What the thickness reads of a ray: the entry and exit faces, whether the opaque scene clips
+        // it (not, in part, or wholly), and what the scene is there.
+        auto kind = [&](double x, double y) {
+            const glm::dvec3 d = cpu.ray(x, y);
+            const auto h = chord(cpu.eye(), d, rig.box);
+            const Cpu::Opaque o = cpu.opaque(d);
+            if (!h) return o.kind - 16;
+            const int clip = h->t0 >= o.t ? 2 : h->t1 > o.t ? 1 : 0;
+            return ((h->axis * 4 + h->exit_axis) * 3 + clip) * 8 + o.kind;
+        };
+        int compared = 0, failures = 0, smooth = 0, smooth_failures = 0, off_1cm = 0, liquid = 0, seen_differ = 0;
+        double worst_smooth = 0.0, sum_sq = 0.0;
+        for (int j = 0; j < kHeight; ++j)
+            for (int i = 0; i < kWidth; ++i) {
+                // The upsampling (surface_water.frag): bilinear at (x_w / 2) in the half-size texels.
+                const glm::dvec2 g = glm::dvec2((i + 0.5) / 2.0, (j + 0.5) / 2.0) - 0.5, g0 = glm::floor(g), a = g - g0;
+                const int x0 = int(g0.x), y0 = int(g0.y);
+                const double up = std::max(0.0, glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), a.x),
+                                                         glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), a.x), a.y));
+                const double want = at(i, j);
+                if (up == 0.0 && want == 0.0) continue;
+                // The four texels read sample the thickness within 1.5 px of the pixel's centre, each
+                // clipped by the mean depth of a 2x2 block within 2 px: away from a jump of the opaque
+                // depth (another surface, a tank edge line within 3.9 px) the samples are the chord's
+                // values there, and their bilinear mix lies within the range of the full-size thickness
+                // over the 5x5 pixels around (a 1 mm margin for the chord's curvature between centres).
+                const int o = cpu.opaque(cpu.ray(i + 0.5, j + 0.5)).kind;
+                bool continuous = true, same = true;
+                const int k = kind(i + 0.5, j + 0.5);
+                for (int c = 0; c < 5 && continuous; ++c)
+                    continuous = !cpu.near_edge_line(i + (c == 4 ? 0 : (c & 1) * 2 - 1), j + (c == 4 ? 0 : (c >> 1) * 2 - 1));
+                double lo = 1e30, hi = -1e30;
+                for (int dj = -3; dj <= 4 && continuous; ++dj)
+                    for (int di = -3; di <= 4 && continuous; ++di) {
+                        const double x = i + di, y = j + dj;
+                        continuous = cpu.opaque(cpu.ray(x, y)).kind == o;
+                        if (std::abs(di - 0.5) < 3.0 && std::abs(dj - 0.5) < 3.0) same = same && kind(x, y) == k;
+                        if (std::abs(di) > 2 || std::abs(dj) > 2) continue;
+                        lo = std::min(lo, at(i + di, j + dj)), hi = std::max(hi, at(i + di, j + dj));
+                    }
+                const glm::dvec3 step = glm::abs(half.final_color(i, j) - full.final_color(i, j));
+                liquid += 1, seen_differ += std::max({step.r, step.g, step.b}) > 3.0;
+                if (!continuous) continue;
+                ++compared;
+                sum_sq += (up - want) * (up - want);
+                off_1cm += std::abs(up - want) > 0.01;
+                if ((up < lo - 1e-3 || up > hi + 1e-3) && ++failures <= 8)
+                    FAIL_CHECK("pixel (" << i << ", " << j << "): upsampled " << up << " m, the full size's range around it [" << lo
+                                         << ", " << hi << "] m");
+                // Where the entry and exit faces and the clipping agree over the whole window the chord is
+                // one smooth function of the position, and the two agree to its curvature.
+                if (same) {
+                    ++smooth;
+                    worst_smooth = std::max(worst_smooth, std::abs(up - want));
+                    if (std::abs(up - want) > 1e-3 && ++smooth_failures <= 8)
+                        FAIL_CHECK("pixel (" << i << ", " << j << ") where the chord is smooth: upsampled " << up << " m, full size "
+                                             << want << " m");
+                }
+            }
+        INFO(compared << " liquid pixels compared, rms difference " << std::sqrt(sum_sq / std::max(compared, 1)) << " m, " << off_1cm
+                      << " off by more than 1 cm; " << smooth << " of them where the chord is smooth (largest difference "
+                      << worst_smooth << " m). In the frame, " << seen_differ << " of " << liquid
+                      << " liquid pixels differ by more than 3/255");
+        CHECK(failures == 0);
+        CHECK(smooth_failures == 0);
+        CHECK(compared > 100);
+        smooth_total += smooth;
+    }
+    CHECK(smooth_total > 0);
 }
