@@ -2,7 +2,7 @@
 # On the GPU host, after setup-and-build.sh: issue 14's budget, the surface and shading passes within
 # 4 ms a frame at 1M particles and 1920x1080 (docs/PERFORMANCE.md, "The water shading's budget").
 # Profiles the dam break at --spacing 0.002 (1,000,000 particles) in the water shading,
-# `ranryu profile --frames 60 --warmup 10`, with the water mode's options (docs/RENDERING.md (R13)):
+# `ranryu profile --frames 30 --warmup 10` (t = 0.17–0.67 s: the surge, the impact and the run-up; at 1M DFSPH stops on the guard at t = 1.14 s), with the water mode's options (docs/RENDERING.md (R13)):
 #   budget       the defaults: the opaque scene cached per view, the thickness at half size
 #   full-thick   RANRYU_WATER_THICKNESS_DIVISOR=1: the thickness at the frame's size (what half size saves)
 #   redraw       RANRYU_WATER_CACHE=0 as well: the opaque scene drawn every frame, as while the camera
@@ -19,7 +19,7 @@ cd "$(dirname "$0")/../.."
 out=${OUT:-shading-budget-out}
 mkdir -p "$out"
 B=${RANRYU_BIN:-build/gpu/app/ranryu}
-size=1920x1080 spacing=0.002 frames=60 warmup=10
+size=1920x1080 spacing=0.002 frames=30 warmup=10
 if [ "${1:-}" = smoke ]; then size=320x180 spacing=0.0125 frames=3 warmup=1; fi
 tmp=$(mktemp -d)
 
