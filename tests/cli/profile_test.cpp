@@ -294,8 +294,8 @@ TEST_CASE("ranryu profile prints a scene's sph.why, and says when --spacing or -
     CHECK_THAT(o.out, Contains("why its settings: " + why + " (said of the scene as shipped; --spacing or --solver changed it"));
     CHECK(nlohmann::json::parse(read_file(tmp / "p.json"))["settings_why"]["as_shipped"] == false);
 
-    // A scene without one prints no such line.
-    const Result none = run_ranryu(tmp.path(), {"profile", "--scene", "dam-break", "--spacing", "0.04", "--shading", "particles",
+    // A scene without one (the falling block: no SPH, no sph.why) prints no such line.
+    const Result none = run_ranryu(tmp.path(), {"profile", "--scene", "falling-block", "--shading", "particles",
                                                 "--size", "64x48", "--frames", "1", "--warmup", "0", "--quiet"});
     REQUIRE(none.exit_code == 0);
     CHECK_THAT(none.out, !Contains("why its settings"));

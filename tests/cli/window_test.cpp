@@ -288,8 +288,9 @@ TEST_CASE("ranryu run --script: the panel's scene, shading and solver restart an
     CHECK(r.shots[0].panel);
     CHECK(r.images[0].ok());
     // Each change restarted the scene, before the frame of its line.
-    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
-    CHECK_THAT(r.result.out, Contains("restart at frame 4: drop, dfsph, water\n"));
+    // The drop ships with PBF (its sph.why).
+    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, pbf, particles\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 4: drop, pbf, water\n"));
     CHECK_THAT(r.result.out, Contains("restart at frame 5: drop, wcsph, water\n"));
     CHECK_THAT(r.result.out, Contains("restart at frame 7: falling-block, ballistic, particles\n"));
     CHECK_THAT(r.result.out, !Contains("restart at frame 8"));   // m: nothing to change
@@ -305,7 +306,8 @@ double substeps_per_frame(const std::string& out) {
 
 TEST_CASE("ranryu run --script: viscosity, the time-step factor and the turbulence act live", "[cli][window][script]") {
     if (!window_available(/*need_xvfb=*/true)) return;
-    const std::vector<std::string> drop = {"--scene", "drop", "--spacing", "0.05", "--size", "160x120"};
+    // DFSPH: the drop ships with PBF, whose fixed step has no Courant number to change.
+    const std::vector<std::string> drop = {"--scene", "drop", "--solver", "dfsph", "--spacing", "0.05", "--size", "160x120"};
     TempDir plain_dir, live_dir, turbulence_dir;
     const ScriptRun plain = run_script(plain_dir, "12 key escape\n", drop);
     const ScriptRun live = run_script(live_dir, "0 panel cfl 0.1\n0 panel viscosity 0.001\n12 key escape\n", drop);
@@ -424,7 +426,7 @@ TEST_CASE("ranryu run --script: the panel's spacing rebuilds the scene at that r
     INFO("particles " << lines[0].first << " -> " << lines[1].first);
     CHECK(ratio > 1.5);
     CHECK(ratio < 2.5);
-    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, dfsph, particles\n"));
+    CHECK_THAT(r.result.out, Contains("restart at frame 2: drop, pbf, particles\n"));
     CHECK_THAT(r.result.out, !Contains("restart at frame 3"));
 }
 
