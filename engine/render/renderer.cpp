@@ -248,6 +248,12 @@ void Renderer::resize(int width, int height) {
     thickness_fbo_ = gl::Framebuffer(thick, nullptr, "liquid.thickness");
 }
 
+void Renderer::bind_target(const gl::RenderTarget& target) {
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
+    glViewport(0, 0, target.width(), target.height());
+    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+}
+
 void Renderer::set_spray_energy(float e_min) {
     if (spray_.id()) glProgramUniform4f(spray_.id(), RANRYU_LOC_SPRAY, e_min, 0.0f, 0.0f, 0.0f);
 }
@@ -255,9 +261,7 @@ void Renderer::set_spray_energy(float e_min) {
 void Renderer::draw_spray(const gl::RenderTarget& target, const SubparticleDraw& sub) {
     if (!spray_.id()) throw Error("Renderer::draw_spray: a renderer built without sub-particles or without a surface shading");
     auto pass = timer_.scope(spray_pass_);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    glViewport(0, 0, target.width(), target.height());
-    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    bind_target(target);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
@@ -429,8 +433,7 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                         GL_PIXEL_BUFFER_BARRIER_BIT);
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    glViewport(0, 0, target.width(), target.height());
+    bind_target(target);
     if (surface) {
         // (R1)-(R7): the front faces nearest the eye, over the opaque scene.
         auto pass = timer_.scope(surface_pass_);
@@ -462,9 +465,7 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         draw_water(target, surface);
         return;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    glViewport(0, 0, target.width(), target.height());
-    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    bind_target(target);
     {
         auto pass = timer_.scope(clear_pass_);
         glDepthMask(GL_TRUE);
@@ -524,9 +525,7 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
 void Renderer::draw_sphere(const gl::RenderTarget& target, const gl::Buffer& sphere) {
     if (!impostor_sphere_.id()) throw Error("Renderer::draw_sphere: a renderer built without the paddle");
     auto pass = timer_.scope(paddle_pass_);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer());
-    glViewport(0, 0, target.width(), target.height());
-    frame_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_FRAME);
+    bind_target(target);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     impostor_sphere_.use();

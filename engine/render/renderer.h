@@ -151,6 +151,7 @@ public:
     bool draws_spray() const { return spray_.id() != 0; }
 
 private:
+    void bind_target(const gl::RenderTarget& target);   // its framebuffer, its viewport, the frame's constants
     void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
     void draw_scene();   // the water mode's scene cache: "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"
     void fill(const gl::Texture2D& r32f, float value);   // fill_image.comp over the whole texture
