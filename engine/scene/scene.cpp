@@ -453,6 +453,8 @@ Scene parse(const std::string& text, const std::string& origin) {
             q.xsph = float(b.number("xsph"));
             q.vorticity = float(b.number("vorticity"));
             q.warm_start = float(b.number("warm_start"));
+            q.reference_substeps = q.substeps;
+            q.reference_spacing = s.spacing;
             b.finish();
         }
         h.why = p.string("why");
@@ -563,7 +565,10 @@ Scene with_spacing(Scene s, float dx, const std::string& what) {
     if (!(dx >= 1e-4f && dx <= 1.0f)) throw InputError(what + ": spacing " + fmt(dx) + " m is out of range [0.0001, 1]");
     // PBF's fixed step keeps its Courant number: sph.pbf.substeps are the scene's at its own spacing,
     // and the step may move the flow no more spacings at another (docs/PBF.md "Resolution").
-    const double substeps = std::ceil(double(s.sph.pbf.substeps) * double(s.spacing) / double(dx) - 1e-9);
+    const PbfSettings& q = s.sph.pbf;
+    const bool referenced = q.reference_substeps > 0 && q.reference_spacing > 0.0f;
+    const double from = referenced ? double(q.reference_substeps) * double(q.reference_spacing) : double(q.substeps) * double(s.spacing);
+    const double substeps = std::ceil(from / double(dx) - 1e-9);
     s.sph.pbf.substeps = int(std::clamp(substeps, 1.0, 1000.0));
     s.spacing = dx;
     s.particle_radius = 0.5f * dx;

@@ -49,6 +49,11 @@ struct PbfSettings {
     float xsph = 0.01f;             // c of (P7)
     float vorticity = 0.0f;         // epsilon of (P8) (m/s); 0: no vorticity confinement
     float warm_start = 0.0f;        // w of (P10): the last step's pressure acceleration in the prediction
+    // Where `substeps` came from: the scene file's value at its particles.spacing (set by parse()).
+    // with_spacing() scales from these, so that a run of spacing changes (the window's slider) ends
+    // with the substeps of the last spacing, whatever the path. 0: scale from the current values.
+    int reference_substeps = 0;
+    float reference_spacing = 0.0f;
 };
 
 struct SphSettings {
