@@ -31,6 +31,8 @@ import json
 import os
 import sys
 
+import sweep_rows  # scripts/sweep_rows.py, beside this file
+
 SOFTWARE = ("llvmpipe", "softpipe", "swrast")
 REQUIRED = ("key", "case", "solver", "spacing", "factor", "status")
 
@@ -41,23 +43,10 @@ def fail(message):
 
 
 def load(paths):
-    rows = {}
-    for path in paths:
-        if os.path.isdir(path):
-            path = os.path.join(path, "sweep.json")
-        try:
-            with open(path) as f:
-                data = json.load(f)
-        except (OSError, ValueError) as e:
-            fail(f"{path}: not a sweep's rows ({e})")
-        if not isinstance(data, dict) or not isinstance(data.get("rows"), list):
-            fail(f"{path}: not a sweep's rows (no \"rows\" array)")
-        for i, r in enumerate(data["rows"]):
-            missing = [k for k in REQUIRED if not isinstance(r, dict) or k not in r]
-            if missing:
-                fail(f"{path}: row {i} lacks {', '.join(missing)}")
-            rows[r["key"]] = r
-    return list(rows.values())
+    try:
+        return sweep_rows.load(paths, REQUIRED)
+    except sweep_rows.NotRows as e:
+        fail(str(e))
 
 
 class OneLineParser(argparse.ArgumentParser):

@@ -10,9 +10,10 @@ are merged; a row seen twice counts once. Writes
 DIR/accuracy-vs-cost.{png,svg} and DIR/stability-map.{png,svg}.
 """
 import argparse
-import json
 import os
 import sys
+
+import sweep_rows  # scripts/sweep_rows.py, beside this file
 
 import matplotlib
 
@@ -33,22 +34,13 @@ def short_cause(cause):
 
 
 def load(paths):
-    rows = {}
-    for path in paths:
-        if os.path.isdir(path):
-            path = os.path.join(path, "sweep.json")
-        try:
-            with open(path) as f:
-                data = json.load(f)
-        except (OSError, ValueError) as e:
-            sys.exit(f"sweep-charts: {path}: {e}")
-        if not isinstance(data, dict) or not isinstance(data.get("rows"), list):
-            sys.exit(f"sweep-charts: {path}: not a sweep's rows (no \"rows\" array)")
-        for r in data["rows"]:
-            rows[r["key"]] = r
+    try:
+        rows = sweep_rows.load(paths)
+    except sweep_rows.NotRows as e:
+        sys.exit(f"sweep-charts: {e}")
     if not rows:
         sys.exit("sweep-charts: no rows in " + ", ".join(paths))
-    return list(rows.values())
+    return rows
 
 
 def pareto(points):
