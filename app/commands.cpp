@@ -95,6 +95,25 @@ nlohmann::json memory_json(const frame::MemoryUse& m) {
             {"source", m.device.source}, {"parts", parts}};
 }
 
+
+// The guard's spikes that passed (sim/guard.h): a line for the report, and its JSON; nothing when
+// there were none (or no SPH).
+std::string guard_spikes_line(const frame::Pipeline& p, nlohmann::json& extra) {
+    if (!p.simulation()) return {};
+    const sim::Guard& g = p.simulation()->fluid().guard();
+    if (g.spikes() == 0) return {};
+    const sim::Instability& worst = *g.largest_spike();
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "guard: %d frame(s) past a bound, each followed by one within it (spikes, not stopped; sim/guard.h); the "
+                  "largest at frame %llu, t = %.4f s: %s (particle %u: %.4g, limit %.4g)\n",
+                  g.spikes(), static_cast<unsigned long long>(worst.frame), worst.time, worst.criterion.c_str(), worst.particle,
+                  worst.value, worst.limit);
+    extra["guard_spikes"] = {{"frames", g.spikes()},
+                             {"largest", {{"frame", worst.frame}, {"time", worst.time}, {"criterion", worst.criterion},
+                                          {"value", worst.value}, {"limit", worst.limit}}}};
+    return line;
+}
 }  // namespace
 
 void print_device(const gl::DeviceInfo& d) {
@@ -287,6 +306,7 @@ int record(const Options& o) {
         run["mesh_pattern"] = "frame_%05d.ply";
         run["meshes"] = list;
     }
+    const std::string spikes = guard_spikes_line(pipeline, run);
     if (const auto& bad = pipeline.instability())
         run["instability"] = {{"frame", bad->frame}, {"step", bad->step}, {"time", bad->time},
                               {"criterion", bad->criterion}, {"particle", bad->particle},
@@ -303,6 +323,7 @@ int record(const Options& o) {
         std::printf("wrote the particles of %llu frames as particles_*.%s\n",
                     static_cast<unsigned long long>(particles->frames_written()), record::extension(*particle_format));
     std::printf("%s", profile::table(report).c_str());
+    std::printf("%s", spikes.c_str());
     if (fault) throw *fault;
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     if (interrupted) throw frame::interrupted(ran, std::uint64_t(frames));
@@ -379,6 +400,7 @@ int profile_cmd(const Options& o) {
     std::printf("%s", profile::table(report).c_str());
     std::printf("%s", memory_line(pipeline.memory()).c_str());
     nlohmann::json extra = profile::to_json(report);
+    std::printf("%s", guard_spikes_line(pipeline, extra).c_str());
     // What the scene does not run, and why (issue 12: a scene models no more than it needs).
     nlohmann::json skipped = nlohmann::json::array();
     for (const frame::SkippedStage& st : pipeline.skipped_stages()) {

@@ -199,8 +199,8 @@ std::optional<std::uint64_t> Pipeline::poll() {
     sim::Fluid& fluid = sph_->fluid();
     fluid.poll_records();
     if (sub_) sub_->poll();
-    if (!fluid.last_record() || fluid.instability()) return std::nullopt;
-    return fluid.last_record()->frame;
+    if (fluid.instability()) return std::nullopt;
+    return fluid.guard().sound_through();   // frames past a bound wait for the next to pass as a spike
 }
 
 const std::optional<sim::Instability>& Pipeline::instability() const {

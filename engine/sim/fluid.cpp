@@ -166,7 +166,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", defines_)),
       emit_(scene.particle_budget > 0 ? shader::Program::compute(shaders, "sim/fluid/emit_particles.comp") : shader::Program()),
       emitter_(emitter_for(scene)),
-      limits_(guard_limits(scene)),
+      guard_(guard_limits(scene)),
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),
       grid_(shaders, timer,
@@ -421,7 +421,7 @@ void Fluid::on_record(const void* bytes) {
     last_ = r;
     if (sink_) sink_(r);
     if (!instability_)
-        if (auto finding = check(r, limits_)) instability_ = finding;
+        if (auto finding = guard_.observe(r)) instability_ = finding;
 }
 
 }  // namespace ranryu::sim

@@ -165,6 +165,8 @@ public:
     // ---- records: the latest StepState read back (frames late), and the first instability seen
     const std::optional<gpu::StepState>& last_record() const { return last_; }
     const std::optional<Instability>& instability() const { return instability_; }
+    // The guard's spikes that passed (guard.h): frames past the density or speed bound, and the largest.
+    const Guard& guard() const { return guard_; }
     // Every record, as it arrives (validation series). Set before the first frame.
     void set_record_sink(std::function<void(const gpu::StepState&)> sink) { sink_ = std::move(sink); }
     void poll_records() { readback_.poll(); }   // collects what has arrived (never waits)
@@ -192,7 +194,7 @@ private:
     gl::Buffer emit_claimed_;   // the emit pass's slot counter (a uint), with a budget only
     std::size_t scene_count_ = 0;
     gpu::SphParams params_{};
-    GuardLimits limits_;
+    Guard guard_;
     float frame_dt_;
     int max_substeps_;
     NeighbourGrid grid_;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 namespace ranryu::sim {
 namespace {
@@ -62,6 +63,49 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
         return i;
     }
     return std::nullopt;
+}
+
+GuardLimits GuardLimits::hard() const {
+    GuardLimits h = *this;
+    h.density_ratio = 1.0f + hard_factor * (density_ratio - 1.0f);
+    h.speed = hard_factor * speed;
+    return h;
+}
+
+std::optional<Instability> Guard::observe(const gpu::StepState& r) {
+    last_frame_ = r.frame;
+    if (check(r, hard_)) {
+        // Reported by the first criterion in check()'s order, as without the rule: a compression
+        // that throws particles fast reads as the density it is.
+        Instability at_once = *check(r, limits_);
+        if (at_once.limit > 0.0 && at_once.criterion.find("time step") == std::string::npos)
+            at_once.criterion += " (a bound broken " + std::to_string(int(limits_.hard_factor)) + "x over: stopped at once)";
+        return at_once;
+    }
+    std::optional<Instability> past = check(r, limits_);
+    auto ratio = [](const Instability& i) { return i.value / i.limit; };
+    if (!past) {   // back within the bounds: the frames past them were a spike
+        if (run_ > 0) {
+            spikes_ += run_;
+            if (!largest_spike_ || ratio(*largest_in_run_) > ratio(*largest_spike_)) largest_spike_ = largest_in_run_;
+        }
+        run_ = 0;
+        first_.reset(), largest_in_run_.reset();
+        return std::nullopt;
+    }
+    // Past the density or the speed bound (the hard check took every other criterion).
+    if (run_ == 0) first_ = past;
+    if (!largest_in_run_ || ratio(*past) > ratio(*largest_in_run_)) largest_in_run_ = past;
+    if (++run_ < limits_.persist) return std::nullopt;
+    // A blow-up: reported from the frame it began in, so that its frames are the ones discarded.
+    Instability found = *first_;
+    found.criterion += " in " + std::to_string(run_) + " frames in a row from this one";
+    return found;
+}
+
+std::optional<std::uint64_t> Guard::sound_through() const {
+    if (!last_frame_ || *last_frame_ < std::uint64_t(run_)) return std::nullopt;
+    return *last_frame_ - std::uint64_t(run_);
 }
 
 }  // namespace ranryu::sim

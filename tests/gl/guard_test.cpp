@@ -174,6 +174,92 @@ TEST_CASE("guard: check() names each criterion and passes a sound record", "[gua
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("guard: a density or speed past its bound stops the run when it persists, at once past twice it", "[guard]") {
+    // Guard::observe() over a run's records in frame order (sim/guard.h): a frame past a bound and
+    // the next within it is a spike; `persist` frames in a row past one stop the run, reported from
+    // the first; past hard_factor times a bound (the density by its excess) stops it at once; a
+    // non-finite value, an escape or a collapsed step stop it at once whatever the rule.
+    GuardLimits limits;
+    limits.density_ratio = 1.5f;
+    limits.speed = 10.0f;
+    limits.dt_floor = 1e-6f;
+    limits.persist = 2;
+    limits.hard_factor = 2.0f;
+    auto frame = [](std::uint64_t f, float density, float speed) {
+        gpu::StepState r = sound_record();
+        r.frame = std::uint32_t(f);
+        r.time = 0.1f * float(f);
+        r.frame_max_density = bits(density);
+        r.frame_max_speed = bits(speed);
+        return r;
+    };
+    SECTION("a spike passes, and the frames before it and after it are sound") {
+        ranryu::sim::Guard g(limits);
+        CHECK_FALSE(g.sound_through().has_value());
+        CHECK_FALSE(g.observe(frame(0, 1.01f, 2.0f)).has_value());
+        CHECK(g.sound_through() == std::optional<std::uint64_t>(0));
+        CHECK_FALSE(g.observe(frame(1, 1.01f, 19.0f)).has_value());   // past 10, within 20
+        CHECK(g.sound_through() == std::optional<std::uint64_t>(0));  // frame 1 waits for frame 2
+        CHECK_FALSE(g.observe(frame(2, 1.01f, 3.0f)).has_value());
+        CHECK(g.sound_through() == std::optional<std::uint64_t>(2));
+        CHECK(g.spikes() == 1);
+        REQUIRE(g.largest_spike().has_value());
+        CHECK(g.largest_spike()->frame == 1u);
+        CHECK(g.largest_spike()->value == Approx(19.0));
+        CHECK(contains(g.largest_spike()->criterion, "speed"));
+        CHECK_FALSE(g.observe(frame(3, 1.9f, 2.0f)).has_value());     // density 1.9: past 1.5, within 2.0
+        CHECK_FALSE(g.observe(frame(4, 1.2f, 2.0f)).has_value());
+        CHECK(g.spikes() == 2);
+        CHECK(g.largest_spike()->frame == 1u);   // 19/10 against 1.9/1.5
+    }
+    SECTION("two frames in a row past a bound stop the run, from the first") {
+        ranryu::sim::Guard g(limits);
+        CHECK_FALSE(g.observe(frame(0, 1.01f, 2.0f)).has_value());
+        CHECK_FALSE(g.observe(frame(1, 1.6f, 2.0f)).has_value());
+        const std::optional<Instability> i = g.observe(frame(2, 1.01f, 12.0f));   // density, then speed: still a run
+        REQUIRE(i.has_value());
+        INFO(i->message());
+        CHECK(i->frame == 1u);
+        CHECK(i->value == Approx(1.6));
+        CHECK(contains(i->criterion, "density"));
+        CHECK(contains(i->criterion, "2 frames in a row"));
+        CHECK(g.spikes() == 0);
+    }
+    SECTION("past twice a bound stops it at once") {
+        ranryu::sim::Guard g(limits);
+        std::optional<Instability> i = g.observe(frame(0, 1.01f, 20.5f));
+        REQUIRE(i.has_value());
+        CHECK(contains(i->criterion, "speed"));
+        CHECK(contains(i->criterion, "stopped at once"));
+        CHECK(i->limit == Approx(10.0));
+        ranryu::sim::Guard d(limits);
+        i = d.observe(frame(0, 2.05f, 1.0f));
+        REQUIRE(i.has_value());
+        CHECK(contains(i->criterion, "density"));
+        CHECK(i->limit == Approx(1.5));
+    }
+    SECTION("a NaN, an escape or a collapsed step stops it at once") {
+        gpu::StepState r = frame(0, 1.01f, 2.0f);
+        r.nan_count = 1;
+        CHECK(ranryu::sim::Guard(limits).observe(r).has_value());
+        r = frame(0, 1.01f, 2.0f);
+        r.escaped_count = 1;
+        CHECK(ranryu::sim::Guard(limits).observe(r).has_value());
+        r = frame(0, 1.01f, 2.0f);
+        r.frame_min_dt = 1e-8f;
+        CHECK(ranryu::sim::Guard(limits).observe(r).has_value());
+        r = frame(0, std::numeric_limits<float>::quiet_NaN(), 2.0f);
+        CHECK(ranryu::sim::Guard(limits).observe(r).has_value());
+    }
+    SECTION("persist 1 is the rule of check() alone") {
+        limits.persist = 1;
+        ranryu::sim::Guard g(limits);
+        const std::optional<Instability> i = g.observe(frame(0, 1.01f, 11.0f));
+        REQUIRE(i.has_value());
+        CHECK(i->frame == 0u);
+    }
+}
+
 TEST_CASE("guard: a fluid far too soft for its weight is stopped", "[guard]") {
     // c = 0.05 m/s: B = ρ0c²/7 = 0.36 Pa, while holding up a 0.24 m column takes ρ0·g·H = 2.4 kPa at
     // the floor, i.e. ρ/ρ0 = (1 + 2.4e3/0.36)^(1/7) ≈ 3.5, far past the guard's 1.5. The block falls
