@@ -187,6 +187,16 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
             j.update({{"status", "unstable"}, {"failure_frame", nullptr}, {"failure_time", j["simulated_seconds"]},
                       {"failure_cause", "energy gain"}, {"failure_message", msg}});
         }
+    } catch (const validation::NoMeasurement& e) {
+        // Sound by the guard, but the case's flow gave no number to compare: neither a point on the
+        // accuracy chart nor a stable cell of the map.
+        progress.finish();
+        j.update({{"status", "no result"},
+                  {"particles", scene.particle_count()},
+                  {"failure_frame", nullptr},
+                  {"failure_time", nullptr},
+                  {"failure_cause", "no measurement"},
+                  {"failure_message", e.what()}});
     } catch (const sim::UnstableError& e) {
         progress.finish();
         j.update({{"status", "unstable"},

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Charts of a `ranryu sweep` (app/sweep.cpp): accuracy against cost with each solver's Pareto front,
 one panel a case; and the stability map, one panel a case and solver, spacing against time-step
-factor, each cell stable or marked with the guard's cause. PNG and SVG (text kept as text).
+factor, each cell stable, marked with the guard's cause, or "no result" (ran, but its flow gave no
+measurement). PNG and SVG (text kept as text).
 
     scripts/sweep-charts.py SWEEP [SWEEP ...] --out DIR
 
@@ -25,7 +26,7 @@ COLOURS = {"dfsph": "#1f77b4", "wcsph": "#d62728", "pbf": "#2ca02c"}
 MARKERS = {"dfsph": "o", "wcsph": "s", "pbf": "^"}
 # The guard's criteria (engine/sim/guard.h) and the sweep's own, in a word for a cell.
 CAUSES = [("left the domain", "escaped"), ("non-finite", "NaN"), ("density", "density"), ("speed", "speed"),
-          ("velocity", "speed"), ("time step", "dt floor"), ("energy", "energy gain")]
+          ("velocity", "speed"), ("time step", "dt floor"), ("energy", "energy gain"), ("no measurement", "no result")]
 
 
 def short_cause(cause):
@@ -94,7 +95,9 @@ def stability_map(rows, out):
         for r in mine:
             x, y = factors.index(r["factor"]), spacings.index(r["spacing"])
             ok = r.get("status") == "stable"
-            ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color="#b7e4c7" if ok else "#f4a6a6"))
+            # Green: stable; amber: ran, no measurement ("no result"); red: the guard or the energy.
+            colour = "#b7e4c7" if ok else "#ffe08a" if r.get("status") == "no result" else "#f4a6a6"
+            ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=colour))
             frame = r.get("failure_frame")
             text = "stable" if ok else short_cause(r.get("failure_cause")) + (f"\nframe {frame}" if frame is not None else "")
             ax.text(x, y, text, ha="center", va="center", fontsize=8)

@@ -311,27 +311,53 @@ SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& sh
     return r;
 }
 
-StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
-    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("standing-wave: the scene must be SPH with one block");
+StandingWaveResult standing_wave(const scene::Scene& given, const shader::FileSource& shaders, frame::Progress* progress) {
+    if (given.model != scene::Model::sph || given.blocks.size() != 1) throw InputError("standing-wave: the scene must be SPH with one block");
     StandingWaveResult r;
-    const scene::Block& water = scene.blocks.front();
-    r.length = scene.tank_max.x - scene.tank_min.x;
-    r.depth = water.max.y - scene.tank_min.y;
+    const scene::Block water = given.blocks.front();
+    const double dx = given.spacing;
+    // The depth and length SPH sees are those of the lattice that fills the block (whole layers and
+    // columns of dx), not the block's nominal box: at dx = 0.0133 m a 0.1 m block holds 7 layers,
+    // 0.093 m, which moves T by 2.5 % (docs/VALIDATION.md "Standing wave").
+    const int columns = int(std::floor((water.max.x - water.min.x) / dx + 1e-4)),
+              layers = int(std::floor((water.max.y - water.min.y) / dx + 1e-4));
+    if (columns < 2 || layers < 2) throw InputError("standing-wave: spacing " + std::to_string(dx) + " leaves fewer than two columns or layers");
+    r.length = given.tank_max.x - given.tank_min.x;
+    r.depth = double(layers) * dx + (water.min.y - given.tank_min.y);
     r.amplitude = 0.1 * r.depth;
-    r.spacing = scene.spacing;
+    r.spacing = dx;
     r.wavenumber = std::numbers::pi / r.length;
-    const double g = glm::length(scene.gravity), k = r.wavenumber;
+    const double g = glm::length(given.gravity), k = r.wavenumber;
     r.period_theory = 2.0 * std::numbers::pi / std::sqrt(g * k * std::tanh(k * r.depth));
-    r.decay_theory = 2.0 * scene.sph.viscosity * k * k;
+    r.decay_theory = 2.0 * given.sph.viscosity * k * k;
+    // The surface raised to η(x) = H + A cos(k x) at rest density: column c of the lattice (centre
+    // x_c) holds n_c = round(η(x_c)/dx) layers, each particle's height above the floor then stretched
+    // by η(x_c)/(n_c dx). The stretch is within 1 ± 1/(2 n_c): half a layer over the column at any
+    // resolution. (Stretching every column of the block's n layers to η instead compresses the
+    // liquid by up to A/H = 10 % at every resolution, and the incompressible solvers' first steps
+    // turn that into speeds of (A/H)·H/dt, which blew up DFSPH at dx <= 0.005 m.)
+    scene::Scene scene = given;
+    scene.blocks.clear();
+    std::vector<double> stretch(std::size_t(columns), 1.0);
+    const double floor_y = given.tank_min.y;
+    for (int c = 0; c < columns; ++c) {
+        const double xc = water.min.x + (c + 0.5) * dx;
+        const double eta = r.depth + r.amplitude * std::cos(k * (xc - given.tank_min.x)) - (water.min.y - floor_y);
+        const int n = std::max(1, int(std::lround(eta / dx)));
+        stretch[std::size_t(c)] = eta / (double(n) * dx);
+        scene::Block b = water;
+        b.min.x = float(water.min.x + c * dx);
+        b.max.x = float(water.min.x + (c + 1) * dx);
+        b.max.y = float(water.min.y + n * dx);
+        scene.blocks.push_back(b);
+    }
     frame::Pipeline pipeline = simulation_only(scene, shaders);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
-    // The surface raised by A cos(k x): each particle's height above the floor stretched by
-    // 1 + (A/H) cos(k x), in the initial order (the warm start's order too).
     std::vector<glm::vec4> x = fluid.positions().read<glm::vec4>(fluid.count());
     for (glm::vec4& p : x) {
-        const double c = std::cos(k * (double(p.x) - scene.tank_min.x));
-        p.y = float(scene.tank_min.y + (double(p.y) - scene.tank_min.y) * (1.0 + r.amplitude / r.depth * c));
+        const int c = std::clamp(int(std::floor((double(p.x) - water.min.x) / dx)), 0, columns - 1);
+        p.y = float(water.min.y + (double(p.y) - water.min.y) * stretch[std::size_t(c)]);
     }
     fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
     StatsTally tally(scene, pipeline);
@@ -353,6 +379,11 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
 
+    measure_mode(r);
+    return r;
+}
+
+void measure_mode(StandingWaveResult& r) {
     // The mean crossings (linear between frames) over the run, after the first quarter period:
     // consecutive ones are half a period apart.
     double mean = 0.0;
@@ -366,7 +397,7 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
             crossings.push_back(r.moment[i - 1].first + w * (r.moment[i].first - r.moment[i - 1].first));
         }
     }
-    if (crossings.size() < 2) throw Error("standing-wave: the surface did not oscillate (fewer than two mean crossings)");
+    if (crossings.size() < 2) throw NoMeasurement("standing-wave: the surface did not oscillate (fewer than two mean crossings)");
     r.half_periods = int(crossings.size()) - 1;
     r.period = 2.0 * (crossings.back() - crossings.front()) / double(r.half_periods);
     r.period_error = std::abs(r.period - r.period_theory) / r.period_theory;
@@ -380,7 +411,6 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
     const double first = swing(crossings[0], crossings[1]), last = swing(crossings[crossings.size() - 2], crossings.back());
     const double span = 0.5 * (crossings.back() + crossings[crossings.size() - 2]) - 0.5 * (crossings[0] + crossings[1]);
     r.decay_rate = first > 0.0 && last > 0.0 && span > 0.0 ? std::log(first / last) / span : 0.0;
-    return r;
 }
 
 }  // namespace ranryu::validation

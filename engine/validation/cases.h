@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 
@@ -86,11 +87,23 @@ struct StandingWaveResult {
 };
 scene::Scene standing_wave_scene();
 
+// A case that ran (no guard fired) but whose flow does not give its measurement: the standing wave's
+// surface that does not oscillate. The sweep records the row as "no result" and goes on.
+class NoMeasurement : public Error {
+public:
+    explicit NoMeasurement(const std::string& what) : Error(what) {}
+};
+
 // A case's own scene: the bundled one of its name, standing_wave_scene(), or for a scene case
 // "scene:NAME" the bundled SPH scene NAME. InputError for another name, or a scene:NAME that is not
 // a bundled SPH scene.
 scene::Scene case_scene(const std::string& name);
 StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
+// The mode's period and decay from r.moment and r.period_theory (standing_wave's last step): the
+// period from the mean crossings after the first quarter period (linear between samples), the decay
+// from the largest swings of the first and last half periods. NoMeasurement with fewer than two
+// crossings.
+void measure_mode(StandingWaveResult& r);
 
 // Scene cases (docs/SWEEP.md "Scene cases"): "scene:NAME" runs the bundled SPH scene NAME as it is.
 constexpr const char* kScenePrefix = "scene:";

@@ -143,18 +143,21 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
 
 TEST_CASE("validate: DFSPH's standing wave keeps the period of linear theory", "[validation]") {
     test::context();
-    // 0.4 m tank, H = 0.1 m, A = 0.01 m, at dx = 0.0133 m: 8 layers deep, 630 particles, three periods.
+    // 0.4 m tank, a 0.1 m block at dx = 0.0133 m: the lattice's 7 layers, H = 0.0931 m deep (the depth
+    // the reference uses), A = H/10, 30 columns of 3, three periods; each column holds round(η/dx)
+    // layers at rest density (engine/validation/cases.cpp). T_linear = 2π/√(g k tanh kH) with k = π/L.
     // Bound on |T - T_linear| / T_linear: the depth SPH sees is uncertain by half a spacing at the floor
-    // and at the surface, and dT/T = -(k sech^2(kH) / (2 tanh(kH))) dH = -3.4 /m x 0.0067 m = 2.3 %;
-    // the amplitude's second-order shift (k A)^2 = 0.6 %: 3 %. Measured on llvmpipe: 0.7 % (WCSPH,
-    // not asserted: 4.3 %). The mode must oscillate (at least four mean crossings after the first
-    // quarter period) and lose energy at least as fast as the bulk's 2 nu k^2 (the walls' boundary
-    // layers and SPH's own dissipation add to it).
+    // and at the surface, and dT/T = -(k sech^2(kH) / (2 tanh(kH))) dH = -3.5 /m x 0.0067 m = 2.3 %;
+    // the amplitude's second-order shift (k A)^2 = 0.5 %: 3 %. Measured on llvmpipe: 1.2 %. The mode
+    // must oscillate (at least four mean crossings after the first quarter period) and lose energy at
+    // least as fast as the bulk's 2 nu k^2 (the walls' boundary layers and SPH's own dissipation add).
     const validation::StandingWaveResult r =
         validation::standing_wave(case_scene("standing-wave", 0.0133f, scene::Solver::dfsph), shader::FileSource::embedded());
     INFO("period " << r.period << " s against " << r.period_theory << " s (error " << r.period_error << "), decay " << r.decay_rate
                    << " /s against the bulk's " << r.decay_theory << " /s, " << r.half_periods << " half periods");
-    CHECK(r.period_theory == Approx(0.8839).epsilon(1e-3));
+    const double H = 7.0 * 0.0133, k = 3.14159265358979 / 0.4;
+    CHECK(r.depth == Approx(H).epsilon(1e-5));
+    CHECK(r.period_theory == Approx(2.0 * 3.14159265358979 / std::sqrt(9.81 * k * std::tanh(k * H))).epsilon(1e-6));
     CHECK(r.half_periods >= 4);
     CHECK(r.period_error < 0.03);
     CHECK(r.decay_rate > r.decay_theory);
