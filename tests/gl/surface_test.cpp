@@ -513,6 +513,22 @@ std::vector<glm::vec4> random_clumps(ranryu::test::Random& rng, float dx) {
     for (int d = 0; d < 20; ++d) x.emplace_back(random_vec(rng, 0.1f, 0.3f), 0.0f);
     return x;
 }
+
+// The drop of "a sphere of particles": shells at radii (k + ½)dx, k < K, each a Fibonacci spiral of
+// round(4π r_k²/dx²) points turned by a random angle, about `centre`.
+std::vector<glm::vec4> fibonacci_drop(ranryu::test::Random& rng, float dx, int K, glm::vec3 centre) {
+    std::vector<glm::vec4> x;
+    for (int k = 0; k < K; ++k) {
+        const double r = (k + 0.5) * dx;
+        const int n = std::max(1, int(std::lround(4.0 * std::numbers::pi * r * r / (double(dx) * dx))));
+        const double turn = rng.uniform(0.0f, 6.2831853f), golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+        for (int i = 0; i < n; ++i) {
+            const double z = n == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / n, ring = std::sqrt(1.0 - z * z), a = turn + golden * i;
+            x.emplace_back(centre + float(r) * glm::vec3(float(ring * std::cos(a)), float(z), float(ring * std::sin(a))), 0.0f);
+        }
+    }
+    return x;
+}
 }  // namespace
 
 TEST_CASE("surface: anisotropic kernels on the GPU equal the double CPU reference, and φ the CPU splat of them", "[surface]") {
@@ -598,16 +614,7 @@ TEST_CASE("surface: a sphere of particles meshes within half a spacing of the sp
     const int K = 4;
     const float rho = float(K) * dx;
     const glm::vec3 centre = random_vec(rng, 0.19f, 0.21f);
-    std::vector<glm::vec4> x;
-    for (int k = 0; k < K; ++k) {
-        const double r = (k + 0.5) * dx;
-        const int n = std::max(1, int(std::lround(4.0 * std::numbers::pi * r * r / (double(dx) * dx))));
-        const double turn = rng.uniform(0.0f, 6.2831853f), golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-        for (int i = 0; i < n; ++i) {
-            const double z = n == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / n, ring = std::sqrt(1.0 - z * z), a = turn + golden * i;
-            x.emplace_back(centre + float(r) * glm::vec3(float(ring * std::cos(a)), float(z), float(ring * std::sin(a))), 0.0f);
-        }
-    }
+    const std::vector<glm::vec4> x = fibonacci_drop(rng, dx, K, centre);
     auto s = anisotropic_settings(dx);
     static rs::LevelSet aniso(rig().shaders, rig().timer, s);
     s.anisotropic = false;
@@ -768,31 +775,19 @@ struct EdgeVertex {
     glm::ivec3 na, nb;
     double t;
 };
+// The edge under each vertex of polygonise_cpu(g): two of the vertex's grid coordinates are whole, the
+// third lies between the edge's nodes (a vertex on a node, t = 0, takes the edge along x).
 std::vector<EdgeVertex> edge_vertices(const PhiGrid& g) {
-    const auto tri = rs::mc_triangle_table();
-    const auto corners = rs::mc_corner_table();
-    const auto edges = rs::mc_edge_table();
-    auto corner = [&](int c) { return glm::ivec3(corners[3 * c], corners[3 * c + 1], corners[3 * c + 2]); };
     std::vector<EdgeVertex> out;
-    const glm::uvec3 cells = g.dims - 1u;
-    for (std::uint32_t k = 0; k < cells.z; ++k)
-        for (std::uint32_t j = 0; j < cells.y; ++j)
-            for (std::uint32_t i = 0; i < cells.x; ++i) {
-                const glm::ivec3 cell(i, j, k);
-                float f[8];
-                int index = 0;
-                for (int c = 0; c < 8; ++c) {
-                    f[c] = g.at(glm::uvec3(cell + corner(c)));
-                    if (f[c] < 0.0f) index |= 1 << c;
-                }
-                for (int v = 0; v < 15 && tri[index * 16 + v] >= 0; ++v) {
-                    const int e = tri[index * 16 + v], a = edges[2 * e], b = edges[2 * e + 1];
-                    const glm::ivec3 na = cell + corner(a), nb = cell + corner(b);
-                    const float s = f[a] / (f[a] - f[b]);
-                    const glm::vec3 local = glm::vec3(na) + s * glm::vec3(nb - na);
-                    out.push_back({glm::dvec3(g.origin + g.spacing * local), na, nb, double(s)});
-                }
-            }
+    for (const MeshVertex& v : rs::polygonise_cpu(g)) {
+        const glm::dvec3 q = (glm::dvec3(glm::vec3(v.position)) - glm::dvec3(g.origin)) / double(g.spacing);
+        const glm::dvec3 off = glm::abs(q - glm::round(q));
+        const int axis = off.x >= off.y && off.x >= off.z ? 0 : off.y >= off.z ? 1 : 2;
+        glm::ivec3 na = glm::ivec3(glm::round(q)), nb = na;
+        na[axis] = int(std::floor(q[axis]));
+        nb[axis] = na[axis] + 1;
+        out.push_back({glm::dvec3(glm::vec3(v.position)), na, nb, q[axis] - na[axis]});
+    }
     return out;
 }
 double angle_deg(glm::dvec3 a, glm::dvec3 b) {
@@ -826,16 +821,7 @@ TEST_CASE("surface: normals of a drop, candidate gradients against the exact fie
     const int drops = std::getenv("STUDY_DROPS") ? std::atoi(std::getenv("STUDY_DROPS")) : 4;
     for (int drop = 0; drop < drops; ++drop) {
         const glm::vec3 centre = random_vec(rng, 0.19f, 0.21f);
-        std::vector<glm::vec4> x;
-        for (int k = 0; k < K; ++k) {
-            const double r = (k + 0.5) * dx;
-            const int n = std::max(1, int(std::lround(4.0 * std::numbers::pi * r * r / (double(dx) * dx))));
-            const double turn = rng.uniform(0.0f, 6.2831853f), golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-            for (int i = 0; i < n; ++i) {
-                const double z = n == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / n, ring = std::sqrt(1.0 - z * z), a = turn + golden * i;
-                x.emplace_back(centre + float(r) * glm::vec3(float(ring * std::cos(a)), float(z), float(ring * std::sin(a))), 0.0f);
-            }
-        }
+        const std::vector<glm::vec4> x = fibonacci_drop(rng, dx, K, centre);
         std::vector<glm::vec4> y = x;
         PhiGrid g = gpu_level_set(aniso, particles(false), y);
         const GpuMesh gpu = polygonise(rig().mc, aniso.phi(), aniso.grid());
@@ -873,26 +859,30 @@ TEST_CASE("surface: normals of a drop, candidate gradients against the exact fie
             plo = std::min(plo, pr);
             phi_ = std::max(phi_, pr);
             glm::dvec3 n[kCount];
-            auto lerp = [&](glm::dvec3 a, glm::dvec3 b) { return a + v.t * (b - a); };
-            auto ulerp = [&](glm::dvec3 a, glm::dvec3 b) { return glm::normalize(a) + v.t * (glm::normalize(b) - glm::normalize(a)); };
+            // -∇φ by stencil (d along, c across) at the edge's nodes, interpolated as vectors or as unit vectors.
+            auto at_nodes = [&](const std::vector<double>& d, const std::vector<double>& cr, bool unit) {
+                glm::dvec3 a = grad_sep(ref, v.na, d, cr), b = grad_sep(ref, v.nb, d, cr);
+                if (unit) {
+                    a = glm::normalize(a);
+                    b = glm::normalize(b);
+                }
+                return -(a + v.t * (b - a));
+            };
             const std::vector<double> one{1.0}, d8{-1.0 / 8, -2.0 / 8, 0.0, 2.0 / 8, 1.0 / 8};
-            n[kCd] = -lerp(grad_sep(ref, v.na, cd, one), grad_sep(ref, v.nb, cd, one));
-            n[kCdUnit] = -ulerp(grad_sep(ref, v.na, cd, one), grad_sep(ref, v.nb, cd, one));
-            n[kSobel] = -lerp(grad_sep(ref, v.na, cd, b121), grad_sep(ref, v.nb, cd, b121));
-            n[kSobelUnit] = -ulerp(grad_sep(ref, v.na, cd, b121), grad_sep(ref, v.nb, cd, b121));
-            n[kSmooth] = -lerp(grad_sep(ref, v.na, d8, b121), grad_sep(ref, v.nb, d8, b121));
-            n[kSmoothUnit] = -ulerp(grad_sep(ref, v.na, d8, b121), grad_sep(ref, v.nb, d8, b121));
+            const std::vector<double>* stencils[][2] = {{&cd, &one}, {&cd, &b121}, {&d8, &b121}};
+            for (int i = 0; i < 3; ++i)
+                for (int unit = 0; unit < 2; ++unit) n[2 * i + unit] = at_nodes(*stencils[i][0], *stencils[i][1], unit);
             n[kExact] = -f.grad;
             n[kExactProj] = -fp.grad;
-            n[kB3Node] = -lerp(grad_sep(ref, v.na, cd, b141), grad_sep(ref, v.nb, cd, b141));
-            n[kB3NodeUnit] = -ulerp(grad_sep(ref, v.na, cd, b141), grad_sep(ref, v.nb, cd, b141));
+            n[kB3Node] = at_nodes(cd, b141, false);
+            n[kB3NodeUnit] = at_nodes(cd, b141, true);
             n[kB3Vertex] = -grad_bspline(ref, glm::dvec3(v.na) + v.t * glm::dvec3(v.nb - v.na));
-            n[kBal] = -lerp(grad_sep(ref, v.na, d5, b121), grad_sep(ref, v.nb, d5, b121));
-            n[kBalUnit] = -ulerp(grad_sep(ref, v.na, d5, b121), grad_sep(ref, v.nb, d5, b121));
-            n[kV12] = -lerp(grad_sep(ref, v.na, d23, b121), grad_sep(ref, v.nb, d23, b121));
-            n[kV12Unit] = -ulerp(grad_sep(ref, v.na, d23, b121), grad_sep(ref, v.nb, d23, b121));
-            n[kV23] = -lerp(grad_sep(ref, v.na, d5, b111), grad_sep(ref, v.nb, d5, b111));
-            n[kV23Unit] = -ulerp(grad_sep(ref, v.na, d5, b111), grad_sep(ref, v.nb, d5, b111));
+            n[kBal] = at_nodes(d5, b121, false);
+            n[kBalUnit] = at_nodes(d5, b121, true);
+            n[kV12] = at_nodes(d23, b121, false);
+            n[kV12Unit] = at_nodes(d23, b121, true);
+            n[kV23] = at_nodes(d5, b111, false);
+            n[kV23Unit] = at_nodes(d5, b111, true);
             for (int i = 0; i < kCount; ++i) {
                 rad[i].add(angle_deg(v.position - c, n[i]));
                 vs_exact[i].add(angle_deg(-f.grad, n[i]));
