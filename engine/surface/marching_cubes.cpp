@@ -22,15 +22,27 @@ std::string dispatch_defines(const MeshCapacity& c) {
 
 glm::ivec3 corner(int c) { return {kCorners[3 * c], kCorners[3 * c + 1], kCorners[3 * c + 2]}; }
 
-// ∇φ at a node, as gradient() in mc_emit.comp.
+float phi_clamped(const PhiGrid& g, glm::ivec3 n) { return g.at(glm::uvec3(glm::clamp(n, glm::ivec3(0), glm::ivec3(g.dims) - 1))); }
+
+// ∇φ at a node, smoothed (docs/SURFACE.md (S8)), as gradient() in mc_emit.comp: the same stencil, sums
+// and order.
 glm::vec3 gradient(const PhiGrid& g, glm::ivec3 n) {
-    const glm::ivec3 top = glm::ivec3(g.dims) - 1;
+    constexpr float across[3] = {0.25f, 0.5f, 0.25f};
     glm::vec3 out;
     for (int a = 0; a < 3; ++a) {
-        glm::ivec3 e(0);
+        glm::ivec3 e(0), eb(0), ec(0);
         e[a] = 1;
-        const glm::ivec3 lo = glm::max(n - e, glm::ivec3(0)), hi = glm::min(n + e, top);
-        out[a] = (g.at(glm::uvec3(hi)) - g.at(glm::uvec3(lo))) / (float(hi[a] - lo[a]) * g.spacing);
+        eb[(a + 1) % 3] = 1;
+        ec[(a + 2) % 3] = 1;
+        float sum = 0.0f;
+        for (int j = -1; j <= 1; ++j)
+            for (int k = -1; k <= 1; ++k) {
+                const glm::ivec3 m = n + j * eb + k * ec;
+                const float near = phi_clamped(g, m + e) - phi_clamped(g, m - e);
+                const float far = phi_clamped(g, m + 2 * e) - phi_clamped(g, m - 2 * e);
+                sum += across[j + 1] * across[k + 1] * (10.0f * near + far);
+            }
+        out[a] = sum / (24.0f * g.spacing);
     }
     return out;
 }

@@ -19,7 +19,8 @@
 //                                       draw arguments
 //                  mc_compact.comp      in-block scan + block offset -> list of active cells with their
 //                                       first vertex (order-preserving)
-//   "mc.emit"      mc_emit.comp         triangles of each active cell, vertex normals from ∇φ
+//   "mc.emit"      mc_emit.comp         triangles of each active cell, vertex normals from the smoothed ∇φ
+//                                       (docs/SURFACE.md (S8))
 // Ambiguous faces get the table's one fixed choice, the same from both cells that share the face,
 // and vertices on shared edges are bit-identical: the mesh is watertight and consistently oriented
 // (tests/unit/marching_cubes_table_test.cpp proves the table's part, tests/gl/surface_test.cpp checks

@@ -6,8 +6,8 @@
 // linear interpolant:  t = φa / (φa - φb),  x = origin + h (node_a + t (node_b - node_a)).
 // Every cell that shares the edge computes it from the same numbers in the same order ('precise'
 // forbids the compiler to fuse differently), so shared vertices are bit-identical: no cracks.
-// The normal is -∇φ/|∇φ|, ∇φ by central differences at the two nodes (one-sided on the grid's
-// border) interpolated with the same t; where ∇φ vanishes, the triangle's own normal.
+// The normal is -∇φ/|∇φ| (docs/SURFACE.md (S8)), ∇φ by the smoothed difference gradient() at the two
+// nodes interpolated with the same t; where ∇φ vanishes, the triangle's own normal.
 // Triangles past the vertex capacity are dropped (mc.totals.z says so); mc.draw counts those kept.
 // Dispatch: glDispatchComputeIndirect with mc.emit_dispatch.
 #include "../shared/bindings.h"
@@ -22,15 +22,32 @@ layout(location = RANRYU_LOC_SURFACE_CAPACITY) uniform uvec4 capacity;   // x: v
 
 #include "mc_common.glsl"
 
-// ∇φ at a node: central differences inside, one-sided on the border.
+// φ at a node, the grid continued beyond its border by its border values.
+float phi_clamped(ivec3 n) { return phi_at(clamp(n, ivec3(0), ivec3(surface_grid.dims.xyz) - 1)); }
+
+// ∇φ at a node, smoothed (docs/SURFACE.md (S8)): component a is
+//     Σ_{j,k} c_j c_k [10 (φ(+1) - φ(-1)) + (φ(+2) - φ(-2))] / (24 h),   c = [1, 2, 1]/4,
+// φ(±i) at the node + i e_a + j e_b + k e_c (b, c the other axes): the derivative stencil
+// [-1, -10, 0, 10, 1]/24 along a (a central difference of φ smoothed by [1, 10, 1]/12) and [1, 2, 1]/4
+// across. Every component's stencil has the second moment h²/2 along every axis, so to second order
+// in h this is the gradient of φ convolved with one isotropic kernel of variance h²/2. Mirrored as
+// surface::polygonise_cpu's gradient.
+const float kAcross[3] = float[3](0.25, 0.5, 0.25);
 vec3 gradient(ivec3 n) {
-    ivec3 top = ivec3(surface_grid.dims.xyz) - 1;
     vec3 g;
     for (int a = 0; a < 3; ++a) {
-        ivec3 e = ivec3(0);
+        ivec3 e = ivec3(0), eb = ivec3(0), ec = ivec3(0);
         e[a] = 1;
-        ivec3 lo = max(n - e, ivec3(0)), hi = min(n + e, top);
-        g[a] = (phi_at(hi) - phi_at(lo)) / (float(hi[a] - lo[a]) * surface_grid.origin.w);
+        eb[(a + 1) % 3] = 1;
+        ec[(a + 2) % 3] = 1;
+        float sum = 0.0;
+        for (int j = -1; j <= 1; ++j)
+            for (int k = -1; k <= 1; ++k) {
+                ivec3 m = n + j * eb + k * ec;
+                float near = phi_clamped(m + e) - phi_clamped(m - e), far = phi_clamped(m + 2 * e) - phi_clamped(m - 2 * e);
+                sum += kAcross[j + 1] * kAcross[k + 1] * (10.0 * near + far);
+            }
+        g[a] = sum / (24.0 * surface_grid.origin.w);
     }
     return g;
 }

@@ -513,6 +513,22 @@ std::vector<glm::vec4> random_clumps(ranryu::test::Random& rng, float dx) {
     for (int d = 0; d < 20; ++d) x.emplace_back(random_vec(rng, 0.1f, 0.3f), 0.0f);
     return x;
 }
+
+// The drop of "a sphere of particles": shells at radii (k + ½)dx, k < K, each a Fibonacci spiral of
+// round(4π r_k²/dx²) points turned by a random angle, about `centre`.
+std::vector<glm::vec4> fibonacci_drop(ranryu::test::Random& rng, float dx, int K, glm::vec3 centre) {
+    std::vector<glm::vec4> x;
+    for (int k = 0; k < K; ++k) {
+        const double r = (k + 0.5) * dx;
+        const int n = std::max(1, int(std::lround(4.0 * std::numbers::pi * r * r / (double(dx) * dx))));
+        const double turn = rng.uniform(0.0f, 6.2831853f), golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+        for (int i = 0; i < n; ++i) {
+            const double z = n == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / n, ring = std::sqrt(1.0 - z * z), a = turn + golden * i;
+            x.emplace_back(centre + float(r) * glm::vec3(float(ring * std::cos(a)), float(z), float(ring * std::sin(a))), 0.0f);
+        }
+    }
+    return x;
+}
 }  // namespace
 
 TEST_CASE("surface: anisotropic kernels on the GPU equal the double CPU reference, and φ the CPU splat of them", "[surface]") {
@@ -582,34 +598,28 @@ TEST_CASE("surface: a sphere of particles meshes within half a spacing of the sp
     // of flat facets, which anisotropic kernels rightly follow). Each shell holds the volume
     // 4π r_k² Δx, its particles' Δx³ each, so the liquid is the sphere of radius ρ = 4Δx.
     //   - Every vertex of the anisotropic surface lies within Δx/2 of that sphere. (Measured over
-    //     seeds: 3.515-3.534 to 3.70-3.72 Δx from the centre: the smoothed centres (S2) pull the outer
-    //     shell in by 0.3-0.5 Δx, the volume loss Yu & Turk report; the lower bound holds by 0.015 Δx.)
-    //   - Its normals are off radial by less than 3.5° rms and by less than 0.7 of the spherical
-    //     kernels' rms. Measured over seeds: 2.6-2.9° rms (8° at worst) against 5.0° (19°): the
-    //     particles' irregular packing still shows at Δx/2 nodes. The issue asks for 2°, which this
-    //     drop does not reach with the paper's constants (a neighbourhood of 2.5Δx does, at 0.6Δx of
-    //     shrinkage; docs/SURFACE.md (S5)).
+    //     seeds: 3.510-3.534 to 3.70-3.72 Δx from the centre: the smoothed centres (S2) pull the outer
+    //     shell in by 0.3-0.5 Δx, the volume loss Yu & Turk report; the lower bound holds by 0.01 Δx.)
+    //   - Its normals are off radial by less than 2° rms, the issue's target. Measured over seeds:
+    //     1.5-1.9° rms (4.4-6° at worst) with the smoothed gradient of (S8); the field's own exact
+    //     gradient at the vertices is 2.2-2.7° off radial (the particles' irregular packing), and plain
+    //     central differences gave 2.4-2.9° (7-10°). docs/SURFACE.md (S8) has the candidates.
+    //   The spherical kernels' normals are measured, not asserted: with the smoothed gradient they are
+    //   1.8-1.9° rms on this drop too (5.0° with central differences), and their vertices' radii spread
+    //   less (0.028 Δx rms against 0.035): on a drop the anisotropic kernels gain nothing the normals'
+    //   smoothing does not; their gains are the flat pool's and the thin sheets' (docs/SURFACE.md).
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     const float dx = 0.02f;
     const int K = 4;
     const float rho = float(K) * dx;
     const glm::vec3 centre = random_vec(rng, 0.19f, 0.21f);
-    std::vector<glm::vec4> x;
-    for (int k = 0; k < K; ++k) {
-        const double r = (k + 0.5) * dx;
-        const int n = std::max(1, int(std::lround(4.0 * std::numbers::pi * r * r / (double(dx) * dx))));
-        const double turn = rng.uniform(0.0f, 6.2831853f), golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-        for (int i = 0; i < n; ++i) {
-            const double z = n == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / n, ring = std::sqrt(1.0 - z * z), a = turn + golden * i;
-            x.emplace_back(centre + float(r) * glm::vec3(float(ring * std::cos(a)), float(z), float(ring * std::sin(a))), 0.0f);
-        }
-    }
+    const std::vector<glm::vec4> x = fibonacci_drop(rng, dx, K, centre);
     auto s = anisotropic_settings(dx);
     static rs::LevelSet aniso(rig().shaders, rig().timer, s);
     s.anisotropic = false;
     static rs::LevelSet spherical(rig().shaders, rig().timer, s);
-    double rms[2] = {0.0, 0.0};
+    double rms[2] = {0.0, 0.0}, rough[2] = {0.0, 0.0};
     for (rs::LevelSet* ls : {&aniso, &spherical}) {
         const bool anisotropic = ls == &aniso;
         std::vector<glm::vec4> y = x;
@@ -617,17 +627,21 @@ TEST_CASE("surface: a sphere of particles meshes within half a spacing of the sp
         const GpuMesh gpu = polygonise(rig().mc, ls->phi(), ls->grid());
         REQUIRE(gpu.vertices.size() > 300);
         check_watertight(gpu.vertices, 2);
-        double lo = INFINITY, hi = 0.0, worst = 0.0, sum2 = 0.0;
+        double lo = INFINITY, hi = 0.0, worst = 0.0, sum2 = 0.0, r_sum = 0.0, r_sum2 = 0.0;
         for (const MeshVertex& v : gpu.vertices) {
             const glm::vec3 d = glm::vec3(v.position) - centre;
             const double r = glm::length(d) / dx;
             lo = std::min(lo, r);
             hi = std::max(hi, r);
+            r_sum += r;
+            r_sum2 += r * r;
             const double deg = glm::degrees(std::acos(std::clamp(double(glm::dot(glm::normalize(d), glm::vec3(v.normal))), -1.0, 1.0)));
             worst = std::max(worst, deg);
             sum2 += deg * deg;
         }
         rms[anisotropic] = std::sqrt(sum2 / double(gpu.vertices.size()));
+        const double nv = double(gpu.vertices.size()), r_mean = r_sum / nv;
+        rough[anisotropic] = std::sqrt(std::max(0.0, r_sum2 / nv - r_mean * r_mean));
         INFO((anisotropic ? "anisotropic: " : "spherical: ") << x.size() << " particles; vertices " << lo << " Δx to " << hi
                                                              << " Δx from the centre (sphere " << rho / dx
                                                              << " Δx); normals off radial by " << rms[anisotropic]
@@ -635,10 +649,11 @@ TEST_CASE("surface: a sphere of particles meshes within half a spacing of the sp
         if (!anisotropic) continue;
         CHECK(lo > rho / dx - 0.5);
         CHECK(hi < rho / dx + 0.5);
-        CHECK(rms[1] < 3.5);
+        CHECK(rms[1] < 2.0);
     }
-    INFO("rms " << rms[1] << "° anisotropic, " << rms[0] << "° spherical");
-    CHECK(rms[1] < 0.7 * rms[0]);
+    INFO("rms " << rms[1] << "° anisotropic, " << rms[0] << "° spherical; vertex radii's rms spread " << rough[1] << " Δx anisotropic, "
+                << rough[0] << " Δx spherical");
+    CHECK(rms[0] < 3.0);   // the smoothed gradient evens out the spherical kernels' bumps too (5.0° before)
     ranryu::test::require_no_gl_errors();
 }
 
@@ -673,4 +688,216 @@ TEST_CASE("surface: marching cubes benchmark", "[.][mc-bench]") {
                 ranryu::profile::table(ranryu::profile::summarize(timer, info)).c_str(), m.draw.x / 3, m.totals.x,
                 m.cell_dispatch.w);
     CHECK(m.draw.x > 0);
+}
+
+namespace {
+// The study behind docs/SURFACE.md (S8): the drop's exact field (S7) and candidate gradients for its
+// normals, on the CPU reference's φ of the CPU reference's kernels.
+struct FieldSample {
+    double phi;
+    glm::dvec3 grad;
+};
+double kernel_dw(double r, double R) {
+    const double q = r / R, k = 8.0 / (std::numbers::pi * R * R * R);
+    if (q <= 0.5) return k / R * 6.0 * q * (3.0 * q - 2.0);
+    if (q <= 1.0) return -k / R * 6.0 * (1.0 - q) * (1.0 - q);
+    return 0.0;
+}
+FieldSample field_at(const std::vector<rs::ParticleAnisotropy>& kernels, const rs::LevelSetSettings& s, double h, glm::dvec3 x) {
+    const double R = s.kernel_radius, V = double(s.particle_spacing) * s.particle_spacing * s.particle_spacing;
+    const double floor_s = RANRYU_SUBPARTICLE_KERNEL_FLOOR * h / R;
+    FieldSample out{-double(s.iso), glm::dvec3(0.0)};
+    for (const auto& k : kernels) {
+        const glm::dvec3 st = glm::max(k.stretch, glm::dvec3(floor_s));
+        const glm::dmat3 g = rs::kernel_matrix(k.axes, k.stretch, floor_s);
+        const double w = V / (st.x * st.y * st.z);
+        const glm::dvec3 u = g * (x - k.centre);
+        const double r = glm::length(u);
+        if (r >= R) continue;
+        out.phi += w * rs::kernel_w(r, R);
+        if (r > 0) out.grad += w * kernel_dw(r, R) / r * (g * u);
+    }
+    return out;
+}
+float phi_clamped(const PhiGrid& g, glm::ivec3 n) {
+    return g.at(glm::uvec3(glm::clamp(n, glm::ivec3(0), glm::ivec3(g.dims) - 1)));
+}
+// A separable stencil: component a = Σ_i d_i Σ_j c_j Σ_k c_k φ(n + i e_a + j e_b + k e_c) / h.
+glm::dvec3 grad_sep(const PhiGrid& g, glm::ivec3 n, const std::vector<double>& d, const std::vector<double>& cross) {
+    glm::dvec3 out(0.0);
+    const int hd = int(d.size()) / 2, hc = int(cross.size()) / 2;
+    for (int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int i = -hd; i <= hd; ++i)
+            for (int j = -hc; j <= hc; ++j)
+                for (int k = -hc; k <= hc; ++k) {
+                    glm::ivec3 o(0);
+                    o[a] = i;
+                    o[b] = j;
+                    o[c] = k;
+                    out[a] += d[i + hd] * cross[j + hc] * cross[k + hc] * phi_clamped(g, n + o);
+                }
+        out[a] /= g.spacing;
+    }
+    return out;
+}
+double bspline(double u) {
+    u = std::abs(u);
+    if (u < 1) return 2.0 / 3.0 - u * u + 0.5 * u * u * u;
+    if (u < 2) return (2 - u) * (2 - u) * (2 - u) / 6.0;
+    return 0.0;
+}
+double bspline_d(double u) {
+    const double s = u < 0 ? -1.0 : 1.0;
+    u = std::abs(u);
+    if (u < 1) return s * (-2 * u + 1.5 * u * u);
+    if (u < 2) return s * (-0.5 * (2 - u) * (2 - u));
+    return 0.0;
+}
+// Gradient of the cubic B-spline whose coefficients are the node values, at grid coordinate q.
+glm::dvec3 grad_bspline(const PhiGrid& g, glm::dvec3 q) {
+    const glm::ivec3 base = glm::ivec3(glm::floor(q));
+    glm::dvec3 out(0.0);
+    for (int k = -1; k <= 2; ++k)
+        for (int j = -1; j <= 2; ++j)
+            for (int i = -1; i <= 2; ++i) {
+                const glm::ivec3 n = base + glm::ivec3(i, j, k);
+                const glm::dvec3 u = q - glm::dvec3(n);
+                const double f = phi_clamped(g, n);
+                out.x += bspline_d(u.x) * bspline(u.y) * bspline(u.z) * f;
+                out.y += bspline(u.x) * bspline_d(u.y) * bspline(u.z) * f;
+                out.z += bspline(u.x) * bspline(u.y) * bspline_d(u.z) * f;
+            }
+    return out / double(g.spacing);
+}
+struct EdgeVertex {
+    glm::dvec3 position;
+    glm::ivec3 na, nb;
+    double t;
+};
+// The edge under each vertex of polygonise_cpu(g): two of the vertex's grid coordinates are whole, the
+// third lies between the edge's nodes (a vertex on a node, t = 0, takes the edge along x).
+std::vector<EdgeVertex> edge_vertices(const PhiGrid& g) {
+    std::vector<EdgeVertex> out;
+    for (const MeshVertex& v : rs::polygonise_cpu(g)) {
+        const glm::dvec3 q = (glm::dvec3(glm::vec3(v.position)) - glm::dvec3(g.origin)) / double(g.spacing);
+        const glm::dvec3 off = glm::abs(q - glm::round(q));
+        const int axis = off.x >= off.y && off.x >= off.z ? 0 : off.y >= off.z ? 1 : 2;
+        glm::ivec3 na = glm::ivec3(glm::round(q)), nb = na;
+        na[axis] = int(std::floor(q[axis]));
+        nb[axis] = na[axis] + 1;
+        out.push_back({glm::dvec3(glm::vec3(v.position)), na, nb, q[axis] - na[axis]});
+    }
+    return out;
+}
+double angle_deg(glm::dvec3 a, glm::dvec3 b) {
+    return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)));
+}
+struct Stat {
+    double sum2 = 0.0, worst = 0.0;
+    std::size_t n = 0;
+    void add(double d) {
+        sum2 += d * d;
+        worst = std::max(worst, d);
+        ++n;
+    }
+    double rms() const { return std::sqrt(sum2 / double(n)); }
+};
+}  // namespace
+
+// Study, not a test (hidden: `ranryu_gl_tests "[normals-study]"`, STUDY_DROPS drops, default 4;
+// STUDY_COMPACT=1 for one line a drop): for the drop of "a sphere of particles", each candidate
+// normal's angle off radial (rms, worst) and off the exact field's normal at the vertex. Candidates:
+// stencils at the edge's two nodes interpolated with t ("lerp") or as unit vectors ("unit lerp"), the
+// cubic B-spline of the nodes' φ differentiated at the vertex, and the exact ∇φ (S7) at the vertex and
+// at its projection on the exact zero set. docs/SURFACE.md (S8) quotes it.
+TEST_CASE("surface: normals of a drop, candidate gradients against the exact field", "[.][normals-study]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const float dx = 0.02f;
+    const int K = 4;
+    auto s = anisotropic_settings(dx);
+    static rs::LevelSet aniso(rig().shaders, rig().timer, s);
+    const int drops = std::getenv("STUDY_DROPS") ? std::atoi(std::getenv("STUDY_DROPS")) : 4;
+    for (int drop = 0; drop < drops; ++drop) {
+        const glm::vec3 centre = random_vec(rng, 0.19f, 0.21f);
+        const std::vector<glm::vec4> x = fibonacci_drop(rng, dx, K, centre);
+        std::vector<glm::vec4> y = x;
+        PhiGrid g = gpu_level_set(aniso, particles(false), y);
+        const GpuMesh gpu = polygonise(rig().mc, aniso.phi(), aniso.grid());
+        std::vector<rs::ParticleAnisotropy> kernels;
+        for (std::size_t i = 0; i < x.size(); ++i) kernels.push_back(rs::anisotropy_cpu(x, i, s.anisotropy));
+        PhiGrid ref = g;
+        rs::level_set_cpu(kernels, s, ref);
+        const auto ev = edge_vertices(ref);
+        const glm::dvec3 c(centre);
+        const double h = g.spacing;
+        Stat gpu_rad;
+        for (const auto& v : gpu.vertices) gpu_rad.add(angle_deg(glm::dvec3(glm::vec3(v.position)) - c, glm::dvec3(glm::vec3(v.normal))));
+        enum { kCd, kCdUnit, kSobel, kSobelUnit, kSmooth, kSmoothUnit, kExact, kExactProj, kB3Node, kB3NodeUnit, kB3Vertex,
+               kBal, kBalUnit, kV12, kV12Unit, kV23, kV23Unit, kCount };
+        const char* names[kCount] = {"central diff, lerp", "central diff, unit lerp", "sobel, lerp", "sobel, unit lerp",
+                                     "smoothed phi, lerp", "smoothed phi, unit lerp", "exact at vertex", "exact at projection",
+                                     "cd x [1,4,1]/6, lerp", "cd x [1,4,1]/6, unit lerp", "cubic B-spline at vertex",
+                                     "along 2/3 x cross 1/2", "same, unit lerp", "along 1/2 x cross 1/2 (S8)", "same, unit lerp", "along 2/3 x cross 2/3", "same, unit lerp"};
+        const std::vector<double> cd{-0.5, 0.0, 0.5}, b141{1.0 / 6, 4.0 / 6, 1.0 / 6}, b121{0.25, 0.5, 0.25},
+            d5{-1.0 / 12, -4.0 / 12, 0.0, 4.0 / 12, 1.0 / 12}, d23{-1.0 / 24, -10.0 / 24, 0.0, 10.0 / 24, 1.0 / 24},
+            b111{1.0 / 3, 1.0 / 3, 1.0 / 3};
+        Stat rad[kCount], vs_exact[kCount];
+        double lo = INFINITY, hi = 0, plo = INFINITY, phi_ = 0;
+        for (const auto& v : ev) {
+            const FieldSample f = field_at(kernels, s, h, v.position);
+            glm::dvec3 p = v.position;
+            for (int it = 0; it < 8; ++it) {
+                const FieldSample q = field_at(kernels, s, h, p);
+                p -= q.phi * q.grad / glm::dot(q.grad, q.grad);
+            }
+            const FieldSample fp = field_at(kernels, s, h, p);
+            const double r = glm::length(v.position - c) / dx, pr = glm::length(p - c) / dx;
+            lo = std::min(lo, r);
+            hi = std::max(hi, r);
+            plo = std::min(plo, pr);
+            phi_ = std::max(phi_, pr);
+            glm::dvec3 n[kCount];
+            // -∇φ by stencil (d along, c across) at the edge's nodes, interpolated as vectors or as unit vectors.
+            auto at_nodes = [&](const std::vector<double>& d, const std::vector<double>& cr, bool unit) {
+                glm::dvec3 a = grad_sep(ref, v.na, d, cr), b = grad_sep(ref, v.nb, d, cr);
+                if (unit) {
+                    a = glm::normalize(a);
+                    b = glm::normalize(b);
+                }
+                return -(a + v.t * (b - a));
+            };
+            const std::vector<double> one{1.0}, d8{-1.0 / 8, -2.0 / 8, 0.0, 2.0 / 8, 1.0 / 8};
+            const std::vector<double>* stencils[][2] = {{&cd, &one}, {&cd, &b121}, {&d8, &b121}};
+            for (int i = 0; i < 3; ++i)
+                for (int unit = 0; unit < 2; ++unit) n[2 * i + unit] = at_nodes(*stencils[i][0], *stencils[i][1], unit);
+            n[kExact] = -f.grad;
+            n[kExactProj] = -fp.grad;
+            n[kB3Node] = at_nodes(cd, b141, false);
+            n[kB3NodeUnit] = at_nodes(cd, b141, true);
+            n[kB3Vertex] = -grad_bspline(ref, glm::dvec3(v.na) + v.t * glm::dvec3(v.nb - v.na));
+            n[kBal] = at_nodes(d5, b121, false);
+            n[kBalUnit] = at_nodes(d5, b121, true);
+            n[kV12] = at_nodes(d23, b121, false);
+            n[kV12Unit] = at_nodes(d23, b121, true);
+            n[kV23] = at_nodes(d5, b111, false);
+            n[kV23Unit] = at_nodes(d5, b111, true);
+            for (int i = 0; i < kCount; ++i) {
+                rad[i].add(angle_deg(v.position - c, n[i]));
+                vs_exact[i].add(angle_deg(-f.grad, n[i]));
+            }
+        }
+        std::printf("drop %d (%zu particles): GPU mesh %zu vertices, normals %.2f deg rms (%.1f worst); CPU vertices %.3f-%.3f dx, "
+                    "zero set under them %.3f-%.3f dx\n",
+                    drop, x.size(), gpu.vertices.size(), gpu_rad.rms(), gpu_rad.worst, lo, hi, plo, phi_);
+        if (std::getenv("STUDY_COMPACT")) {
+            std::printf("  ");
+            for (int i = 0; i < kCount; ++i) std::printf("%d:%.2f/%.1f ", i, rad[i].rms(), rad[i].worst);
+            std::printf("\n");
+        } else
+        for (int i = 0; i < kCount; ++i)
+            std::printf("  %-26s off radial %.2f rms %.1f worst | off exact-at-vertex %.2f rms %.1f worst\n", names[i], rad[i].rms(),
+                        rad[i].worst, vs_exact[i].rms(), vs_exact[i].worst);
+    }
 }
