@@ -213,9 +213,15 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
             size_raster_ = shader::Program::compute(shaders, "render/size_raster.comp");
             raster_shadow_ = shader::Program::compute(shaders, "render/rasterise_layers.comp", "#define SUN_VIEW\n");
             raster_thickness_ = shader::Program::compute(shaders, "render/rasterise_layers.comp", thickness_define(water_));
+            raster_shadow_large_ =
+                shader::Program::compute(shaders, "render/rasterise_layers.comp", "#define SUN_VIEW\n#define LARGE_TRIANGLES\n");
+            raster_thickness_large_ = shader::Program::compute(shaders, "render/rasterise_layers.comp",
+                                                               thickness_define(water_) + "#define LARGE_TRIANGLES\n");
             decode_shadow_ = shader::Program::compute(shaders, "render/decode_raster.comp", "#define SUN_VIEW\n");
             decode_thickness_ = shader::Program::compute(shaders, "render/decode_raster.comp");
             raster_dispatch_ = gl::Buffer(sizeof(glm::uvec4), GL_DYNAMIC_COPY, nullptr, "raster.dispatch");
+            raster_large_ = gl::Buffer(2 * sizeof(glm::uvec4) + 2 * RANRYU_RASTER_LARGE_CAPACITY * sizeof(std::uint32_t), GL_DYNAMIC_COPY,
+                                       nullptr, "raster.large");
         } else {
             shadow_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/shadow_map.frag", "#define SUN_VIEW\n");
             thickness_prog_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/liquid_thickness.frag",
@@ -314,7 +320,7 @@ void Renderer::set_frame(const gpu::FrameParams& p) {
     frame_ubo_.upload_value(frame_);
     if (shading_ != Shading::water) return;
     const SunView sun = sun_view(p);
-    for (const shader::Program* prog : {&shadow_, &raster_shadow_, &tiles_floor_, &tiles_walls_, &compose_}) {
+    for (const shader::Program* prog : {&shadow_, &raster_shadow_, &raster_shadow_large_, &tiles_floor_, &tiles_walls_, &compose_}) {
         if (!prog->id()) continue;   // the other raster's
         glProgramUniformMatrix4fv(prog->id(), RANRYU_LOC_SHADOW_MATRIX, 1, GL_FALSE, &sun.matrix[0][0]);
         glProgramUniform4f(prog->id(), RANRYU_LOC_SHADOW_ORIGIN, sun.origin.x, sun.origin.y, sun.origin.z, 0.0f);
@@ -346,7 +352,8 @@ void Renderer::fill(const gl::Texture2D& r32f, float value) {
 }
 
 void Renderer::size_raster(const SurfaceMesh& surface) {
-    size_raster_.bind(shader::StorageSet{{"MeshDraw", &surface.indirect}, {"RasterDispatch", &raster_dispatch_}});
+    size_raster_.bind(
+        shader::StorageSet{{"MeshDraw", &surface.indirect}, {"RasterDispatch", &raster_dispatch_}, {"RasterLarge", &raster_large_}});
     glProgramUniform4ui(size_raster_.id(), RANRYU_LOC_RASTER_GROUP, raster_shadow_.local_size()[0],
                         GLuint(surface.draw_offset / sizeof(std::uint32_t)), 0u, 0u);
     size_raster_.use();
@@ -354,15 +361,21 @@ void Renderer::size_raster(const SurfaceMesh& surface) {
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void Renderer::rasterise(const SurfaceMesh& surface, const shader::Program& program, const gl::Texture2D& sum,
-                         const gl::Texture2D* near) {
-    program.bind(shader::StorageSet{{"MeshVertices", &surface.vertices}, {"RasterDispatch", &raster_dispatch_}});
-    program.use();
+void Renderer::rasterise(const SurfaceMesh& surface, const shader::Program& program, const shader::Program& large,
+                         const gl::Texture2D& sum, const gl::Texture2D* near) {
+    const shader::StorageSet buffers{
+        {"MeshVertices", &surface.vertices}, {"RasterDispatch", &raster_dispatch_}, {"RasterLarge", &raster_large_}};
     // R32F textures as 32-bit integer images: the same size class, the bits as they are.
     glBindImageTexture(RANRYU_IMG_RASTER_SUM, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
     if (near) glBindImageTexture(RANRYU_IMG_RASTER_NEAR, near->id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    program.bind(buffers).use();
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, raster_dispatch_.id());
     glDispatchComputeIndirect(0);
+    // The large triangles the first dispatch listed, at the view's header in raster_large_.
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    large.bind(buffers).use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, raster_large_.id());
+    glDispatchComputeIndirect(near ? 0 : sizeof(glm::uvec4));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -450,7 +463,7 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
             fill(shadow_near_, std::bit_cast<float>(surface::ordered_bits(1e30f)));
             fill(shadow_thickness_, 0.0f);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            rasterise(*surface, raster_shadow_, shadow_thickness_, &shadow_near_);
+            rasterise(*surface, raster_shadow_, raster_shadow_large_, shadow_thickness_, &shadow_near_);
             decode(decode_shadow_, shadow_thickness_, &shadow_near_);
         } else {
             fill(shadow_near_, 1e30f);
@@ -476,7 +489,7 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         if (surface && water_.raster == WaterOptions::Raster::compute) {
             // The dispatch size_raster() wrote in "shadow-map".
-            rasterise(*surface, raster_thickness_, thickness_, nullptr);
+            rasterise(*surface, raster_thickness_, raster_thickness_large_, thickness_, nullptr);
             decode(decode_thickness_, thickness_, nullptr);
         } else if (surface) {
             glBlendEquation(GL_FUNC_ADD);

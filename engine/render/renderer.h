@@ -163,12 +163,14 @@ private:
     void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
     void draw_scene();   // the water mode's scene cache: "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"
     void fill(const gl::Texture2D& r32f, float value);   // fill_image.comp over the whole texture
-    // The compute raster (R14): size_raster.comp writes raster_dispatch_ from the mesh's draw count;
-    // rasterise() dispatches `program` (rasterise_layers.comp) indirectly over the triangles into
-    // `sum` (r32i) and `near` (r32ui, the sun's view only); decode() turns them into the floats the
+    // The compute raster (R14): size_raster.comp writes raster_dispatch_ from the mesh's draw count and
+    // empties raster_large_'s lists; rasterise() dispatches `program` (rasterise_layers.comp)
+    // indirectly over the triangles, then `large` over those it listed, into `sum` (r32i) and `near`
+    // (r32ui, the sun's view only, whose list is the first); decode() turns them into the floats the
     // draws leave (decode_raster.comp). Each ends with the barrier its reader needs.
     void size_raster(const SurfaceMesh& surface);
-    void rasterise(const SurfaceMesh& surface, const shader::Program& program, const gl::Texture2D& sum, const gl::Texture2D* near);
+    void rasterise(const SurfaceMesh& surface, const shader::Program& program, const shader::Program& large, const gl::Texture2D& sum,
+                   const gl::Texture2D* near);
     void decode(const shader::Program& program, const gl::Texture2D& sum, const gl::Texture2D* near);
     // Every layer of the mesh, by its positions alone, into `fbo` at the size of `size_of`, blended
     // (ONE, ONE) with the equations the caller set: the shadow map and the thickness.
@@ -191,10 +193,12 @@ private:
     shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_, fill_;
     gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, scene_color_, scene_depth_, thickness_;
     gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;
-    // The compute raster's programs (WaterOptions::Raster::compute) and its indirect dispatch
-    // (uvec4: workgroups, triangles), written on the GPU every frame.
-    shader::Program size_raster_, raster_shadow_, raster_thickness_, decode_shadow_, decode_thickness_;
-    gl::Buffer raster_dispatch_;
+    // The compute raster's programs (WaterOptions::Raster::compute), its indirect dispatch (uvec4:
+    // workgroups, triangles) and its lists of large triangles (two uvec4 headers, the sun's and the
+    // eye's, then RANRYU_RASTER_LARGE_CAPACITY indices each), written on the GPU every frame.
+    shader::Program size_raster_, raster_shadow_, raster_thickness_, raster_shadow_large_, raster_thickness_large_, decode_shadow_,
+        decode_thickness_;
+    gl::Buffer raster_dispatch_, raster_large_;
     std::uint64_t generation_ = 1, drawn_generation_ = 0;
 };
 

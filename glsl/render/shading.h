@@ -65,6 +65,13 @@
 #define RANRYU_LOC_RASTER_GROUP 13               // uvec4: x rasterise_layers' local size, y the draw's vertex count's word in its buffer
 #define RANRYU_IMG_RASTER_SUM 0                  // r32i: Σ ±t (eye) or Σ ±s (sun), fixed point
 #define RANRYU_IMG_RASTER_NEAR 1                 // r32ui: the sun's view: min of ordered_bits(s) (glsl/surface/ordered_float.glsl)
+// Triangles whose pixels (bounding box within the target) exceed RANRYU_RASTER_LARGE_PIXELS are left to
+// a second dispatch, RANRYU_RASTER_LARGE_TILES workgroups each, listed (up to RANRYU_RASTER_LARGE_CAPACITY
+// a view; more are done by their own invocation): one invocation never walks more than
+// pixels / (tiles · local size) of one, and a thread of the first dispatch no more than 1024.
+#define RANRYU_RASTER_LARGE_PIXELS 1024
+#define RANRYU_RASTER_LARGE_TILES 64u
+#define RANRYU_RASTER_LARGE_CAPACITY 16384u
 
 // Mesh vertex attributes (gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32).
 #define RANRYU_ATTR_MESH_POSITION 0
