@@ -221,7 +221,7 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
             decode_thickness_ = shader::Program::compute(shaders, "render/decode_raster.comp");
             raster_dispatch_ = gl::Buffer(sizeof(glm::uvec4), GL_DYNAMIC_COPY, nullptr, "raster.dispatch");
             raster_large_ = gl::Buffer(2 * sizeof(glm::uvec4) + 2 * RANRYU_RASTER_LARGE_CAPACITY * sizeof(std::uint32_t), GL_DYNAMIC_COPY,
-                                       nullptr, "raster.large");
+                                       nullptr, "raster.large");   // as bytes_for counts them
         } else {
             shadow_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/shadow_map.frag", "#define SUN_VIEW\n");
             thickness_prog_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/liquid_thickness.frag",
@@ -242,10 +242,14 @@ std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions w
     const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
     const int d = water.thickness_divisor;
     const std::size_t thickness = std::size_t(reduced(width, d)) * std::size_t(reduced(height, d));
+    // The compute raster's dispatch and lists of large triangles (its targets are the draws').
+    const std::size_t raster = water.raster == WaterOptions::Raster::compute
+                                   ? 3 * sizeof(glm::uvec4) + 2 * RANRYU_RASTER_LARGE_CAPACITY * sizeof(std::uint32_t)
+                                   : 0;
     // The scene cache (C_lit and q, depth), the scene with the shadow, the thickness, the shadow map.
     return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) +
                      gl::Texture2D::texel_bytes(GL_RGBA16F)) +
-           thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
+           thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F) + raster;
 }
 
 void Renderer::resize(int width, int height) {
