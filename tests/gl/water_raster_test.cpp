@@ -5,24 +5,32 @@
 //
 //   - compute against draw, pixel by pixel, in the liquid's thickness (R5, half and full size) and the
 //     sun's two maps (R8, R10). Where both cover a pixel centre with the same triangles the values
-//     agree within L·4e-6 m (thickness, d_sun; L the triangles whose window triangle holds the centre,
-//     counted on the CPU) or 4e-6 m (s_near): half the fixed-point step (2^-21 m) a layer, and the
-//     float32 evaluation of t or s (|t| < 4 m: ulp 4.8e-7) from two interpolations of the world
-//     position plus the R32F sum's rounding, a few ulps a layer. Coverage may differ only where a pixel
-//     centre lies within kEdge = 4/256 pixel of a triangle's edge (both snap vertices to 1/256 pixel,
-//     moving an edge by at most √2/512 pixel; the window coordinates' float rounding adds < 2e-3 pixel
-//     at 2048): every pixel beyond the value bound must be such an edge pixel, and they must be at
-//     most 1 % of the covered pixels.
+//     agree within the sum over those layers (the triangles whose window triangle holds the centre,
+//     found on the CPU) of kLayer = 4e-6 m plus |∇v|·kPosition: half the fixed-point step (2^-21 m),
+//     the float32 evaluation of t or s (|v| < 4 m: ulp 4.8e-7 m) and the R32F sum's rounding, a few
+//     ulps; and the layer's value v changing across the 2e-3 pixel (8 ulps of a window coordinate
+//     below 2048) by which two float interpolations at one centre may differ. s_near is held to the
+//     same sum. Coverage may differ only where a pixel centre lies within kEdge = 4/256 pixel of a
+//     triangle's outline (both snap vertices to 1/256 pixel, moving an edge by at most √2/512 pixel;
+//     the float window coordinates add < 2e-3 pixel at 2048): every pixel beyond the value bound must
+//     be such an edge pixel, and they must be at most 1 % of the covered pixels.
+//   - a box 60 m wide around the eye: its triangles cross the near plane and reach far past the guard
+//     band (and the sun's near and far planes): computed against drawn within 1e-5 m + 1e-6 relative
+//     (float32's ulp at 60 m is 3.8e-6 m) at 99 % of the pixels (a clipped polygon's edges may differ).
 //   - a tessellated sphere's thickness (full size) and sun maps against the chords of its inscribed
 //     sphere (R_in, the least distance from the centre to a face's plane) and its circumscribed one (R):
 //     the polyhedron lies between them, so along a ray passing b ≤ 0.9·R_in from the centre its chord
 //     lies between 2√(R_in² − b²) and 2√(R² − b²), and the entry's sun depth between the two spheres'
-//     entries; within 2·2^-21 m + 1e-5 m (two layers' rounding; float32 of the 1 m scale).
-//   - a square of 2 × 2 quads (8 triangles) whose corners are texel centres of the sun's map: every texel
-//     centre on the inner edges and at the shared vertex is covered once (d_sun = −s, not 0 or −2s), the
-//     square's left and bottom edges count, its right and top ones do not, and the draw path agrees.
+//     entries; within 2·2^-21 m + 1e-5 m (two layers' rounding; float32 of the 1 m scale). Pixels
+//     where the opaque scene (a tank edge's line) lies in front of the sphere's far side are left out.
+//   - a square of 2 × 2 quads (8 triangles, alternating diagonals) whose corners are texel centres of
+//     the sun's map, small and large (over RANRYU_RASTER_LARGE_PIXELS: the second dispatch): every
+//     texel centre on the inner edges and at the shared vertex is covered once (d_sun = −s, facing the
+//     sun, not 0 or −2s) by both rasters, and side² texels in all; the compute raster gives the square
+//     its left and top sides (the top-left rule), GL one of each opposite pair.
 #include "support/gl_fixture.h"
 #include "support/phi_fields.h"
+#include "support/read_pixels.h"
 #include "support/screen.h"
 
 #include <algorithm>
@@ -128,14 +136,6 @@ struct Maps {
     std::vector<float> depth;   // the opaque scene's depth buffer, the frame's size
 };
 
-void read_r32f(const ranryu::gl::Texture2D& t, std::vector<float>& out) {
-    out.resize(std::size_t(t.width()) * std::size_t(t.height()));
-    glBindTexture(GL_TEXTURE_2D, t.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, out.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-}
-
 // One frame of the water shading with `mesh` as the liquid; the draw's arguments sit where marching
 // cubes keeps them (MeshState.draw), so the compute raster finds its count at a non-zero offset.
 Maps render_maps(const Rig& r, std::span<const gpu::MeshVertex> mesh, Raster raster, int divisor) {
@@ -158,13 +158,10 @@ Maps render_maps(const Rig& r, std::span<const gpu::MeshVertex> mesh, Raster ras
     timer.end_frame();
     Maps m;
     m.width = renderer.thickness().width(), m.height = renderer.thickness().height();
-    read_r32f(renderer.thickness(), m.thickness);
-    read_r32f(renderer.shadow_near(), m.near);
-    read_r32f(renderer.shadow_thickness(), m.sun);
-    m.depth.resize(std::size_t(kWidth) * kHeight);
-    glBindTexture(GL_TEXTURE_2D, renderer.scene_depth().id());
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, m.depth.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
+    ranryu::test::read_texture(renderer.thickness(), GL_RED, m.thickness, 1);
+    ranryu::test::read_texture(renderer.shadow_near(), GL_RED, m.near, 1);
+    ranryu::test::read_texture(renderer.shadow_thickness(), GL_RED, m.sun, 1);
+    ranryu::test::read_texture(renderer.scene_depth(), GL_DEPTH_COMPONENT, m.depth, 1);
     timer.drain();
     ranryu::test::require_no_gl_errors();
     return m;
