@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -11,6 +12,7 @@
 #include "render/shading.h"
 #include "render/spray.h"
 #include "scene/scene.h"
+#include "surface/level_set.h"
 
 namespace ranryu::render {
 
@@ -69,6 +71,11 @@ WaterOptions WaterOptions::from_environment() {
         if (std::string_view(v).size() != 1 || *v < '1' || *v > '4')
             throw InputError(std::string("RANRYU_WATER_THICKNESS_DIVISOR=") + v + ": expected 1, 2, 3 or 4");
         w.thickness_divisor = *v - '0';
+    }
+    if (const char* v = std::getenv("RANRYU_WATER_RASTER")) {
+        if (std::string_view(v) != "compute" && std::string_view(v) != "draw")
+            throw InputError(std::string("RANRYU_WATER_RASTER=") + v + ": expected compute or draw");
+        w.raster = std::string_view(v) == "compute" ? WaterOptions::Raster::compute : WaterOptions::Raster::draw;
     }
     return w;
 }
@@ -193,20 +200,35 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         walls_pass_ = timer.pass("draw-walls");
         thickness_pass_ = timer.pass("liquid-thickness");
         compose_pass_ = timer.pass("compose");
-        shadow_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/shadow_map.frag", "#define SUN_VIEW\n");
         sky_ = shader::Program::graphics(shaders, "render/sky.vert", "render/sky.frag");
         const std::string inline_shadow = water_.cache_scene ? "" : "#define SHADOW_INLINE\n";
         tiles_floor_ = shader::Program::graphics(shaders, "render/floor.vert", "render/tiles.frag", inline_shadow);
         tiles_walls_ = shader::Program::graphics(shaders, "render/walls.vert", "render/tiles.frag", "#define WALLS\n" + inline_shadow);
-        thickness_prog_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/liquid_thickness.frag",
-                                                    thickness_define(water_));
         compose_ = shader::Program::compute(shaders, "render/compose.comp");
         fill_ = shader::Program::compute(shaders, "render/fill_image.comp");
         constexpr int n = RANRYU_SHADOW_MAP_SIZE;
         shadow_near_ = gl::Texture2D(GL_R32F, n, n, "shadow.near");
         shadow_thickness_ = gl::Texture2D(GL_R32F, n, n, "shadow.thickness");
-        const gl::Texture2D* maps[] = {&shadow_near_, &shadow_thickness_};
-        shadow_fbo_ = gl::Framebuffer(maps, nullptr, "shadow");
+        if (water_.raster == WaterOptions::Raster::compute) {
+            size_raster_ = shader::Program::compute(shaders, "render/size_raster.comp");
+            raster_shadow_ = shader::Program::compute(shaders, "render/rasterise_layers.comp", "#define SUN_VIEW\n");
+            raster_thickness_ = shader::Program::compute(shaders, "render/rasterise_layers.comp", thickness_define(water_));
+            raster_shadow_large_ =
+                shader::Program::compute(shaders, "render/rasterise_layers.comp", "#define SUN_VIEW\n#define LARGE_TRIANGLES\n");
+            raster_thickness_large_ = shader::Program::compute(shaders, "render/rasterise_layers.comp",
+                                                               thickness_define(water_) + "#define LARGE_TRIANGLES\n");
+            decode_shadow_ = shader::Program::compute(shaders, "render/decode_raster.comp", "#define SUN_VIEW\n");
+            decode_thickness_ = shader::Program::compute(shaders, "render/decode_raster.comp");
+            raster_dispatch_ = gl::Buffer(sizeof(glm::uvec4), GL_DYNAMIC_COPY, nullptr, "raster.dispatch");
+            raster_large_ = gl::Buffer(2 * sizeof(glm::uvec4) + 2 * RANRYU_RASTER_LARGE_CAPACITY * sizeof(std::uint32_t), GL_DYNAMIC_COPY,
+                                       nullptr, "raster.large");   // as bytes_for counts them
+        } else {
+            shadow_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/shadow_map.frag", "#define SUN_VIEW\n");
+            thickness_prog_ = shader::Program::graphics(shaders, "render/mesh_position.vert", "render/liquid_thickness.frag",
+                                                        thickness_define(water_));
+            const gl::Texture2D* maps[] = {&shadow_near_, &shadow_thickness_};
+            shadow_fbo_ = gl::Framebuffer(maps, nullptr, "shadow");
+        }
     }
     if (needs_surface(shading_)) set_absorption(glm::vec3(0.0f));
 }
@@ -220,10 +242,14 @@ std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions w
     const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
     const int d = water.thickness_divisor;
     const std::size_t thickness = std::size_t(reduced(width, d)) * std::size_t(reduced(height, d));
+    // The compute raster's dispatch and lists of large triangles (its targets are the draws').
+    const std::size_t raster = water.raster == WaterOptions::Raster::compute
+                                   ? 3 * sizeof(glm::uvec4) + 2 * RANRYU_RASTER_LARGE_CAPACITY * sizeof(std::uint32_t)
+                                   : 0;
     // The scene cache (C_lit and q, depth), the scene with the shadow, the thickness, the shadow map.
     return pixels * (gl::Texture2D::texel_bytes(GL_RGBA16F) + gl::Texture2D::texel_bytes(GL_DEPTH_COMPONENT32F) +
                      gl::Texture2D::texel_bytes(GL_RGBA16F)) +
-           thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F);
+           thickness * gl::Texture2D::texel_bytes(GL_R32F) + 2 * n * n * gl::Texture2D::texel_bytes(GL_R32F) + raster;
 }
 
 void Renderer::resize(int width, int height) {
@@ -244,8 +270,10 @@ void Renderer::resize(int width, int height) {
     const gl::Texture2D* scene[] = {&lit_color_};
     scene_fbo_ = gl::Framebuffer(scene, &scene_depth_, "scene.cache");
     ++generation_;   // a new cache, not drawn yet
-    const gl::Texture2D* thick[] = {&thickness_};
-    thickness_fbo_ = gl::Framebuffer(thick, nullptr, "liquid.thickness");
+    if (water_.raster == WaterOptions::Raster::draw) {
+        const gl::Texture2D* thick[] = {&thickness_};
+        thickness_fbo_ = gl::Framebuffer(thick, nullptr, "liquid.thickness");
+    }
 }
 
 void Renderer::bind_target(const gl::RenderTarget& target) {
@@ -296,7 +324,8 @@ void Renderer::set_frame(const gpu::FrameParams& p) {
     frame_ubo_.upload_value(frame_);
     if (shading_ != Shading::water) return;
     const SunView sun = sun_view(p);
-    for (const shader::Program* prog : {&shadow_, &tiles_floor_, &tiles_walls_, &compose_}) {
+    for (const shader::Program* prog : {&shadow_, &raster_shadow_, &raster_shadow_large_, &tiles_floor_, &tiles_walls_, &compose_}) {
+        if (!prog->id()) continue;   // the other raster's
         glProgramUniformMatrix4fv(prog->id(), RANRYU_LOC_SHADOW_MATRIX, 1, GL_FALSE, &sun.matrix[0][0]);
         glProgramUniform4f(prog->id(), RANRYU_LOC_SHADOW_ORIGIN, sun.origin.x, sun.origin.y, sun.origin.z, 0.0f);
     }
@@ -324,6 +353,46 @@ void Renderer::fill(const gl::Texture2D& r32f, float value) {
     const auto local = fill_.local_size();
     glDispatchCompute(GLuint(r32f.width() + int(local[0]) - 1) / local[0], GLuint(r32f.height() + int(local[1]) - 1) / local[1], 1);
     glBindImageTexture(RANRYU_IMG_TARGET, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+}
+
+void Renderer::size_raster(const SurfaceMesh& surface) {
+    size_raster_.bind(
+        shader::StorageSet{{"MeshDraw", &surface.indirect}, {"RasterDispatch", &raster_dispatch_}, {"RasterLarge", &raster_large_}});
+    glProgramUniform4ui(size_raster_.id(), RANRYU_LOC_RASTER_GROUP, raster_shadow_.local_size()[0],
+                        GLuint(surface.draw_offset / sizeof(std::uint32_t)), 0u, 0u);
+    size_raster_.use();
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void Renderer::rasterise(const SurfaceMesh& surface, const shader::Program& program, const shader::Program& large,
+                         const gl::Texture2D& sum, const gl::Texture2D* near) {
+    const shader::StorageSet buffers{
+        {"MeshVertices", &surface.vertices}, {"RasterDispatch", &raster_dispatch_}, {"RasterLarge", &raster_large_}};
+    // R32F textures as 32-bit integer images: the same size class, the bits as they are.
+    glBindImageTexture(RANRYU_IMG_RASTER_SUM, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+    if (near) glBindImageTexture(RANRYU_IMG_RASTER_NEAR, near->id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    program.bind(buffers).use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, raster_dispatch_.id());
+    glDispatchComputeIndirect(0);
+    // The large triangles the first dispatch listed, at the view's header in raster_large_.
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    large.bind(buffers).use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, raster_large_.id());
+    glDispatchComputeIndirect(near ? 0 : sizeof(glm::uvec4));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void Renderer::decode(const shader::Program& program, const gl::Texture2D& sum, const gl::Texture2D* near) {
+    program.use();
+    glBindImageTexture(RANRYU_IMG_RASTER_SUM, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+    if (near) glBindImageTexture(RANRYU_IMG_RASTER_NEAR, near->id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    const auto local = program.local_size();
+    glDispatchCompute(GLuint(sum.width() + int(local[0]) - 1) / local[0], GLuint(sum.height() + int(local[1]) - 1) / local[1], 1);
+    for (GLuint unit : {GLuint(RANRYU_IMG_RASTER_SUM), GLuint(RANRYU_IMG_RASTER_NEAR)})
+        glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32I);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void Renderer::draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
@@ -391,10 +460,21 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
     {
         // (R8), (R10): every layer of the liquid, seen from the sun. Cleared by a compute fill.
         auto pass = timer_.scope(shadow_pass_);
-        fill(shadow_near_, 1e30f);
-        fill(shadow_thickness_, 0.0f);
-        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        if (surface) {
+        if (surface && water_.raster == WaterOptions::Raster::compute) {
+            // (R14): the sizes of both passes' dispatches, the map cleared to the encodings of s_near =
+            // 1e30 and d_sun = 0 (0 is 0.0's bits), the triangles, and the floats the readers read.
+            size_raster(*surface);
+            fill(shadow_near_, std::bit_cast<float>(surface::ordered_bits(1e30f)));
+            fill(shadow_thickness_, 0.0f);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            rasterise(*surface, raster_shadow_, raster_shadow_large_, shadow_thickness_, &shadow_near_);
+            decode(decode_shadow_, shadow_thickness_, &shadow_near_);
+        } else {
+            fill(shadow_near_, 1e30f);
+            fill(shadow_thickness_, 0.0f);
+            glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        if (surface && water_.raster == WaterOptions::Raster::draw) {
             glBlendEquationi(0, GL_MIN);
             glBlendEquationi(1, GL_FUNC_ADD);
             draw_layers(*surface, shadow_fbo_, shadow_near_, shadow_);
@@ -409,9 +489,13 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
     {
         // (R5): the thickness of the liquid in front of the opaque scene, at 1/thickness_divisor of the size.
         auto pass = timer_.scope(thickness_pass_);
-        fill(thickness_, 0.0f);
-        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        if (surface) {
+        fill(thickness_, 0.0f);   // also the fixed-point 0 of the compute raster (R14)
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        if (surface && water_.raster == WaterOptions::Raster::compute) {
+            // The dispatch size_raster() wrote in "shadow-map".
+            rasterise(*surface, raster_thickness_, raster_thickness_large_, thickness_, nullptr);
+            decode(decode_thickness_, thickness_, nullptr);
+        } else if (surface) {
             glBlendEquation(GL_FUNC_ADD);
             draw_layers(*surface, thickness_fbo_, thickness_, thickness_prog_);
         }

@@ -82,11 +82,19 @@ struct WaterOptions {
     // The liquid's thickness (R5) is drawn at 1/thickness_divisor of the frame's size along each axis
     // (1 to 4; sizes rounded up) and upsampled bilinearly by the surface pass.
     int thickness_divisor = 2;
-    // The drawing before these options: the scene every frame, the thickness at the frame's size.
+    // How the two passes that need the mesh's positions alone, "shadow-map" and "liquid-thickness",
+    // rasterise it: compute, one invocation per triangle with fixed-point edge functions and integer
+    // atomics into the same targets (docs/RENDERING.md (R14)), off the raster hardware; draw,
+    // glDrawArraysIndirect with MIN and ADD blending. Both leave the same quantities in the same R32F
+    // textures, within (R14)'s bounds.
+    enum class Raster { compute, draw };
+    Raster raster = Raster::compute;
+    // The scene every frame, the thickness at the frame's size (the drawing before the first two
+    // options), with the default raster.
     static WaterOptions reference() { return WaterOptions{false, 1}; }
     // The defaults, or what the environment sets (to measure each option on one build):
-    // RANRYU_WATER_CACHE=0|1 (cache_scene), RANRYU_WATER_THICKNESS_DIVISOR=1..4; throws InputError for
-    // another value. Start-up only.
+    // RANRYU_WATER_CACHE=0|1 (cache_scene), RANRYU_WATER_THICKNESS_DIVISOR=1..4,
+    // RANRYU_WATER_RASTER=compute|draw; throws InputError for another value. Start-up only.
     static WaterOptions from_environment();
 };
 
@@ -155,6 +163,15 @@ private:
     void draw_water(const gl::RenderTarget& target, const SurfaceMesh* surface);
     void draw_scene();   // the water mode's scene cache: "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank"
     void fill(const gl::Texture2D& r32f, float value);   // fill_image.comp over the whole texture
+    // The compute raster (R14): size_raster.comp writes raster_dispatch_ from the mesh's draw count and
+    // empties raster_large_'s lists; rasterise() dispatches `program` (rasterise_layers.comp)
+    // indirectly over the triangles, then `large` over those it listed, into `sum` (r32i) and `near`
+    // (r32ui, the sun's view only, whose list is the first); decode() turns them into the floats the
+    // draws leave (decode_raster.comp). Each ends with the barrier its reader needs.
+    void size_raster(const SurfaceMesh& surface);
+    void rasterise(const SurfaceMesh& surface, const shader::Program& program, const shader::Program& large, const gl::Texture2D& sum,
+                   const gl::Texture2D* near);
+    void decode(const shader::Program& program, const gl::Texture2D& sum, const gl::Texture2D* near);
     // Every layer of the mesh, by its positions alone, into `fbo` at the size of `size_of`, blended
     // (ONE, ONE) with the equations the caller set: the shadow map and the thickness.
     void draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
@@ -176,6 +193,12 @@ private:
     shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_, fill_;
     gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, scene_color_, scene_depth_, thickness_;
     gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;
+    // The compute raster's programs (WaterOptions::Raster::compute), its indirect dispatch (uvec4:
+    // workgroups, triangles) and its lists of large triangles (two uvec4 headers, the sun's and the
+    // eye's, then RANRYU_RASTER_LARGE_CAPACITY indices each), written on the GPU every frame.
+    shader::Program size_raster_, raster_shadow_, raster_thickness_, raster_shadow_large_, raster_thickness_large_, decode_shadow_,
+        decode_thickness_;
+    gl::Buffer raster_dispatch_, raster_large_;
     std::uint64_t generation_ = 1, drawn_generation_ = 0;
 };
 

@@ -56,6 +56,23 @@
 // Uniform location of fill_image.comp's value (vec4; .r is stored).
 #define RANRYU_LOC_FILL_VALUE 12
 
+// The compute raster of the liquid's mesh (WaterOptions::Raster::compute, docs/RENDERING.md (R14)):
+// size_raster.comp, rasterise_layers.comp and decode_raster.comp. The targets are the R32F textures
+// the GL draws blend into, bound as 32-bit integer images (same size class), decoded in place.
+#define RANRYU_RASTER_SUBPIXEL_BITS 8            // window coordinates snapped to 1/256 pixel
+#define RANRYU_RASTER_FIXED_SCALE 1048576.0      // 2^20 steps a metre: the ±t and ±s sums (r32i); |sum| < 2^11 m
+#define RANRYU_RASTER_GUARD 4.0                  // clip-space guard band |x|, |y| <= 4w: fixed-point products stay below 2^51
+#define RANRYU_LOC_RASTER_GROUP 13               // uvec4: x rasterise_layers' local size, y the draw's vertex count's word in its buffer
+#define RANRYU_IMG_RASTER_SUM 0                  // r32i: Σ ±t (eye) or Σ ±s (sun), fixed point
+#define RANRYU_IMG_RASTER_NEAR 1                 // r32ui: the sun's view: min of ordered_bits(s) (glsl/surface/ordered_float.glsl)
+// Triangles whose pixels (bounding box within the target) exceed RANRYU_RASTER_LARGE_PIXELS are left to
+// a second dispatch, RANRYU_RASTER_LARGE_TILES workgroups each, listed (up to RANRYU_RASTER_LARGE_CAPACITY
+// a view; more are done by their own invocation): one invocation never walks more than
+// pixels / (tiles · local size) of one, and a thread of the first dispatch no more than 1024.
+#define RANRYU_RASTER_LARGE_PIXELS 1024
+#define RANRYU_RASTER_LARGE_TILES 64u
+#define RANRYU_RASTER_LARGE_CAPACITY 16384u
+
 // Mesh vertex attributes (gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32).
 #define RANRYU_ATTR_MESH_POSITION 0
 #define RANRYU_ATTR_MESH_NORMAL 1

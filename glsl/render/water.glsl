@@ -40,6 +40,13 @@ vec3 sun_transmittance(vec3 x) {
     return sum / taps;
 }
 
+// (R10) A layer's share of the sunlight's path inside the liquid: −s where the face is toward the sun
+// (the light enters), +s where it is away (it leaves). Summed over a closed mesh: d_sun.
+float signed_sun_depth(vec3 x, bool front) {
+    float s = sun_depth(x);
+    return front ? -s : s;
+}
+
 // (R9) Tile albedo at the plane coordinates uv (m): grout along each tile's lower edges.
 vec3 tile_albedo(vec2 uv) {
     vec2 f = uv / RANRYU_TILE_SIZE - floor(uv / RANRYU_TILE_SIZE);
@@ -80,3 +87,26 @@ vec3 world_position(vec2 frag, float depth) {
     vec3 ray = transpose(mat3(frame.view)) * vec3(ndc.x / frame.proj[0][0], ndc.y / frame.proj[1][1], -1.0);
     return frame.eye.xyz + eye_distance(frag, depth) * normalize(ray);
 }
+
+#ifdef THICKNESS_DIVISOR
+// (R5), (R12) The eye distance of the opaque scene behind the centre `at` (window coordinates) of a
+// pixel of the thickness target, 1/THICKNESS_DIVISOR of the frame's size: that centre is the centre
+// of a THICKNESS_DIVISOR² block of the frame's pixels, and the mean of their depths is the opaque
+// plane's depth there (window depth is affine in x_w, y_w over a plane).
+float opaque_distance(vec2 at) {
+    vec2 frag = at * float(THICKNESS_DIVISOR);   // in the frame's pixels
+    ivec2 first = ivec2(at) * THICKNESS_DIVISOR, last = textureSize(t_scene_depth, 0) - 1;
+    float depth = 0.0;
+    for (int j = 0; j < THICKNESS_DIVISOR; ++j)
+        for (int i = 0; i < THICKNESS_DIVISOR; ++i) depth += texelFetch(t_scene_depth, min(first + ivec2(i, j), last), 0).r;
+    return eye_distance(frag, depth / float(THICKNESS_DIVISOR * THICKNESS_DIVISOR));
+}
+
+// (R5) A layer's share of the thickness at the thickness target's pixel centre `at`: −t on front
+// faces, +t on back faces, t = min(|x − eye|, t_opaque). Summed over a closed mesh: the length of
+// the view ray inside the liquid in front of the opaque scene.
+float signed_eye_distance(vec3 x, vec2 at, bool front) {
+    float t = min(length(x - frame.eye.xyz), opaque_distance(at));
+    return front ? -t : t;
+}
+#endif

@@ -3,7 +3,10 @@
 # 4 ms a frame at 1M particles and 1920x1080 (docs/PERFORMANCE.md, "The water shading's budget").
 # Profiles the dam break at --spacing 0.002 (1,000,000 particles) in the water shading,
 # `ranryu profile --frames 30 --warmup 10` (t = 0.17–0.67 s: the surge, the impact and the run-up; at 1M DFSPH stops on the guard at t = 1.14 s), with the water mode's options (docs/RENDERING.md (R13)):
-#   budget       the defaults: the opaque scene cached per view, the thickness at half size
+#   budget       the defaults: the opaque scene cached per view, the thickness at half size, the
+#                shadow map and the thickness rasterised in compute (R14)
+#   draw-raster  RANRYU_WATER_RASTER=draw: those two passes drawn by the raster hardware (what the
+#                compute raster saves)
 #   full-thick   RANRYU_WATER_THICKNESS_DIVISOR=1: the thickness at the frame's size (what half size saves)
 #   redraw       RANRYU_WATER_CACHE=0 as well: the opaque scene drawn every frame, as while the camera
 #                moves (what the cache saves)
@@ -23,21 +26,22 @@ size=1920x1080 spacing=0.002 frames=30 warmup=10
 if [ "${1:-}" = smoke ]; then size=320x180 spacing=0.0125 frames=3 warmup=1; fi
 tmp=$(mktemp -d)
 
-# profile NAME CACHE DIVISOR
+# profile NAME CACHE DIVISOR RASTER
 profile() {
   local name=$1
-  RANRYU_WATER_CACHE=$2 RANRYU_WATER_THICKNESS_DIVISOR=$3 \
+  RANRYU_WATER_CACHE=$2 RANRYU_WATER_THICKNESS_DIVISOR=$3 RANRYU_WATER_RASTER=$4 \
     $B profile --scene dam-break --spacing $spacing --shading water --size $size --frames $frames --warmup $warmup \
     --json "$tmp/$name.json" > "$tmp/$name.txt" 2> "$tmp/$name.log"
-  echo "== profile $name (RANRYU_WATER_CACHE=$2 RANRYU_WATER_THICKNESS_DIVISOR=$3): rc $?"
+  echo "== profile $name (RANRYU_WATER_CACHE=$2 RANRYU_WATER_THICKNESS_DIVISOR=$3 RANRYU_WATER_RASTER=$4): rc $?"
 }
-profile budget 1 2
-profile full-thick 1 1
-profile redraw 0 1
+profile budget 1 2 compute
+profile draw-raster 1 2 draw
+profile full-thick 1 1 compute
+profile redraw 0 1 compute
 
 python3 - "$tmp" <<'PY' | tee "$out/summary.txt"
 import json, sys
-runs = ["budget", "full-thick", "redraw"]
+runs = ["budget", "draw-raster", "full-thick", "redraw"]
 surface = ["surface.anisotropy", "surface.bounds", "level-set.splat", "level-set", "mc.classify", "mc.compact", "mc.emit"]
 shading = ["shadow-map", "clear", "draw-sky", "draw-floor", "draw-walls", "draw-tank", "liquid-thickness", "compose",
            "draw-surface"]
@@ -77,6 +81,6 @@ for group, names in (("surface", surface), ("shading", shading)):
 print(f"{'= surface + shading':22s} {sum(before.values()):8.3f}"
       + "".join(f" {sum(ms(r, n) for n in surface + shading):11.3f}" for r in have) + "   (budget: 4 ms)")
 PY
-for r in budget full-thick redraw; do grep -h "^surface (last frame)" "$tmp/$r.txt" | sed "s/^/$r: /"; done | tee -a "$out/summary.txt"
+for r in budget draw-raster full-thick redraw; do grep -h "^surface (last frame)" "$tmp/$r.txt" | sed "s/^/$r: /"; done | tee -a "$out/summary.txt"
 tar -czf "$out/shading-budget.tar.gz" -C "$tmp" . && echo "   $out/shading-budget.tar.gz"
 rm -rf "$tmp"

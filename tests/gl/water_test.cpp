@@ -33,6 +33,7 @@
 // The thickness and surface-pixel cases draw the thickness at the frame's size (their CPU d is the
 // chord at the pixel's centre); the others use the default options.
 #include "support/gl_fixture.h"
+#include "support/read_pixels.h"
 #include "support/screen.h"
 
 #include <algorithm>
@@ -61,6 +62,7 @@ namespace gpu = ranryu::gpu;
 using ranryu::gl::Buffer;
 using ranryu::profile::GpuTimer;
 using ranryu::shader::FileSource;
+using ranryu::test::read_texture;
 
 constexpr int kWidth = 160, kHeight = 120;
 const glm::dvec3 kHorizon(RANRYU_SKY_HORIZON), kZenith(RANRYU_SKY_ZENITH), kGround(RANRYU_SKY_GROUND);
@@ -162,14 +164,6 @@ struct Frame {
         return {scene[k], scene[k + 1], scene[k + 2]};
     }
 };
-
-void read_texture(const ranryu::gl::Texture2D& t, GLenum format, std::vector<float>& out, int channels) {
-    out.resize(std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(channels));
-    glBindTexture(GL_TEXTURE_2D, t.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTexImage(GL_TEXTURE_2D, 0, format, GL_FLOAT, out.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-}
 
 // The box as a mesh to draw, and an unused particle buffer.
 struct BoxDraw {

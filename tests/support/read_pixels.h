@@ -19,4 +19,14 @@ inline std::vector<std::uint8_t> read_rgba(const gl::RenderTarget& target) {
     return rgba;
 }
 
+// A texture's level 0 read back as floats, `channels` a texel of `format` (GL_RED, GL_RGBA,
+// GL_DEPTH_COMPONENT), rows from the bottom (tests only).
+inline void read_texture(const gl::Texture2D& t, GLenum format, std::vector<float>& out, int channels) {
+    out.resize(std::size_t(t.width()) * std::size_t(t.height()) * std::size_t(channels));
+    glBindTexture(GL_TEXTURE_2D, t.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_2D, 0, format, GL_FLOAT, out.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 }  // namespace ranryu::test
