@@ -52,14 +52,26 @@ vec3 gradient(ivec3 n) {
     return g;
 }
 
-void edge_vertex(uvec3 cell, int edge, float f[8], out vec3 position, out vec3 grad) {
+// The corners' ∇φ (gradient() above), computed once a cell for the corners on an edge the surface
+// crosses: every vertex of the cell lies on such an edge, and its normal interpolates its corners'.
+// A corner shared by several of the cell's triangles is evaluated once (the stencil reads 108 φ).
+void corner_gradients(uvec3 cell, uint index, out vec3 g[8]) {
+    uint need = 0u;
+    for (int e = 0; e < 12; ++e) {
+        int a = mc_edge_corners[2 * e], b = mc_edge_corners[2 * e + 1];
+        if (((index >> uint(a)) & 1u) != ((index >> uint(b)) & 1u)) need |= (1u << uint(a)) | (1u << uint(b));
+    }
+    for (int c = 0; c < 8; ++c) g[c] = (need & (1u << uint(c))) != 0u ? gradient(ivec3(cell) + mc_corner(c)) : vec3(0.0);
+}
+
+void edge_vertex(uvec3 cell, int edge, float f[8], vec3 corner_grad[8], out vec3 position, out vec3 grad) {
     int a = mc_edge_corners[2 * edge], b = mc_edge_corners[2 * edge + 1];
     ivec3 na = ivec3(cell) + mc_corner(a), nb = ivec3(cell) + mc_corner(b);
     precise float t = f[a] / (f[a] - f[b]);
     precise vec3 local = vec3(na) + t * vec3(nb - na);
     precise vec3 x = surface_grid.origin.xyz + surface_grid.origin.w * local;
     position = x;
-    vec3 ga = gradient(na), gb = gradient(nb);
+    vec3 ga = corner_grad[a], gb = corner_grad[b];
     grad = ga + t * (gb - ga);
 }
 
@@ -70,12 +82,14 @@ void main() {
     uvec3 cell = cell_coord(cell_first.x);
     float f[8];
     uint index = cube_case(cell, f);
+    vec3 corner_grad[8];
+    corner_gradients(cell, index, corner_grad);
     uint room = capacity.x - capacity.x % 3u;
     for (uint t = 0u; t < 5u; ++t) {
         uint base = cell_first.y + 3u * t;
         if (mc_triangles[index * 16u + 3u * t] < 0 || base + 3u > room) break;
         vec3 p[3], g[3];
-        for (uint v = 0u; v < 3u; ++v) edge_vertex(cell, mc_triangles[index * 16u + 3u * t + v], f, p[v], g[v]);
+        for (uint v = 0u; v < 3u; ++v) edge_vertex(cell, mc_triangles[index * 16u + 3u * t + v], f, corner_grad, p[v], g[v]);
         vec3 face = cross(p[1] - p[0], p[2] - p[0]);
         vec3 fallback = dot(face, face) > 0.0 ? normalize(face) : vec3(0.0);
         for (uint v = 0u; v < 3u; ++v) {
