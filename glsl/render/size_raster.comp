@@ -19,5 +19,8 @@ layout(location = RANRYU_LOC_RASTER_GROUP) uniform uvec4 u_group;   // x: raster
 void main() {
     uint triangles = mesh_draw[u_group.y] / 3u;
     raster = uvec4(dispatch_2d((triangles + u_group.x - 1u) / u_group.x), triangles);
-    large[0] = large[1] = uvec4(0u, RANRYU_RASTER_LARGE_TILES, 1u, 0u);
+    // Two stores, not a chained assignment: the chain reads large[1] back, which NVIDIA's compiler
+    // refuses for a writeonly block.
+    large[0] = uvec4(0u, RANRYU_RASTER_LARGE_TILES, 1u, 0u);
+    large[1] = uvec4(0u, RANRYU_RASTER_LARGE_TILES, 1u, 0u);
 }
