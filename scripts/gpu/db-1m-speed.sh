@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # On the GPU host, after setup-and-build.sh: the 1M-particle dam break (spacing 0.002) with the guard's
 # speed bound raised to SPEED m/s (default 50; the scene's derived bound is 15.7 m/s), to tell a fast
-# but bounded splash from a blow-up (docs/DFSPH.md "The dam break at 1M particles stops at t = 1.16 s").
+# but bounded splash from a blow-up (docs/DFSPH.md "The dam break at 1M particles stopped at t = 1.16 s:
+# a one-frame spike"). SPEED 0 keeps the scene's own bound (the guard's two-frame rule then applies).
 # Each solver's per-frame record (largest speed, largest density, substeps) goes to $OUT/SOLVER.csv.
 # Usage:
 #     scripts/gpu/db-1m-speed.sh ["pbf:600 dfsph:150"] [SPEED]     # solver:frames
