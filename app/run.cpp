@@ -29,6 +29,7 @@
 #include "gl/faults.h"
 #include "gl/window.h"
 #include "overlay.h"
+#include "window_shots.h"
 #endif
 
 namespace ranryu::app {
@@ -37,20 +38,6 @@ namespace ranryu::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Reads the window's back buffer (what the next swap shows) and writes it as a PNG. It waits for the
-// GPU: only when a screenshot is asked for.
-void save_back_buffer(const fs::path& file, glm::ivec2 fb) {
-    std::vector<std::uint8_t> pixels(std::size_t(fb.x) * std::size_t(fb.y) * 4), flipped(pixels.size());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-    const std::size_t row = std::size_t(fb.x) * 4;
-    for (int y = 0; y < fb.y; ++y)
-        std::copy_n(pixels.data() + std::size_t(fb.y - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
-    record::write_png(file, fb.x, fb.y, flipped.data());
-}
 
 // The screenshot folder: shot_00000.png, shot_00001.png, ...; an existing file is never replaced.
 class Shots {
@@ -63,7 +50,11 @@ public:
         char name[32];
         for (;; ++counter_) {
             std::snprintf(name, sizeof name, "shot_%05d.png", counter_);
-            if (!fs::exists(dir_ / name)) return dir_ / name;
+            // Past the name handed out, too: its file is written later, off the render thread.
+            if (!fs::exists(dir_ / name)) {
+                ++counter_;
+                return dir_ / name;
+            }
         }
     }
 
@@ -178,6 +169,7 @@ int run(const Options& o) {
     gl::set_error_checks(debug);   // glGetError after every pass (gl/faults.h)
     print_device(window.info());
     Overlay overlay(window.handle());
+    WindowShots window_shots;   // --screenshot and the screenshot key, read back asynchronously
 
     // The controls' state, changed only by apply() (keys, panel widgets, script), read by the hooks.
     struct Controls {
@@ -444,24 +436,23 @@ int run(const Options& o) {
             if (c.shots > 0) {
                 --c.shots;
                 const fs::path file = shots.next();
-                save_back_buffer(file, fb);
                 const PanelRect& r = overlay.panel();
+                char line[512];
                 if (c.panel)
-                    std::printf("wrote %s (%dx%d, frame %llu, panel at %d,%d size %dx%d)\n", file.string().c_str(), fb.x, fb.y,
-                                static_cast<unsigned long long>(frame), r.x, r.y, r.width, r.height);
+                    std::snprintf(line, sizeof line, "wrote %s (%dx%d, frame %llu, panel at %d,%d size %dx%d)", file.string().c_str(),
+                                  fb.x, fb.y, static_cast<unsigned long long>(frame), r.x, r.y, r.width, r.height);
                 else
-                    std::printf("wrote %s (%dx%d, frame %llu, no panel)\n", file.string().c_str(), fb.x, fb.y,
-                                static_cast<unsigned long long>(frame));
-                std::fflush(stdout);
+                    std::snprintf(line, sizeof line, "wrote %s (%dx%d, frame %llu, no panel)", file.string().c_str(), fb.x, fb.y,
+                                  static_cast<unsigned long long>(frame));
+                window_shots.take(file, fb, line);
             }
-            if (frames != 0 && frame + 1 == frames && !o.screenshot.empty() && !p.instability()) {
-                save_back_buffer(o.screenshot, fb);
-                std::printf("wrote %s (%dx%d)\n", o.screenshot.c_str(), fb.x, fb.y);
-            }
+            if (frames != 0 && frame + 1 == frames && !o.screenshot.empty() && !p.instability())
+                window_shots.take(o.screenshot, fb, "wrote " + o.screenshot + " (" + std::to_string(fb.x) + "x" + std::to_string(fb.y) + ")");
         };
         hooks.after = [&](frame::Pipeline& p) {
             validate_take();
             window.swap();
+            window_shots.poll();
             ++frames_since;
             const Clock::time_point now = Clock::now();
             if (const double dt = std::chrono::duration<double>(now - since).count(); dt >= 0.5) {
@@ -474,8 +465,9 @@ int run(const Options& o) {
 
         log.start_clock();
         base += frame::run_frames(pipeline, frames ? std::optional<std::uint64_t>(frames - base) : std::nullopt, hooks);
-        // Every record and timing still on its way (the guard's last word included).
+        // Every record and timing still on its way (the guard's last word included), and the shots.
         pipeline.drain();
+        window_shots.finish();
         log.stop_clock();
         pipeline.poll();
         if (recorder) {
