@@ -119,6 +119,7 @@ std::string guard_spikes_line(const frame::Pipeline& p, nlohmann::json& extra) {
 void print_device(const gl::DeviceInfo& d) {
     std::printf("ranryu %s | %s\n", RANRYU_VERSION, d.line().c_str());
     if (!d.timer_queries) std::printf("ranryu: this context has no timer queries; timings will read 0\n");
+    if (!d.robust) std::printf("ranryu: this context is not robust: a GPU reset would go unreported (gl/faults.h)\n");
     std::fflush(stdout);
 }
 

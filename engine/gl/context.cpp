@@ -62,6 +62,9 @@ DeviceInfo query_device(const std::string& platform) {
     GLint bits = 0;
     glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &bits);
     d.timer_queries = bits > 0;
+    GLint strategy = 0;
+    glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    d.robust = strategy == GL_LOSE_CONTEXT_ON_RESET;
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);

@@ -16,6 +16,7 @@ struct DeviceInfo {
     std::string glsl;       // GL_SHADING_LANGUAGE_VERSION
     std::string platform;   // "EGL device", "EGL surfaceless", "GLFW"
     bool timer_queries = false;
+    bool robust = false;    // lose-context-on-reset: a lost context is reported (gl/faults.h), not drawn from
     std::string line() const;   // one line for logs: renderer | GL version | platform
 };
 

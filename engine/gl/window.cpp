@@ -22,7 +22,15 @@ Window::Window(int width, int height, const std::string& title, bool debug) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
+    // Robust where the driver offers it, as the headless context (gl/context_egl.cpp): a lost context
+    // then reports its reset through glGetGraphicsResetStatus, which gl/faults.h checks at every
+    // frame's end, and the run stops with its message instead of drawing garbage. Else a plain one.
+    glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, GLFW_LOSE_CONTEXT_ON_RESET);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, GLFW_NO_ROBUSTNESS);
+        window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    }
     if (!window_) {
         const char* why = nullptr;
         glfwGetError(&why);
