@@ -6,13 +6,7 @@
 # Each solver's per-frame record (largest speed, largest density, substeps) goes to $OUT/SOLVER.csv.
 # Usage:
 #     scripts/gpu/db-1m-speed.sh ["pbf:600 dfsph:150"] [SPEED]     # solver:frames
-set -uo pipefail
-cd "$(dirname "$0")/../.."
-out=${OUT:-bench-out}
-mkdir -p "$out"
-B=${RANRYU_BIN:-build/gpu/app/ranryu}
-nvidia_egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -e "$nvidia_egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-$nvidia_egl}
+. "$(dirname "$0")/env.sh" bench-out
 runs=${1:-pbf:600 dfsph:150}
 speed=${2:-50}
 python3 - "$out/dam-break.json" "$speed" <<'PY'

@@ -19,14 +19,7 @@
 # sweep's output), scene-settings.txt and scene-settings.json (the choices, with the keys to merge
 # into each scene file's "sph" in media/scenes/), and summary.txt (the grid, the time taken and
 # what was not run).
-set -uo pipefail
-cd "$(dirname "$0")/../.."
-out=${OUT:-bench-out}
-mkdir -p "$out"
-B=${RANRYU_BIN:-build/gpu/app/ranryu}
-# GLVND's EGL on the NVIDIA driver, as setup-and-build.sh sets it (where that driver's file is).
-nvidia_egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -e "$nvidia_egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-$nvidia_egl}
+. "$(dirname "$0")/env.sh" bench-out
 seconds=${1:-10}
 spacing=()
 if [ "$seconds" = smoke ]; then

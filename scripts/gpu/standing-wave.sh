@@ -7,13 +7,7 @@
 # BUDGET_SECONDS (default 300) stops the sweep (the rows done stay; a rerun with RESUME_FROM=FILE, a
 # sweep.json that came back, resumes it). Writes sweep.json, sweep.csv, sweep.log and the charts
 # (standing-wave-*.png, .svg) to $OUT (or ./bench-out).
-set -uo pipefail
-cd "$(dirname "$0")/../.."
-out=${OUT:-bench-out}
-mkdir -p "$out"
-B=${RANRYU_BIN:-build/gpu/app/ranryu}
-nvidia_egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -e "$nvidia_egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-$nvidia_egl}
+. "$(dirname "$0")/env.sh" bench-out
 spacings=${1:-0.0133,0.01,0.005,0.0025}
 [ -n "${RESUME_FROM:-}" ] && cp "$RESUME_FROM" "$out/sweep.json"
 start=$(date +%s)
