@@ -93,7 +93,7 @@ const std::vector<std::string> kColumns = {"key", "case", "solver", "spacing", "
                                            "gpu_ms_per_simulated_second", "simulated_seconds", "wall_seconds", "steps",
                                            "failure_frame", "failure_time", "failure_cause", "failure_message", "device",
                                            "seconds", "mean_density_deviation_peak", "mean_density_deviation_peak_time",
-                                           "mean_density_deviation_average", "energy_check"};
+                                           "mean_density_deviation_average", "energy_check", "decay_rate", "guard_spikes"};
 
 std::string csv_field(const nlohmann::json& v) {
     if (v.is_null()) return "";
@@ -125,6 +125,7 @@ void put_stats(nlohmann::json& j, const Result& r) {
               {"mean_density_deviation", r.stats.mean_density_deviation},
               {"max_density_deviation", r.stats.max_density_deviation},
               {"energy_drift", r.stats.energy_drift},
+              {"guard_spikes", r.stats.guard_spikes},
               {"gpu_ms_per_simulated_second", r.stats.gpu_ms_per_simulated_second},
               {"simulated_seconds", r.stats.simulated_seconds},
               {"wall_seconds", r.seconds},

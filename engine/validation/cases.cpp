@@ -109,6 +109,7 @@ public:
         pipeline_.timer().drain();
         for (double ms : pipeline_.timer().frame_ms()) stats_.gpu_ms += ms;
         stats_.gpu_ms_per_simulated_second = stats_.simulated_seconds > 0.0 ? stats_.gpu_ms / stats_.simulated_seconds : 0.0;
+        stats_.guard_spikes = fluid.guard().spikes();
         return stats_;
     }
 

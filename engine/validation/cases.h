@@ -31,6 +31,7 @@ struct RunStats {
     double simulated_seconds = 0.0;
     double gpu_ms = 0.0;                   // the frames' GPU spans, summed
     double gpu_ms_per_simulated_second = 0.0;
+    int guard_spikes = 0;                  // frames past the guard's density or speed bound that it let pass (sim/guard.h)
 };
 
 // Martin & Moyce (1952), n^2 = 2: surge front Z = z/a against T = t sqrt(2g/a).

@@ -90,6 +90,9 @@ TEST_CASE("sweep: a tiny sweep writes a row a run with every field, records the 
             CHECK(row["mean_density_deviation"].get<double>() >= 0.0);
             CHECK(row["mean_density_deviation"].get<double>() <= row["max_density_deviation"].get<double>());
             CHECK(row["energy_drift"].get<double>() < 0.0);   // the dam break only loses energy
+            // These coarse dam breaks stay well inside the guard's bounds (max deviation < 0.5 above):
+            // no frame past one, so no spike let pass.
+            CHECK(row["guard_spikes"].get<int>() == 0);
             CHECK(row["energy_drift"].get<double>() > -1.0);
         }
     }
