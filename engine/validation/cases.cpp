@@ -114,8 +114,12 @@ public:
         stats_.mean_density_deviation = mean_compression(fluid, scene_);
         stats_.energy_end = energy(fluid, scene_);
         stats_.energy_drift = stats_.energy_start > 0.0 ? (stats_.energy_end - stats_.energy_start) / stats_.energy_start : 0.0;
+        const profile::GpuTimer& timer = pipeline_.timer();
         pipeline_.timer().drain();
-        for (double ms : pipeline_.timer().frame_ms()) stats_.gpu_ms += ms;
+        for (double ms : timer.frame_ms()) stats_.gpu_ms += ms;
+        // Frames the timer skipped (its ring full: GpuTimer never waits) count at the timed frames' mean.
+        if (timer.skipped_frames() && timer.frames_read())
+            stats_.gpu_ms *= double(timer.frames_read() + timer.skipped_frames()) / double(timer.frames_read());
         stats_.gpu_ms_per_simulated_second = stats_.simulated_seconds > 0.0 ? stats_.gpu_ms / stats_.simulated_seconds : 0.0;
         return stats_;
     }

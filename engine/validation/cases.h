@@ -33,7 +33,7 @@ struct RunStats {
     // (E_end - E_start)/E_start: negative where the flow dissipates, positive where energy is made.
     double energy_start = 0.0, energy_end = 0.0, energy_drift = 0.0;
     double simulated_seconds = 0.0;
-    double gpu_ms = 0.0;                   // the frames' GPU spans, summed
+    double gpu_ms = 0.0;                   // the frames' GPU spans, summed (any the timer skipped at the timed ones' mean)
     double gpu_ms_per_simulated_second = 0.0;
 };
 
