@@ -116,6 +116,17 @@ void check_frames(const GpuTimer& t, ranryu::profile::PassId a, ranryu::profile:
     for (std::size_t k = 0; k < pb.frames.size(); ++k) CHECK(pb.calls[k] == calls_b[std::size_t(pb.frames[k])]);
 }
 
+// One frame of a bare timer: `na` calls of pass a and `nb` of b, appended to calls_a and calls_b.
+void issue_frame(GpuTimer& t, ranryu::profile::PassId a, ranryu::profile::PassId b, int na, int nb, std::vector<int>& calls_a,
+                 std::vector<int>& calls_b) {
+    t.begin_frame();
+    for (int k = 0; k < na; ++k) auto s = t.scope(a);
+    for (int k = 0; k < nb; ++k) auto s = t.scope(b);
+    t.end_frame();
+    calls_a.push_back(na);
+    calls_b.push_back(nb);
+}
+
 // A tiny ballistic scene: 27 particles, `substeps` substeps a frame.
 ranryu::scene::Scene tiny_scene(int substeps) {
     const std::string json = R"({"name": "tiny", "particles": {"spacing": 0.1, "blocks": [{"min": [0.2, 0.2, 0.2], "max": [0.5, 0.5, 0.5]}]},
@@ -276,13 +287,8 @@ TEST_CASE("profile: the timer's ring hands back each frame's calls under its fra
     INFO("ring depth " << depth << ", " << frames << " frames");
     probe().reset();
     for (int f = 0; f < frames; ++f) {
-        timer.begin_frame();
         const int na = 1 + int(rng.below(8)), nb = int(rng.below(3));
-        for (int k = 0; k < na; ++k) auto s = timer.scope(a);
-        for (int k = 0; k < nb; ++k) auto s = timer.scope(b);
-        timer.end_frame();
-        calls_a.push_back(na);
-        calls_b.push_back(nb);
+        issue_frame(timer, a, b, na, nb, calls_a, calls_b);
         // At most `depth` frames are outstanding; the others came back or were skipped.
         CHECK(timer.frames_read() + timer.skipped_frames() + std::uint64_t(depth) >= std::uint64_t(f + 1));
     }
@@ -307,13 +313,8 @@ TEST_CASE("profile: with results not yet available, many frames in a row never w
     GLint groups_before = 0, groups_after = 0;
     glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &groups_before);
     auto frame = [&] {
-        timer.begin_frame();
         const int na = 1 + int(rng.below(9)), nb = int(rng.below(3));   // past the 4 expected: the pool grows
-        for (int k = 0; k < na; ++k) auto s = timer.scope(a);
-        for (int k = 0; k < nb; ++k) auto s = timer.scope(b);
-        timer.end_frame();
-        calls_a.push_back(na);
-        calls_b.push_back(nb);
+        issue_frame(timer, a, b, na, nb, calls_a, calls_b);
     };
     // The driver answers "not yet" for every query (the probe below; a GPU far behind): the first
     // `depth` frames take the ring's slots, every later one is skipped, and no result is read at all.
