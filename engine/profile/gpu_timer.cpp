@@ -28,8 +28,9 @@ PassId GpuTimer::pass(std::string_view name) {
     return PassId{std::uint16_t(passes_.size() - 1)};
 }
 
-// The last query first: while the GPU is behind, that one answers no and nothing else is asked. The
-// rest are asked too rather than assumed, so that collect() never waits on one that is not.
+// The last pass's end first (among the last issued; nested passes end later): while the GPU is
+// behind, that one answers no and nothing else is asked. The rest are asked too rather than assumed
+// from it, so that collect() never waits on one that is not.
 bool GpuTimer::available(const Slot& s) const {
     const auto ready = [&](std::uint32_t q) {
         GLuint yes = GL_FALSE;
