@@ -16,19 +16,36 @@ GpuTimer::GpuTimer(int frames_in_flight, int max_calls_per_frame) : max_calls_(s
     }
     passes_.reserve(64);
     frame_ms_.reserve(4096);
+    frame_numbers_.reserve(4096);
 }
 
 PassId GpuTimer::pass(std::string_view name) {
     for (std::size_t i = 0; i < passes_.size(); ++i)
         if (passes_[i].name == name) return PassId{std::uint16_t(i)};
-    passes_.push_back(PassSamples{std::string(name), {}, {}});
+    passes_.push_back(PassSamples{std::string(name), {}, {}, {}});
     scratch_ms_.push_back(0.0);
     scratch_calls_.push_back(0);
     return PassId{std::uint16_t(passes_.size() - 1)};
 }
 
-// Reads a slot's timestamps. When the GPU is a whole ring behind, GL_QUERY_RESULT waits for them:
-// the back-pressure described in the header; otherwise they are already available.
+// The last pass's end first (among the last issued; nested passes end later): while the GPU is
+// behind, that one answers no and nothing else is asked. The rest are asked too rather than assumed
+// from it, so that collect() never waits on one that is not.
+bool GpuTimer::available(const Slot& s) const {
+    const auto ready = [&](std::uint32_t q) {
+        GLuint yes = GL_FALSE;
+        glGetQueryObjectuiv(s.queries[q], GL_QUERY_RESULT_AVAILABLE, &yes);
+        return yes != GL_FALSE;
+    };
+    if (s.records.empty()) return true;
+    if (!ready(s.records.back().query + 1u)) return false;
+    for (const Record& r : s.records)
+        if (!ready(r.query) || !ready(r.query + 1u)) return false;
+    return true;
+}
+
+// Reads a slot's timestamps with GL_QUERY_RESULT: from poll() only once available() said yes, so
+// nothing waits; from drain(), waiting is the point.
 void GpuTimer::collect(Slot& s) {
     if (!s.pending) return;
     if (!s.records.empty()) {
@@ -51,17 +68,21 @@ void GpuTimer::collect(Slot& s) {
             if (!scratch_calls_[p]) continue;
             passes_[p].ms.push_back(scratch_ms_[p]);
             passes_[p].calls.push_back(scratch_calls_[p]);
+            passes_[p].frames.push_back(s.frame);
         }
         frame_ms_.push_back(double(final - first) * 1e-6);
+        frame_numbers_.push_back(s.frame);
         // An open-ended run (the window) keeps the latest kMaxFrames frames, halving the history when
         // it fills: memory stays bounded and the reallocation happens once per 32k frames, not per frame.
         if (frame_ms_.size() >= kMaxFrames) {
             const auto half = std::ptrdiff_t(kMaxFrames / 2);
             frame_ms_.erase(frame_ms_.begin(), frame_ms_.begin() + half);
+            frame_numbers_.erase(frame_numbers_.begin(), frame_numbers_.begin() + half);
             for (PassSamples& p : passes_) {
                 const auto drop = std::min<std::ptrdiff_t>(half, std::ptrdiff_t(p.ms.size()));
                 p.ms.erase(p.ms.begin(), p.ms.begin() + drop);
                 p.calls.erase(p.calls.begin(), p.calls.begin() + drop);
+                p.frames.erase(p.frames.begin(), p.frames.begin() + drop);
             }
         }
     }
@@ -69,23 +90,44 @@ void GpuTimer::collect(Slot& s) {
     s.pending = false;
 }
 
+std::size_t GpuTimer::poll() {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < slots_.size(); ++k) {   // from the oldest slot, the one filled longest ago
+        Slot& s = slots_[(next_ + k) % slots_.size()];
+        if (!s.pending) continue;
+        if (!available(s)) break;   // later frames stay behind it: samples come back in frame order
+        collect(s);
+        ++n;
+    }
+    return n;
+}
+
 void GpuTimer::begin_frame() {
     if (in_frame_) throw Error("GpuTimer::begin_frame inside a frame");
-    current_ = std::size_t(frame_ % slots_.size());
-    collect(slots_[current_]);
+    poll();
+    current_ = next_;
+    timed_ = !slots_[current_].pending;
+    if (timed_) {
+        slots_[current_].frame = frame_;
+        next_ = (next_ + 1) % slots_.size();
+    } else {
+        ++skipped_;   // the GPU is a whole ring behind: this frame goes untimed rather than wait
+    }
     in_frame_ = true;
 }
 
 void GpuTimer::end_frame() {
     if (!in_frame_) throw Error("GpuTimer::end_frame outside a frame");
-    slots_[current_].pending = true;
+    if (timed_) slots_[current_].pending = true;
     in_frame_ = false;
+    timed_ = false;
     ++frame_;
 }
 
 std::uint32_t GpuTimer::begin(PassId id) {
-    Slot& s = slots_[current_];
     if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
+    if (!timed_) return kUntimed;
+    Slot& s = slots_[current_];
     if (2 * s.records.size() + 2 > s.queries.size()) {
         if (s.queries.size() >= (std::size_t(1) << 24)) throw Error("over 8 million timed passes in one frame");
         s.queries.grow(s.queries.size());   // a frame with more passes than any before: double the pool
@@ -98,20 +140,24 @@ std::uint32_t GpuTimer::begin(PassId id) {
 }
 
 void GpuTimer::end(std::uint32_t begin_query) {
+    if (begin_query == kUntimed) return;
     glQueryCounter(slots_[current_].queries[begin_query + 1u], GL_TIMESTAMP);
 }
 
 void GpuTimer::drain() {
-    for (std::size_t k = 1; k <= slots_.size(); ++k) collect(slots_[(current_ + k) % slots_.size()]);
+    for (std::size_t k = 0; k < slots_.size(); ++k) collect(slots_[(next_ + k) % slots_.size()]);   // oldest first
 }
 
 void GpuTimer::reset_samples() {
     for (PassSamples& p : passes_) {
         p.ms.clear();
         p.calls.clear();
+        p.frames.clear();
     }
     order_.clear();
     frame_ms_.clear();
+    frame_numbers_.clear();
+    skipped_ = 0;
 }
 
 GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t) {

@@ -1,9 +1,11 @@
 #pragma once
 // Per-pass GPU timing with timestamp pairs (glQueryCounter, never nested GL_TIME_ELAPSED), kept in
-// a ring `frames_in_flight` deep. A frame's results are read when the ring comes back to its slot:
-// by then they are normally available, so reading never stalls. Only when the GPU is a whole ring
-// behind does begin_frame() wait, which bounds how far the CPU runs ahead (back-pressure, the same
-// limit every engine puts on frames in flight).
+// a ring of `frames_in_flight` query sets, one a frame. The frame path never waits for a result:
+// begin_frame() collects, oldest first, the frames whose every query reports
+// GL_QUERY_RESULT_AVAILABLE, and stops at the first that is not yet. When the frame's slot still
+// holds a frame not collected (the GPU is a whole ring behind), that frame is not timed: its passes
+// still open their debug groups, skipped_frames() counts it, and the report says how many. Only
+// drain() (end of a run, tests) waits. Every sample carries the number of the frame it was taken in.
 //
 // Every pass opens a KHR_debug group of the same name, so GPU debuggers show the frame as named
 // passes too.
@@ -25,6 +27,7 @@ struct PassSamples {
     std::string name;
     std::vector<double> ms;      // per frame in which the pass ran: sum of its calls' times
     std::vector<int> calls;      // per frame in which the pass ran: number of calls
+    std::vector<std::uint64_t> frames;   // per frame in which the pass ran: its number (0 = the timer's first)
 };
 
 class GpuTimer {
@@ -37,12 +40,17 @@ public:
     PassId pass(std::string_view name);
     const std::string& name(PassId id) const { return passes_[id.index].name; }
 
+    // Collects the frames whose results are available (never waits), then opens frame
+    // `frames_begun()`: timed when its slot is free, otherwise skipped (counted).
     void begin_frame();
     void end_frame();
-    std::uint32_t begin(PassId id);   // use Scope instead; returns the pair's first query
+    std::uint32_t begin(PassId id);   // use Scope instead; returns the pair's first query, or kUntimed
     void end(std::uint32_t begin_query);
+    static constexpr std::uint32_t kUntimed = 0xFFFFFFFFu;   // begin() in a skipped frame
 
-    // Waits for every outstanding query and collects it. Shutdown and tests only.
+    // Collects, oldest first, the frames whose results are available; never waits. Returns how many.
+    std::size_t poll();
+    // Waits for every outstanding query and collects it. End of a run and tests only.
     void drain();
     // Forgets all samples so far (e.g. after warm-up frames); keeps the pass names.
     void reset_samples();
@@ -51,11 +59,16 @@ public:
     // Pass indices in the order their first samples came back: the order they run in a frame.
     const std::vector<std::uint16_t>& first_use_order() const { return order_; }
     const std::vector<double>& frame_ms() const { return frame_ms_; }   // GPU span of each frame read back
+    const std::vector<std::uint64_t>& frame_numbers() const { return frame_numbers_; }   // of each, in order
     // Per pass (by PassId index): its ms in the frame read back last, 0 where it did not run then. What
     // the window's overlay shows: results that came back frames late, never waited for.
     const std::vector<double>& last_frame_ms() const { return scratch_ms_; }
     static constexpr std::size_t kMaxFrames = 65536;   // history kept; the older half goes when it fills
     std::uint64_t frames_read() const { return frame_ms_.size(); }
+    std::uint64_t frames_begun() const { return frame_; }
+    // Frames not timed because the ring was full at their begin_frame() (since the last reset_samples()).
+    std::uint64_t skipped_frames() const { return skipped_; }
+    std::size_t depth() const { return slots_.size(); }
 
     // RAII scope of one pass: debug group + timestamp pair.
     class Scope {
@@ -79,20 +92,27 @@ private:
     struct Slot {
         gl::Queries queries;
         std::vector<Record> records;   // reserved once; cleared, never shrunk
-        bool pending = false;
+        std::uint64_t frame = 0;       // the frame whose queries these are
+        bool pending = false;          // ended, not yet collected
     };
-    void collect(Slot& s);
+    // Whether every query of `s` has its result (GL_QUERY_RESULT_AVAILABLE; asks, never waits).
+    bool available(const Slot& s) const;
+    void collect(Slot& s);   // reads with GL_QUERY_RESULT: call when available(), or to wait (drain)
 
     std::vector<PassSamples> passes_;
     std::vector<std::uint16_t> order_;
     std::vector<Slot> slots_;
     std::vector<double> frame_ms_;
+    std::vector<std::uint64_t> frame_numbers_;
     std::vector<double> scratch_ms_;   // per pass, for one frame: the last one read back
     std::vector<int> scratch_calls_;
     std::size_t current_ = 0;
     std::size_t max_calls_;   // initial pool per slot, in timestamp pairs
+    std::size_t next_ = 0;     // the slot the next timed frame takes; slots fill in ring order
     std::uint64_t frame_ = 0;
+    std::uint64_t skipped_ = 0;
     bool in_frame_ = false;
+    bool timed_ = false;       // the open frame has a slot
 };
 
 }  // namespace ranryu::profile

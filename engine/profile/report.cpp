@@ -95,6 +95,8 @@ Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSu
     }
     r.frame = row("frame (GPU span)", frames, 1.0, total);
     r.frame.ms_per_call = total / nframes;
+    r.frames_sampled = frames.size();
+    r.frames_skipped = timer.skipped_frames();
     return r;
 }
 
@@ -117,6 +119,8 @@ std::string table(const Report& r) {
     };
     for (const PassRow& p : r.passes) print(p);
     print(r.frame);
+    if (r.frames_skipped)   // the GPU ran a whole timer ring behind: those frames went untimed, not waited for
+        out << r.frames_skipped << " frames not timed (the timer's ring was full), " << r.frames_sampled << " timed\n";
     out << "\n";   // the table ends; what the run did follows
     if (const auto& s = r.simulation) {
         std::snprintf(line, sizeof line, "simulation (%s): %.1f substeps/frame (most %u), %.4f simulated s/frame\n",
@@ -170,6 +174,8 @@ nlohmann::json to_json(const Report& r) {
             {"height", r.info.height},
             {"frames", r.info.frames},
             {"warmup_frames", r.info.warmup},
+            {"frames_sampled", r.frames_sampled},
+            {"frames_skipped", r.frames_skipped},
             {"substeps_per_frame", r.info.substeps},
             {"simulated_seconds_per_frame", r.info.frame_dt},
             {"passes", passes},

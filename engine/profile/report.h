@@ -58,6 +58,8 @@ struct Report {
     RunInfo info;
     std::vector<PassRow> passes;   // in order of first use
     PassRow frame;                 // the whole GPU span of a frame
+    std::uint64_t frames_sampled = 0;   // frames whose timings came back (the rows' samples)
+    std::uint64_t frames_skipped = 0;   // frames not timed: the timer's ring was full (GpuTimer)
     std::optional<SimulationSummary> simulation;
     // Frames a second and simulated seconds a second, by the GPU's frame spans and by the wall clock.
     double fps_gpu() const;

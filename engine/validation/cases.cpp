@@ -63,6 +63,14 @@ void run(frame::Pipeline& pipeline, int frames, frame::Progress* progress) {
     if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
 }
 
+// The frame loop for `frames` frames with `hooks`, then waits for their records, as run() does.
+void run_with(frame::Pipeline& pipeline, int frames, const frame::FrameHooks& hooks) {
+    const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
+    pipeline.drain();
+    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
+}
+
 // E of RunStats over the fluid's particles, read back (a validation run, not the frame path).
 double energy(const sim::Fluid& fluid, const scene::Scene& scene) {
     const std::vector<glm::vec4> x = fluid.positions().read<glm::vec4>(fluid.count());
@@ -106,8 +114,12 @@ public:
         stats_.mean_density_deviation = mean_compression(fluid, scene_);
         stats_.energy_end = energy(fluid, scene_);
         stats_.energy_drift = stats_.energy_start > 0.0 ? (stats_.energy_end - stats_.energy_start) / stats_.energy_start : 0.0;
+        const profile::GpuTimer& timer = pipeline_.timer();
         pipeline_.timer().drain();
-        for (double ms : pipeline_.timer().frame_ms()) stats_.gpu_ms += ms;
+        for (double ms : timer.frame_ms()) stats_.gpu_ms += ms;
+        // Frames the timer skipped (its ring full: GpuTimer never waits) count at the timed frames' mean.
+        if (timer.skipped_frames() && timer.frames_read())
+            stats_.gpu_ms *= double(timer.frames_read() + timer.skipped_frames()) / double(timer.frames_read());
         stats_.gpu_ms_per_simulated_second = stats_.simulated_seconds > 0.0 ? stats_.gpu_ms / stats_.simulated_seconds : 0.0;
         stats_.guard_spikes = fluid.guard().spikes();
         return stats_;
@@ -120,6 +132,35 @@ private:
 };
 
 }  // namespace
+
+CompressionMeter::CompressionMeter(const shader::FileSource& shaders, std::size_t count, float rest_density, Consumer on_value)
+    : count_(count),
+      groups_(std::uint32_t(std::clamp<std::size_t>((count + 255) / 256, 1, 1024))),
+      on_value_(std::move(on_value)),
+      partials_(shader::Program::compute(shaders, "validation/mean_compression.comp")),
+      total_(shader::Program::compute(shaders, "validation/mean_compression.comp", "#define TOTAL 1\n")),
+      partial_sums_(groups_ * sizeof(float), GL_DYNAMIC_COPY, nullptr, "compression.partials"),
+      total_sum_(sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "compression.total"),
+      readback_(sizeof(glm::vec4), kDepth, "compression.readback", [this](std::uint64_t tag, const void* bytes) {
+          float sum = 0.0f;
+          std::memcpy(&sum, bytes, sizeof sum);
+          if (on_value_) on_value_(tag, double(sum) / double(std::max<std::size_t>(count_, 1)));
+      }) {
+    glProgramUniform1ui(partials_.id(), 0, GLuint(count_));
+    glProgramUniform1f(partials_.id(), 1, rest_density);
+    glProgramUniform1ui(total_.id(), 0, GLuint(groups_));
+}
+
+void CompressionMeter::measure(const gl::Buffer& densities, std::uint64_t tag) {
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // the densities the passes before wrote
+    partials_.bind({{"Densities", &densities}, {"Partials", &partial_sums_}}).dispatch(std::size_t(groups_) * 256u);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    total_.bind({{"Partials", &partial_sums_}, {"Total", &total_sum_}}).dispatch(256);
+    readback_.copy(total_sum_, 0, tag);   // with the barrier the copy needs
+}
+
+std::size_t CompressionMeter::poll() { return readback_.poll(); }
+std::size_t CompressionMeter::drain() { return readback_.drain(); }
 
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress) {
     if (scene.model != scene::Model::sph || scene.blocks.empty()) throw InputError("dam-break: the scene must be SPH with one block");
@@ -298,16 +339,31 @@ SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& sh
     StatsTally tally(scene, pipeline);
     tally.listen(fluid, r.steps);
     if (progress) progress->expect(std::uint64_t(r.frames));
-    const auto start = std::chrono::steady_clock::now();
     double sum = 0.0;
-    for (int f = 0; f < r.frames; ++f) {
-        run(pipeline, 1, progress);
-        const double c = mean_compression(fluid, scene);
+    int measured = 0;
+    // Frame f's value (the pipeline's frames count from 0 here) is the state at t = (f + 1)·frame_dt.
+    CompressionMeter meter(shaders, fluid.count(), scene.sph.rest_density, [&](std::uint64_t frame, double c) {
         sum += c;
-        if (c > r.peak_mean_compression) r.peak_mean_compression = c, r.peak_time = double(f + 1) * scene.frame_dt;
-    }
+        ++measured;
+        if (c > r.peak_mean_compression) r.peak_mean_compression = c, r.peak_time = double(frame + 1) * scene.frame_dt;
+    });
+    const profile::PassId pass = pipeline.timer().pass("mean-compression");
+    frame::FrameHooks hooks = progress ? progress->hooks() : frame::FrameHooks{};
+    hooks.after_draw = [&](frame::Pipeline& p) {   // after the frame's last step, in the frame
+        auto timed = p.timer().scope(pass);
+        meter.measure(fluid.densities(), p.frames());
+    };
+    hooks.after = [&meter, progress_after = hooks.after](frame::Pipeline& p) {
+        meter.poll();
+        if (progress_after) progress_after(p);
+    };
+    const auto start = std::chrono::steady_clock::now();
+    run_with(pipeline, r.frames, hooks);
+    meter.drain();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
+    if (measured != r.frames)
+        throw Error("scene " + scene.name + ": " + std::to_string(measured) + " compressions came back for " + std::to_string(r.frames) + " frames");
     r.average_mean_compression = sum / double(r.frames);
     return r;
 }

@@ -3,12 +3,16 @@
 // solution, with the error. `ranryu validate` prints them; tests assert bounds on them.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "gl/objects.h"
+#include "gl/readback.h"
 #include "scene/scene.h"
+#include "shader/program.h"
 #include "shader/source.h"
 
 namespace ranryu::frame {
@@ -29,7 +33,7 @@ struct RunStats {
     // (E_end - E_start)/E_start: negative where the flow dissipates, positive where energy is made.
     double energy_start = 0.0, energy_end = 0.0, energy_drift = 0.0;
     double simulated_seconds = 0.0;
-    double gpu_ms = 0.0;                   // the frames' GPU spans, summed
+    double gpu_ms = 0.0;                   // the frames' GPU spans, summed (any the timer skipped at the timed ones' mean)
     double gpu_ms_per_simulated_second = 0.0;
     int guard_spikes = 0;                  // frames past the guard's density or speed bound that it let pass (sim/guard.h)
 };
@@ -112,11 +116,42 @@ bool is_scene_case(const std::string& case_name);
 // Every bundled SPH scene as a scene case ("scene:dam-break", ...), in `ranryu scenes` order.
 std::vector<std::string> scene_cases();
 
+// The mean compression of `count` particles, (1/count)·Σ_i max(rho_i/rho0 - 1, 0), computed on the GPU
+// (glsl/validation/mean_compression.comp: two dispatches, no atomics) and read back asynchronously
+// (gl::AsyncReadback, 16 bytes a measurement): nothing in measure() waits or allocates unless the
+// readback ring is a whole `kDepth` measurements behind (its back-pressure). Values reach `on_value`,
+// oldest first and each with the tag it was measured under, from poll(), drain() or a later measure().
+// Within 1e-5 (relative) of the same mean summed on the CPU in double from the read-back densities
+// (tests/gl/compression_test.cpp). Programs and buffers are made here, at start-up.
+class CompressionMeter {
+public:
+    using Consumer = std::function<void(std::uint64_t tag, double mean)>;
+    static constexpr int kDepth = 4;
+    CompressionMeter(const shader::FileSource& shaders, std::size_t count, float rest_density, Consumer on_value);
+    CompressionMeter(const CompressionMeter&) = delete;   // the readback's consumer holds `this`
+    CompressionMeter& operator=(const CompressionMeter&) = delete;
+
+    // Queues the measurement of `densities` (vec4 a particle, rho in x, `count` of them) as they will be
+    // once the GPU has run what was queued before, tagged `tag` (a frame number).
+    void measure(const gl::Buffer& densities, std::uint64_t tag);
+    std::size_t poll();    // hands over the measurements that have arrived; never waits
+    std::size_t drain();   // waits for every queued one: end of a run and tests only
+
+private:
+    std::size_t count_;
+    std::uint32_t groups_;   // workgroups of the first pass (at most 1024)
+    Consumer on_value_;
+    shader::Program partials_, total_;
+    gl::Buffer partial_sums_, total_sum_;
+    gl::AsyncReadback readback_;
+};
+
 // A scene run as it is for `seconds` of simulated time (whole frames, at least one), with no
 // reference to compare with: whether it holds together (the guard, as in every case) and how far it
-// compresses. The compression, mean over particles of max(rho/rho0 - 1, 0), is read back after every
-// frame (a validation run, not the frame path): its largest value and when, and its average over the
-// frames. With PBF the densities are those of each step's last iteration, as the guard reads them.
+// compresses. The compression, mean over particles of max(rho/rho0 - 1, 0), is measured after every
+// frame on the GPU and comes back asynchronously, frames late (CompressionMeter; nothing in the frame
+// loop waits for it): its largest value and when, and its average over the frames. With PBF the
+// densities are those of each step's last iteration, as the guard reads them.
 struct SceneRunResult {
     std::size_t particles = 0;
     int frames = 0;

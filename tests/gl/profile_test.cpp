@@ -3,8 +3,12 @@
 // never the times themselves: llvmpipe's timestamps read about 0, so times are only checked ≥ 0.
 #include "support/gl_fixture.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,12 +24,107 @@
 using ranryu::profile::GpuTimer;
 using ranryu::profile::PassSamples;
 
+// ---- The query probe: this program's own glGetQueryObjectuiv and glGetQueryObjectui64v, which the
+// linker prefers to libOpenGL's (the engine is linked in statically) and which call libOpenGL's (dlsym
+// RTLD_NEXT). They pass everything through, count, and with `hold` answer GL_QUERY_RESULT_AVAILABLE
+// with "not yet": a GPU that is behind, on demand, where llvmpipe's results come within moments. A
+// GL_QUERY_RESULT read of a query whose result is not available is counted as a wait.
+namespace {
+struct QueryProbe {
+    bool hold = false;
+    std::uint64_t asked = 0;   // GL_QUERY_RESULT_AVAILABLE questions
+    std::uint64_t reads = 0;   // GL_QUERY_RESULT reads
+    std::uint64_t waits = 0;   // of those, reads of a result not available (or held): a stall in the frame path
+    void reset() { *this = QueryProbe{}; }
+};
+QueryProbe& probe() {
+    static QueryProbe p;
+    return p;
+}
+template <class F>
+F next_gl(const char* name) {
+    void* f = dlsym(RTLD_NEXT, name);
+    if (!f) throw std::runtime_error(std::string("profile_test: no ") + name + " after this program's own");
+    return reinterpret_cast<F>(f);
+}
+using GetQueryUiv = void (*)(GLuint, GLenum, GLuint*);
+using GetQueryUi64v = void (*)(GLuint, GLenum, GLuint64*);
+GetQueryUiv real_uiv() {
+    static const GetQueryUiv f = next_gl<GetQueryUiv>("glGetQueryObjectuiv");
+    return f;
+}
+GetQueryUi64v real_ui64v() {
+    static const GetQueryUi64v f = next_gl<GetQueryUi64v>("glGetQueryObjectui64v");
+    return f;
+}
+}  // namespace
+
+extern "C" void APIENTRY glGetQueryObjectuiv(GLuint id, GLenum pname, GLuint* params) {
+    if (pname == GL_QUERY_RESULT_AVAILABLE) {
+        ++probe().asked;
+        if (probe().hold) {
+            *params = GL_FALSE;
+            return;
+        }
+    }
+    real_uiv()(id, pname, params);
+}
+
+extern "C" void APIENTRY glGetQueryObjectui64v(GLuint id, GLenum pname, GLuint64* params) {
+    if (pname == GL_QUERY_RESULT) {
+        GLuint ready = GL_FALSE;
+        real_uiv()(id, GL_QUERY_RESULT_AVAILABLE, &ready);
+        ++probe().reads;
+        if (probe().hold || !ready) ++probe().waits;
+    }
+    real_ui64v()(id, pname, params);
+}
+
 namespace {
 
 const PassSamples* find_pass(const GpuTimer& t, const std::string& name) {
     for (const PassSamples& p : t.passes())
         if (p.name == name) return &p;
     return nullptr;
+}
+
+// Every frame read back against what was issued (calls_a/calls_b by frame number; b's 0 = not run):
+// each sample is the pass's calls in the frame it names, the frames are distinct and in order, and
+// every frame begun was either read back or counted as skipped.
+void check_frames(const GpuTimer& t, ranryu::profile::PassId a, ranryu::profile::PassId b, const std::vector<int>& calls_a,
+                  const std::vector<int>& calls_b, std::uint64_t frames) {
+    CHECK(t.frames_begun() == frames);
+    CHECK(t.frames_read() + t.skipped_frames() == frames);
+    const std::vector<std::uint64_t>& numbers = t.frame_numbers();
+    CHECK(std::is_sorted(numbers.begin(), numbers.end()));
+    CHECK(std::adjacent_find(numbers.begin(), numbers.end()) == numbers.end());
+    const PassSamples& pa = t.passes()[a.index];
+    const PassSamples& pb = t.passes()[b.index];
+    CHECK(pa.frames == numbers);   // "a" runs every frame
+    REQUIRE(pa.calls.size() == pa.frames.size());
+    REQUIRE(pa.ms.size() == pa.frames.size());
+    for (std::size_t k = 0; k < pa.frames.size(); ++k) {
+        REQUIRE(pa.frames[k] < frames);
+        CHECK(pa.calls[k] == calls_a[std::size_t(pa.frames[k])]);
+    }
+    std::vector<std::uint64_t> with_b;   // the timed frames that ran "b"
+    for (const std::uint64_t f : numbers)
+        if (calls_b[std::size_t(f)]) with_b.push_back(f);
+    CHECK(pb.frames == with_b);
+    REQUIRE(pb.calls.size() == pb.frames.size());
+    REQUIRE(pb.ms.size() == pb.frames.size());
+    for (std::size_t k = 0; k < pb.frames.size(); ++k) CHECK(pb.calls[k] == calls_b[std::size_t(pb.frames[k])]);
+}
+
+// One frame of a bare timer: `na` calls of pass a and `nb` of b, appended to calls_a and calls_b.
+void issue_frame(GpuTimer& t, ranryu::profile::PassId a, ranryu::profile::PassId b, int na, int nb, std::vector<int>& calls_a,
+                 std::vector<int>& calls_b) {
+    t.begin_frame();
+    for (int k = 0; k < na; ++k) auto s = t.scope(a);
+    for (int k = 0; k < nb; ++k) auto s = t.scope(b);
+    t.end_frame();
+    calls_a.push_back(na);
+    calls_b.push_back(nb);
 }
 
 // A tiny ballistic scene: 27 particles, `substeps` substeps a frame.
@@ -43,18 +142,24 @@ void run_frame(ranryu::frame::Pipeline& p) {
     p.end_frame();
 }
 
-// Checks that exactly the passes in `expect` (name → calls per frame) have samples, one per frame
-// for `frames` frames, and that no other pass has any.
+// Checks that exactly the passes in `expect` (name → calls per frame) have samples, one per timed frame
+// of the `frames` frames (those the timer skipped, its ring full, have none), each under its frame's
+// number, and that no other pass has any.
 void check_samples(const GpuTimer& t, const std::map<std::string, int>& expect, std::size_t frames) {
-    CHECK(t.frames_read() == frames);
-    CHECK(t.frame_ms().size() == frames);
+    CHECK(t.frames_read() + t.skipped_frames() == frames);
+    const std::size_t timed = t.frames_read();
+    CHECK(t.frame_ms().size() == timed);
+    CHECK(t.frame_numbers().size() == timed);
+    CHECK(std::is_sorted(t.frame_numbers().begin(), t.frame_numbers().end()));
+    CHECK(std::adjacent_find(t.frame_numbers().begin(), t.frame_numbers().end()) == t.frame_numbers().end());
     for (const double ms : t.frame_ms()) CHECK(ms >= 0.0);
     for (const auto& [name, calls] : expect) {
         INFO("pass " << name);
         const PassSamples* p = find_pass(t, name);
         REQUIRE(p != nullptr);
-        CHECK(p->ms.size() == frames);
-        CHECK(p->calls == std::vector<int>(frames, calls));
+        CHECK(p->ms.size() == timed);
+        CHECK(p->calls == std::vector<int>(timed, calls));
+        CHECK(p->frames == t.frame_numbers());   // it runs every frame: a sample in each timed one
         for (const double ms : p->ms) CHECK(ms >= 0.0);
     }
     for (const PassSamples& p : t.passes()) {
@@ -75,11 +180,13 @@ TEST_CASE("profile: a pipeline's passes are timed once per call, every frame, an
     ranryu::frame::Pipeline pipeline(scene, ranryu::shader::FileSource::embedded(), 64, 48);
     GpuTimer& timer = pipeline.timer();
 
-    // More frames than the ring is deep (4), with no drain between them: every frame must still
-    // come back once, in order.
-    const std::size_t frames = 4 + 3 + rng.below(6);
+    // More frames than the ring is deep (6), with no drain between them: every frame comes back once,
+    // in order, but for any the timer skipped because the GPU was a ring behind (counted).
+    const std::size_t frames = 6 + 3 + rng.below(6);
     INFO(substeps << " substeps, " << frames << " frames");
+    probe().reset();
     for (std::size_t f = 0; f < frames; ++f) run_frame(pipeline);
+    CHECK(probe().waits == 0);   // the frames read only results that were available
     timer.drain();
     const std::map<std::string, int> expect = {
         {"integrate", substeps}, {"clear", 1}, {"draw-floor", 1}, {"draw-tank", 1}, {"draw-particles", 1}};
@@ -102,12 +209,15 @@ TEST_CASE("profile: a pipeline's passes are timed once per call, every frame, an
         CHECK(row.share >= 0.0);
     }
     CHECK(report.frame.calls_per_frame == Approx(1.0));
+    CHECK(report.frames_sampled == timer.frames_read());
+    CHECK(report.frames_skipped == timer.skipped_frames());
 
     const std::string table = ranryu::profile::table(report);
     const nlohmann::json j = ranryu::profile::to_json(report);
     const std::string csv = ranryu::profile::to_csv(report);
     INFO(table << "\n" << j.dump(1) << "\n" << csv);
     CHECK(j.at("frames") == int(frames));
+    CHECK(j.at("frames_sampled").get<std::uint64_t>() + j.at("frames_skipped").get<std::uint64_t>() == frames);
     CHECK(j.at("substeps_per_frame") == substeps);
     REQUIRE(j.at("passes").size() == expect.size());
     std::map<std::string, int> csv_rows;   // pass name → rows naming it (the 9th field)
@@ -160,13 +270,14 @@ TEST_CASE("profile: report rows follow the order in which a frame first ran the 
     ranryu::test::require_no_gl_errors();
 }
 
-TEST_CASE("profile: the timer's ring hands back each frame's calls in frame order") {
+TEST_CASE("profile: the timer's ring hands back each frame's calls under its frame number, in order") {
     ranryu::test::context();
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     // A ring 1..3 deep, many times more frames than that, and a different number of calls each
-    // frame: the per-frame call counts read back must be exactly the sequence issued. Pass "b"
-    // runs only in some frames and has samples only for those.
+    // frame: every frame read back has exactly the calls issued in the frame it names. Pass "b" runs
+    // only in some frames and has samples only for those. Frames the ring was full for (llvmpipe's
+    // results not yet available) are skipped, never waited for, and counted.
     const int depth = 1 + int(rng.below(3));
     GpuTimer timer(depth, 16);
     const auto a = timer.pass("a"), b = timer.pass("b");
@@ -174,26 +285,68 @@ TEST_CASE("profile: the timer's ring hands back each frame's calls in frame orde
     std::vector<int> calls_a, calls_b;
     const int frames = 5 * depth + 3 + int(rng.below(8));
     INFO("ring depth " << depth << ", " << frames << " frames");
+    probe().reset();
     for (int f = 0; f < frames; ++f) {
-        timer.begin_frame();
         const int na = 1 + int(rng.below(8)), nb = int(rng.below(3));
-        for (int k = 0; k < na; ++k) auto s = timer.scope(a);
-        for (int k = 0; k < nb; ++k) auto s = timer.scope(b);
-        timer.end_frame();
-        calls_a.push_back(na);
-        if (nb) calls_b.push_back(nb);
-        // Frames come back a ring behind: at most `depth` are outstanding.
-        CHECK(timer.frames_read() + std::uint64_t(depth) >= std::uint64_t(f + 1));
+        issue_frame(timer, a, b, na, nb, calls_a, calls_b);
+        // At most `depth` frames are outstanding; the others came back or were skipped.
+        CHECK(timer.frames_read() + timer.skipped_frames() + std::uint64_t(depth) >= std::uint64_t(f + 1));
     }
+    CHECK(probe().waits == 0);   // no GL_QUERY_RESULT read of a query whose result was not available
     timer.drain();
-    CHECK(timer.frames_read() == std::uint64_t(frames));
-    CHECK(timer.passes()[a.index].calls == calls_a);
-    CHECK(timer.passes()[b.index].calls == calls_b);
-    CHECK(timer.passes()[a.index].ms.size() == calls_a.size());
-    CHECK(timer.passes()[b.index].ms.size() == calls_b.size());
+    check_frames(timer, a, b, calls_a, calls_b, std::uint64_t(frames));
     // A second drain finds nothing new.
+    const std::uint64_t read = timer.frames_read();
     timer.drain();
-    CHECK(timer.frames_read() == std::uint64_t(frames));
+    CHECK(timer.frames_read() == read);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("profile: with results not yet available, many frames in a row never wait, skip once the ring is full, and are counted") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const int depth = 1 + int(rng.below(6));
+    GpuTimer timer(depth, 4);
+    const auto a = timer.pass("a"), b = timer.pass("b");
+    std::vector<int> calls_a, calls_b;
+    GLint groups_before = 0, groups_after = 0;
+    glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &groups_before);
+    auto frame = [&] {
+        const int na = 1 + int(rng.below(9)), nb = int(rng.below(3));   // past the 4 expected: the pool grows
+        issue_frame(timer, a, b, na, nb, calls_a, calls_b);
+    };
+    // The driver answers "not yet" for every query (the probe below; a GPU far behind): the first
+    // `depth` frames take the ring's slots, every later one is skipped, and no result is read at all.
+    const int held = depth + 1 + int(rng.below(4 * unsigned(depth) + 8));
+    INFO("ring depth " << depth << ", " << held << " frames held");
+    probe().reset();
+    probe().hold = true;
+    for (int f = 0; f < held; ++f) frame();
+    probe().hold = false;
+    CHECK(probe().reads == 0);
+    CHECK(probe().asked > 0);              // it did ask, each frame
+    CHECK(timer.frames_read() == 0);
+    CHECK(timer.skipped_frames() == std::uint64_t(held - depth));
+    CHECK(timer.frames_begun() == std::uint64_t(held));
+    // Then the results come: the held frames are collected as they become available, later frames
+    // take slots again; nothing waits until the drain.
+    const int more = 2 * depth + int(rng.below(6));
+    for (int f = 0; f < more; ++f) frame();
+    CHECK(probe().waits == 0);
+    timer.drain();
+    glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &groups_after);
+    CHECK(groups_after == groups_before);   // skipped frames' passes open and close their groups too
+    check_frames(timer, a, b, calls_a, calls_b, std::uint64_t(held + more));
+    // The first `depth` frames were timed, the rest of the held ones were not.
+    const auto& numbers = timer.frame_numbers();
+    REQUIRE(numbers.size() >= std::size_t(depth));
+    for (int f = 0; f < depth; ++f) CHECK(numbers[std::size_t(f)] == std::uint64_t(f));
+    if (numbers.size() > std::size_t(depth)) CHECK(numbers[std::size_t(depth)] >= std::uint64_t(held));
+    // The report says how many went untimed.
+    const ranryu::profile::Report report = ranryu::profile::summarize(timer, {});
+    CHECK(report.frames_skipped == timer.skipped_frames());
+    CHECK_THAT(ranryu::profile::table(report), Catch::Contains(std::to_string(timer.skipped_frames()) + " frames not timed"));
     ranryu::test::require_no_gl_errors();
 }
 
