@@ -67,7 +67,8 @@ int validate(const Options& o) {
                   {"half_periods", r.half_periods}, {"decay_rate", r.decay_rate}, {"decay_theory", r.decay_theory},
                   {"moment", series}, {"steps", r.steps}, {"wall_seconds", r.seconds}});
     } else {
-        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
+        const validation::Relaxation relax = validation::hydrostatic_relaxation(scene);
+        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, relax, &progress);
         progress.finish();
         std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s after the relaxed start\n", r.height, r.spacing, r.particles);
         std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
@@ -79,7 +80,6 @@ int validate(const Options& o) {
                     r.floor_error, r.core_error, r.core_floor_error);
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
-        const validation::Relaxation relax = validation::hydrostatic_relaxation(scene);
         const double last_rms = r.relax_rms_speeds.empty() ? 0.0 : r.relax_rms_speeds.back();
         std::printf("relaxed start: %d frames at rest (%llu steps, %.1f s of wall time), last frame from rest: rms %.5f m/s, max %.4f m/s; bound rms %.5f m/s: %s\n",
                     r.relax_frames, static_cast<unsigned long long>(r.relax_steps), r.relax_seconds, last_rms, r.relax_max_speed,

@@ -194,7 +194,7 @@ Relaxation hydrostatic_relaxation(const scene::Scene& scene) {
 
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress) {
-    return hydrostatic(scene, shaders, settle_s, hydrostatic_relaxation(scene), progress);
+    return hydrostatic(scene, shaders, settle_s, Relaxation{}, progress);
 }
 
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,

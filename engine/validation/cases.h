@@ -58,9 +58,9 @@ struct Relaxation {
     int max_frames = 0;
     double rms_speed = 0.0;
 };
-// What hydrostatic() relaxes with unless told otherwise: at most 2 s of frames, and the bound
-// rms_speed = 0.01 g frame_dt of a frame begun at rest (an unbalanced acceleration of 1 % of g in
-// rms, docs/VALIDATION.md "The relaxed start"), computed from the scene by hydrostatic_relaxation().
+// The relaxation `ranryu validate hydrostatic` uses: at most 2 s of frames, and the bound rms_speed =
+// 0.01 g frame_dt of a frame begun at rest (an unbalanced acceleration of 1 % of g in rms,
+// docs/VALIDATION.md "The relaxed start").
 Relaxation hydrostatic_relaxation(const scene::Scene& scene);
 
 // A tank at rest after `settle_s` seconds from its (relaxed) start: pressure in layers one spacing
@@ -92,6 +92,7 @@ struct HydrostaticResult {
     bool relaxed = false;
     double relax_seconds = 0.0;
 };
+// Without a Relaxation: the lattice start (the sweep's rows, docs/SWEEP.md).
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress = nullptr);
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
