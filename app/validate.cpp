@@ -67,17 +67,23 @@ int validate(const Options& o) {
                   {"half_periods", r.half_periods}, {"decay_rate", r.decay_rate}, {"decay_theory", r.decay_theory},
                   {"moment", series}, {"steps", r.steps}, {"wall_seconds", r.seconds}});
     } else {
-        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
+        const validation::Relaxation relax = validation::hydrostatic_relaxation(scene);
+        const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, relax, &progress);
         progress.finish();
-        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s\n", r.height, r.spacing, r.particles);
+        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s after the relaxed start\n", r.height, r.spacing, r.particles);
         std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",
                     r.max_error, r.max_speed, r.rms_speed);
+        std::printf("rms speed averaged over the half second: %.4f m/s\n", r.mean_rms_speed);
         std::printf("floor layer: %.4f of rho0 g H; away from the side walls (a kernel support): interior %.4f, floor layer %.4f\n",
                     r.floor_error, r.core_error, r.core_floor_error);
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
+        const double last_rms = r.relax_rms_speeds.empty() ? 0.0 : r.relax_rms_speeds.back();
+        std::printf("relaxed start: %d frames at rest (%llu steps, %.1f s of wall time), last frame from rest: rms %.5f m/s, max %.4f m/s; bound rms %.5f m/s: %s\n",
+                    r.relax_frames, static_cast<unsigned long long>(r.relax_steps), r.relax_seconds, last_rms, r.relax_max_speed,
+                    relax.rms_speed, r.relaxed ? "reached" : "NOT reached");
         nlohmann::json layers = nlohmann::json::array();
         for (const auto& l : r.layers) layers.push_back({{"z", l.z}, {"pressure", l.pressure}, {"reference", l.reference}, {"particles", l.particles}});
         j.update({{"height", r.height},
@@ -89,8 +95,17 @@ int validate(const Options& o) {
                   {"core_floor_error_over_rho_g_H", r.core_floor_error},
                   {"max_speed", r.max_speed},
                   {"rms_speed", r.rms_speed},
+                  {"mean_rms_speed", r.mean_rms_speed},
                   {"steps", r.steps},
-                  {"wall_seconds", r.seconds}});
+                  {"wall_seconds", r.seconds},
+                  {"relaxation", {{"frames", r.relax_frames},
+                                  {"max_frames", relax.max_frames},
+                                  {"steps", r.relax_steps},
+                                  {"rms_speed_bound", relax.rms_speed},
+                                  {"rms_speeds", r.relax_rms_speeds},
+                                  {"last_max_speed", r.relax_max_speed},
+                                  {"reached", r.relaxed},
+                                  {"wall_seconds", r.relax_seconds}}}});
     }
     if (!o.json.empty()) profile::write_text_file(o.json, j.dump(2) + "\n", "--json " + o.json);
     return 0;

@@ -131,6 +131,27 @@ private:
     RunStats stats_;
 };
 
+// The rms and the largest speed of a velocity read-back (m/s).
+struct Speeds {
+    double rms = 0.0, max = 0.0;
+};
+Speeds speeds(const std::vector<glm::vec4>& v) {
+    Speeds out;
+    double v2 = 0.0;
+    for (const glm::vec4& u : v) {
+        const double speed = glm::length(glm::vec3(u));
+        v2 += speed * speed;
+        out.max = std::max(out.max, speed);
+    }
+    out.rms = std::sqrt(v2 / double(std::max<std::size_t>(v.size(), 1)));
+    return out;
+}
+
+// hydrostatic_relaxation(): at most this long of frames, and the bound on a frame's rms speed from
+// rest as a part of g frame_dt (cases.h, docs/VALIDATION.md "The relaxed start").
+constexpr double kRelaxSeconds = 2.0;
+constexpr double kRelaxAcceleration = 0.01;
+
 }  // namespace
 
 CompressionMeter::CompressionMeter(const shader::FileSource& shaders, std::size_t count, float rest_density, Consumer on_value)
@@ -206,15 +227,55 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     return r;
 }
 
+Relaxation hydrostatic_relaxation(const scene::Scene& scene) {
+    Relaxation relax;
+    relax.max_frames = int(std::ceil(kRelaxSeconds / scene.frame_dt));
+    relax.rms_speed = kRelaxAcceleration * double(glm::length(scene.gravity)) * scene.frame_dt;
+    return relax;
+}
+
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress) {
+    return hydrostatic(scene, shaders, settle_s, Relaxation{}, progress);
+}
+
+HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
+                              const Relaxation& relaxation, frame::Progress* progress) {
     if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("hydrostatic: the scene must be SPH with one block");
     HydrostaticResult r;
     r.height = scene.blocks.front().max.y - scene.tank_min.y;
     r.spacing = scene.spacing;
+    std::vector<glm::vec4> relaxed;   // the relaxed positions, empty for the lattice start
+    if (relaxation.max_frames > 0) {
+        // Relaxation's contract (cases.h): a frame from rest, its speeds read, the velocities zeroed.
+        const auto start = std::chrono::steady_clock::now();
+        frame::Pipeline settling = simulation_only(scene, shaders);
+        sim::Fluid& fluid = settling.simulation()->fluid();
+        fluid.set_record_sink([&](const gpu::StepState& s) { r.relax_steps += s.frame_substeps; });
+        if (progress) progress->expect(std::uint64_t(relaxation.max_frames));
+        std::vector<glm::vec4> x, v;
+        while (r.relax_frames < relaxation.max_frames) {
+            run(settling, 1, progress);
+            ++r.relax_frames;
+            x = fluid.positions().read<glm::vec4>(fluid.count());
+            v = fluid.velocities().read<glm::vec4>(fluid.count());
+            const Speeds now = speeds(v);
+            r.relax_rms_speeds.push_back(now.rms);
+            r.relax_max_speed = now.max;
+            // The first frame starts from the lattice, not from a relaxed state: it never ends it.
+            if (r.relax_frames > 1 && r.relax_rms_speeds.back() <= relaxation.rms_speed) {
+                r.relaxed = true;
+                break;
+            }
+            fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
+        }
+        relaxed = std::move(x);
+        r.relax_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
     frame::Pipeline pipeline = simulation_only(scene, shaders);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
+    if (!relaxed.empty()) fluid.upload_state(relaxed, std::vector<glm::vec4>(relaxed.size(), glm::vec4(0.0f)));
     StatsTally tally(scene, pipeline);
     tally.listen(fluid, r.steps);
     const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
@@ -241,6 +302,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         run(pipeline, 1, progress);
         x = fluid.positions().read<glm::vec4>(fluid.count());
         d = fluid.densities().read<glm::vec4>(fluid.count());
+        v = fluid.velocities().read<glm::vec4>(fluid.count());
+        r.mean_rms_speed += speeds(v).rms / average_frames;
         for (std::size_t i = 0; i < x.size(); ++i) {
             const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
             if (k < 0 || k >= layers) continue;
@@ -248,16 +311,11 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
             if (in_core(x[i])) core_sum[std::size_t(k)] += d[i].y, ++core_n[std::size_t(k)];
         }
     }
-    v = fluid.velocities().read<glm::vec4>(fluid.count());
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
-    double v2 = 0.0;
-    for (const glm::vec4& u : v) {
-        const double speed = glm::length(glm::vec3(u));
-        v2 += speed * speed;
-        r.max_speed = std::max(r.max_speed, speed);
-    }
-    r.rms_speed = std::sqrt(v2 / double(std::max<std::size_t>(v.size(), 1)));
+    const Speeds end = speeds(v);
+    r.max_speed = end.max;
+    r.rms_speed = end.rms;
     const double h = 2.0 * dx;
     for (int k = 0; k < layers; ++k) {
         if (!n[std::size_t(k)]) continue;

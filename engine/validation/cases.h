@@ -52,8 +52,25 @@ struct DamBreakResult {
 };
 DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr);
 
-// A tank at rest after `settle_s` seconds: pressure in layers one spacing thick, averaged over the
-// next half second, against rho0 g (H - z); and the spurious velocity at the end.
+// The tank's start relaxed before the case's clock starts (docs/VALIDATION.md "Tank at rest", "The
+// relaxed start"): the lattice the scene places is no equilibrium beside the walls. The block is run
+// with the scene's solver a frame at a time, its velocities set to zero after every frame, until a
+// frame begun at rest ends with an rms speed at or below `rms_speed` (m/s), or `max_frames` frames
+// have run (then the result says it was not reached). The measured run starts from the relaxed
+// positions at rest in a fresh pipeline: time 0, the solver's warm starts and records fresh.
+// max_frames = 0: the lattice start as it is.
+struct Relaxation {
+    int max_frames = 0;
+    double rms_speed = 0.0;
+};
+// The relaxation `ranryu validate hydrostatic` uses: at most 2 s of frames, and the bound rms_speed =
+// 0.01 g frame_dt of a frame begun at rest (an unbalanced acceleration of 1 % of g in rms,
+// docs/VALIDATION.md "The relaxed start").
+Relaxation hydrostatic_relaxation(const scene::Scene& scene);
+
+// A tank at rest after `settle_s` seconds from its (relaxed) start: pressure in layers one spacing
+// thick, averaged over the next half second, against rho0 g (H - z); and the spurious velocity at
+// the end.
 struct HydrostaticResult {
     double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H, dx, rho0 g H
     std::size_t particles = 0;
@@ -64,13 +81,27 @@ struct HydrostaticResult {
     // The same as max_error over the particles more than a kernel support from the side walls too (the
     // layers' core), and the floor layer's core: what the walls' boundary term does not reach.
     double core_error = 0.0, core_floor_error = 0.0;
-    double max_speed = 0.0, rms_speed = 0.0;
+    double max_speed = 0.0, rms_speed = 0.0;            // at the end of the run (m/s)
+    double mean_rms_speed = 0.0;                        // the rms speed averaged over the half second's frames
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
     RunStats stats;
+    // The relaxation before the run (none: relax_frames = 0): frames and solver steps it ran, each
+    // frame's rms speed before its velocities were set to zero (the last is the start's residual),
+    // that frame's largest speed, whether the bound was reached, and its wall time. The run's steps,
+    // seconds and stats above do not include it.
+    int relax_frames = 0;
+    std::uint64_t relax_steps = 0;
+    std::vector<double> relax_rms_speeds;
+    double relax_max_speed = 0.0;
+    bool relaxed = false;
+    double relax_seconds = 0.0;
 };
+// Without a Relaxation: the lattice start (the sweep's rows, docs/SWEEP.md).
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress = nullptr);
+HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
+                              const Relaxation& relaxation, frame::Progress* progress = nullptr);
 
 // A standing wave (docs/VALIDATION.md "Standing wave"): water of depth H in a tank of length L, its
 // surface raised to H + A cos(k x), k = pi/L, released at rest. Linear theory: the first mode's period
