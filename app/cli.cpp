@@ -24,12 +24,12 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug"}},
     {"scenes", {"--schema", "--markdown"}},
-    {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug"}},
+    {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug", "--relax"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--seconds", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
-const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--schema", "--markdown",
+const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--relax", "--schema", "--markdown",
                                       "--overlay"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
@@ -177,6 +177,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--no-png") o.no_png = true;
         else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--quick") o.quick = true;
+        else if (opt == "--relax") o.relax = true;
         else if (opt == "--list") o.list = true;
         else if (opt == "--cases") {
             // The validation cases, and the scene cases: "scene:NAME" of a bundled SPH scene, or
@@ -233,6 +234,7 @@ Options parse(const std::vector<std::string>& args) {
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave)");
+    if (o.relax && o.case_name != "hydrostatic") throw InputError("--relax: only the hydrostatic case relaxes its start");
     if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
     if (o.seconds && std::none_of(o.cases.begin(), o.cases.end(), validation::is_scene_case))
         throw InputError("--seconds: only the scene cases (--cases scene:NAME or scenes) run for a given time; the validation cases "
@@ -380,6 +382,8 @@ Run a case headless and print the simulation next to its reference, with the err
   --spacing DX        particle spacing in metres (default: the scene's)
   --solver NAME       dfsph | wcsph | pbf (default: the scene's)
   --json FILE         also write the series and errors as JSON
+  --relax             hydrostatic: first relax the block at rest (velocities zeroed after each frame,
+                      up to 2 s) and start the clock from there (docs/VALIDATION.md "The relaxed start")
   --quiet             no progress line on stderr
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages

@@ -49,6 +49,7 @@ struct Options {
     std::uint32_t seed = 1;       // --seed S: the noise tiles' std::mt19937 seed
     // sweep (app/sweep.cpp): the grid of runs, empty for the defaults; --out is its folder.
     bool quick = false;                    // --quick: the small preset
+    bool relax = false;                    // validate hydrostatic --relax: the relaxed start
     std::vector<std::string> cases, solvers;   // cases: validation case names, "scene:NAME", "scenes" expanded
     std::optional<float> seconds;          // --seconds S: the scene cases' simulated time (default 10)
     std::vector<float> spacings, factors;

@@ -67,10 +67,11 @@ int validate(const Options& o) {
                   {"half_periods", r.half_periods}, {"decay_rate", r.decay_rate}, {"decay_theory", r.decay_theory},
                   {"moment", series}, {"steps", r.steps}, {"wall_seconds", r.seconds}});
     } else {
-        const validation::Relaxation relax = validation::hydrostatic_relaxation(scene);
+        const validation::Relaxation relax = o.relax ? validation::hydrostatic_relaxation(scene) : validation::Relaxation{};
         const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, relax, &progress);
         progress.finish();
-        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s after the relaxed start\n", r.height, r.spacing, r.particles);
+        std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over 1-1.5 s%s\n", r.height, r.spacing, r.particles,
+                    o.relax ? " after the relaxed start" : " from the lattice");
         std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
         for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",
@@ -81,7 +82,8 @@ int validate(const Options& o) {
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
         const double last_rms = r.relax_rms_speeds.empty() ? 0.0 : r.relax_rms_speeds.back();
-        std::printf("relaxed start: %d frames at rest (%llu steps, %.1f s of wall time), last frame from rest: rms %.5f m/s, max %.4f m/s; bound rms %.5f m/s: %s\n",
+        if (o.relax)
+            std::printf("relaxed start: %d frames at rest (%llu steps, %.1f s of wall time), last frame from rest: rms %.5f m/s, max %.4f m/s; bound rms %.5f m/s: %s\n",
                     r.relax_frames, static_cast<unsigned long long>(r.relax_steps), r.relax_seconds, last_rms, r.relax_max_speed,
                     relax.rms_speed, r.relaxed ? "reached" : "NOT reached");
         nlohmann::json layers = nlohmann::json::array();

@@ -262,6 +262,7 @@ TEST_CASE("fuzz: malformed command lines exit 2 naming the option, for every com
         {{"validate", "dam-break", "--spacing", "0"}, {"--spacing 0"}},
         {{"validate", "dam-break", "--solver", ""}, {"--solver", "needs a value"}},
         {{"validate", "dam-break", "--frames", "1"}, {"unknown option --frames"}},
+        {{"validate", "dam-break", "--relax"}, {"--relax", "only the hydrostatic case"}},
         {{"export-field"}, {"--out"}},
         {{"export-field", "--out", "f.npy", "--size", "7"}, {"--size 7"}},
         {{"export-field", "--out", "f.npy", "--size", "257"}, {"--size 257"}},
