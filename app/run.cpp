@@ -18,7 +18,6 @@
 #include "frame/pipeline.h"
 #include "input/script.h"
 #include "record/particle_files.h"
-#include "record/png.h"
 #include "record/recorder.h"
 #include "sim/boundary.h"
 #include "sim/fluid.h"

@@ -81,11 +81,12 @@ int validate(const Options& o) {
                     r.floor_error, r.core_error, r.core_floor_error);
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
-        const double last_rms = r.relax_rms_speeds.empty() ? 0.0 : r.relax_rms_speeds.back();
-        if (o.relax)
+        if (o.relax) {
+            const double last_rms = r.relax_rms_speeds.empty() ? 0.0 : r.relax_rms_speeds.back();
             std::printf("relaxed start: %d frames at rest (%llu steps, %.1f s of wall time), last frame from rest: rms %.5f m/s, max %.4f m/s; bound rms %.5f m/s: %s\n",
                     r.relax_frames, static_cast<unsigned long long>(r.relax_steps), r.relax_seconds, last_rms, r.relax_max_speed,
                     relax.rms_speed, r.relaxed ? "reached" : "NOT reached");
+        }
         nlohmann::json layers = nlohmann::json::array();
         for (const auto& l : r.layers) layers.push_back({{"z", l.z}, {"pressure", l.pressure}, {"reference", l.reference}, {"particles", l.particles}});
         j.update({{"height", r.height},
