@@ -62,10 +62,10 @@ void Buffer::read_bytes(void* dst, std::size_t bytes, std::size_t offset) const 
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
 }
 
-void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset) {
+void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset, std::size_t to_offset) {
     glBindBuffer(GL_COPY_READ_BUFFER, from.id());
     glBindBuffer(GL_COPY_WRITE_BUFFER, to.id());
-    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(from_offset), 0, GLsizeiptr(bytes));
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(from_offset), GLintptr(to_offset), GLsizeiptr(bytes));
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }

@@ -122,10 +122,10 @@ private:
     TrackedBytes tracked_;
 };
 
-// Queues a GPU-side copy of `bytes` from `from` at `from_offset` to the start of `to`
+// Queues a GPU-side copy of `bytes` from `from` at `from_offset` to `to` at `to_offset`
 // (glCopyBufferSubData through the copy binding points: GL 4.3 has no direct state access). Issues no
 // barrier: a caller that copies what a shader wrote calls glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first.
-void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset = 0);
+void copy_buffer(const Buffer& from, const Buffer& to, std::size_t bytes, std::size_t from_offset = 0, std::size_t to_offset = 0);
 
 // An immutable-storage 2D texture (glTexStorage2D).
 class Texture2D {

@@ -1,5 +1,7 @@
 #include "gl/readback.h"
 
+#include "core/error.h"
+
 #include <string>
 #include <utility>
 
@@ -13,10 +15,23 @@ AsyncReadback::AsyncReadback(std::size_t record_bytes, int depth, std::string_vi
 }
 
 void AsyncReadback::copy(const Buffer& src, std::size_t offset, std::uint64_t tag) {
+    const Part whole{&src, offset, bytes_};
+    copy(std::span<const Part>(&whole, 1), tag);
+}
+
+void AsyncReadback::copy(std::span<const Part> parts, std::uint64_t tag) {
+    std::size_t total = 0;
+    for (const Part& p : parts) total += p.bytes;
+    if (total != bytes_)
+        throw Error("AsyncReadback: a record of " + std::to_string(total) + " bytes where " + std::to_string(bytes_) + " were set");
     auto retire = [this](FenceRing<Buffer>::Slot& s) { hand_over(s); };
     const Buffer& dst = ring_.acquire(retire).data;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    copy_buffer(src, dst, bytes_, offset);
+    std::size_t at = 0;
+    for (const Part& p : parts) {
+        copy_buffer(*p.src, dst, p.bytes, p.offset, at);
+        at += p.bytes;
+    }
     ring_.submit(tag, retire);
 }
 

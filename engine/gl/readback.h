@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "gl/fence_ring.h"
@@ -22,6 +23,13 @@ public:
 
     // Queues a copy of [offset, offset + record_bytes) of `src`, tagged with `tag`.
     void copy(const Buffer& src, std::size_t offset, std::uint64_t tag);
+    // One part of a record gathered from several buffers: `bytes` from `offset` of `src`.
+    struct Part {
+        const Buffer* src;
+        std::size_t offset, bytes;
+    };
+    // Queues one record made of `parts`, one after another; their bytes must sum to record_bytes.
+    void copy(std::span<const Part> parts, std::uint64_t tag);
     // Hands over every finished record; returns how many.
     std::size_t poll();
     // Waits for every queued record and hands them over. Shutdown and tests only.

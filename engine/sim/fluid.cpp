@@ -316,6 +316,14 @@ void Fluid::upload_state(const std::vector<glm::vec4>& x, const std::vector<glm:
     masks_current_ = false;
 }
 
+void Fluid::stop_particles() {
+    const glm::vec4 zero(0.0f);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // after the shaders that wrote them
+    glBindBuffer(GL_COPY_WRITE_BUFFER, velocity_[current_].id());
+    glClearBufferData(GL_COPY_WRITE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, &zero);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
 std::string Fluid::neighbour_defines() const { return defines_; }
 
 shader::StorageSet Fluid::bind_state() {

@@ -180,6 +180,9 @@ public:
     // Replaces the fluid state (count() positions and velocities, any order); the next
     // rebuild_grid() sorts it into cell order.
     void upload_state(const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v);
+    // Sets every velocity (the whole vec4) to zero on the GPU, after the commands issued so far: a
+    // validation case's relaxation (validation/cases.h) between frames from rest.
+    void stop_particles();
 
 private:
     void on_record(const void* bytes);

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <numbers>
+#include <span>
 #include <sstream>
 
 #include "core/error.h"
@@ -13,6 +15,7 @@
 #include "frame/progress.h"
 #include "frame/stop.h"
 #include "sim/simulation.h"
+#include "validation/snapshots.h"
 
 namespace ranryu::validation {
 namespace {
@@ -69,6 +72,23 @@ void run_with(frame::Pipeline& pipeline, int frames, const frame::FrameHooks& ho
     pipeline.drain();
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
     if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
+}
+
+// Runs `frames` frames as run_with() does, calling `after` after each frame (after the progress line's
+// own hook), and before each frame asking `keep_going` too when there is one: the frame loop of a case
+// that observes every frame without stopping it (ParticleSnapshots).
+void run_observed(frame::Pipeline& pipeline, int frames, frame::Progress* progress, std::function<void(frame::Pipeline&)> after,
+                  std::function<bool(const frame::Pipeline&)> keep_going = {}) {
+    frame::FrameHooks hooks = progress ? progress->hooks() : frame::FrameHooks{};
+    hooks.after = [first = std::move(hooks.after), after = std::move(after)](frame::Pipeline& p) {
+        if (first) first(p);
+        after(p);
+    };
+    if (keep_going)
+        hooks.keep_going = [first = std::move(hooks.keep_going), keep_going = std::move(keep_going)](const frame::Pipeline& p) {
+            return (!first || first(p)) && keep_going(p);
+        };
+    run_with(pipeline, frames, hooks);
 }
 
 // E of RunStats over the fluid's particles, read back (a validation run, not the frame path).
@@ -135,7 +155,7 @@ private:
 struct Speeds {
     double rms = 0.0, max = 0.0;
 };
-Speeds speeds(const std::vector<glm::vec4>& v) {
+Speeds speeds(std::span<const glm::vec4> v) {
     Speeds out;
     double v2 = 0.0;
     for (const glm::vec4& u : v) {
@@ -247,29 +267,31 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     r.spacing = scene.spacing;
     std::vector<glm::vec4> relaxed;   // the relaxed positions, empty for the lattice start
     if (relaxation.max_frames > 0) {
-        // Relaxation's contract (cases.h): a frame from rest, its speeds read, the velocities zeroed.
+        // Relaxation's contract (cases.h): each frame from rest, its speeds recorded, its velocities
+        // zeroed; the speeds come back frames late, so the frames stop a few after the one that met the bound.
         const auto start = std::chrono::steady_clock::now();
         frame::Pipeline settling = simulation_only(scene, shaders);
         sim::Fluid& fluid = settling.simulation()->fluid();
         fluid.set_record_sink([&](const gpu::StepState& s) { r.relax_steps += s.frame_substeps; });
         if (progress) progress->expect(std::uint64_t(relaxation.max_frames));
-        std::vector<glm::vec4> x, v;
-        while (r.relax_frames < relaxation.max_frames) {
-            run(settling, 1, progress);
-            ++r.relax_frames;
-            x = fluid.positions().read<glm::vec4>(fluid.count());
-            v = fluid.velocities().read<glm::vec4>(fluid.count());
-            const Speeds now = speeds(v);
+        r.relax_rms_speeds.reserve(std::size_t(relaxation.max_frames));
+        ParticleSnapshots speeds_of(fluid, ParticleSnapshots::kVelocities, [&](const ParticleSnapshots::View& s) {
+            const Speeds now = speeds(s.velocities);
             r.relax_rms_speeds.push_back(now.rms);
             r.relax_max_speed = now.max;
             // The first frame starts from the lattice, not from a relaxed state: it never ends it.
-            if (r.relax_frames > 1 && r.relax_rms_speeds.back() <= relaxation.rms_speed) {
-                r.relaxed = true;
-                break;
-            }
-            fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
-        }
-        relaxed = std::move(x);
+            if (s.tag > 1 && now.rms <= relaxation.rms_speed) r.relaxed = true;
+        });
+        run_observed(
+            settling, relaxation.max_frames, progress,
+            [&](frame::Pipeline&) {
+                speeds_of.capture(std::uint64_t(++r.relax_frames));
+                fluid.stop_particles();
+                speeds_of.poll();
+            },
+            [&](const frame::Pipeline&) { return !r.relaxed; });
+        speeds_of.drain();
+        relaxed = fluid.positions().read<glm::vec4>(fluid.count());   // once, at rest after the last frame
         r.relax_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     frame::Pipeline pipeline = simulation_only(scene, shaders);
@@ -285,8 +307,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     run(pipeline, settle_frames, progress);
 
     // The column starts uncompressed and rings acoustically (period 4 H / c); a snapshot lands at
-    // some phase of that. So the pressure profile is averaged over the next half second, read back
-    // once a frame: a validation run, not the frame path.
+    // some phase of that. So the pressure profile is averaged over the next half second, each frame's
+    // state read back asynchronously (ParticleSnapshots): the frames run without a wait.
     const double rho0 = scene.sph.rest_density, g = glm::length(scene.gravity), dx = scene.spacing;
     r.reference_scale = rho0 * g * r.height;
     const int layers = int(std::ceil(r.height / dx)) + 2;
@@ -297,23 +319,27 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
         return p.x - scene.tank_min.x > support && scene.tank_max.x - p.x > support && p.z - scene.tank_min.z > support &&
                scene.tank_max.z - p.z > support;
     };
-    std::vector<glm::vec4> x, v, d;
-    for (int f = 0; f < average_frames; ++f) {
-        run(pipeline, 1, progress);
-        x = fluid.positions().read<glm::vec4>(fluid.count());
-        d = fluid.densities().read<glm::vec4>(fluid.count());
-        v = fluid.velocities().read<glm::vec4>(fluid.count());
-        r.mean_rms_speed += speeds(v).rms / average_frames;
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            const int k = int(std::floor((double(x[i].y) - scene.tank_min.y) / dx));
-            if (k < 0 || k >= layers) continue;
-            sum[std::size_t(k)] += d[i].y, ++n[std::size_t(k)];
-            if (in_core(x[i])) core_sum[std::size_t(k)] += d[i].y, ++core_n[std::size_t(k)];
-        }
-    }
+    Speeds end;   // of the last frame
+    ParticleSnapshots state(fluid, ParticleSnapshots::kPositions | ParticleSnapshots::kDensities | ParticleSnapshots::kVelocities,
+                            [&](const ParticleSnapshots::View& s) {
+                                end = speeds(s.velocities);
+                                r.mean_rms_speed += end.rms / average_frames;
+                                for (std::size_t i = 0; i < s.positions.size(); ++i) {
+                                    const glm::vec4& x = s.positions[i];
+                                    const int k = int(std::floor((double(x.y) - scene.tank_min.y) / dx));
+                                    if (k < 0 || k >= layers) continue;
+                                    sum[std::size_t(k)] += s.densities[i].y, ++n[std::size_t(k)];
+                                    if (in_core(x)) core_sum[std::size_t(k)] += s.densities[i].y, ++core_n[std::size_t(k)];
+                                }
+                            });
+    std::uint64_t captured = 0;
+    run_observed(pipeline, average_frames, progress, [&](frame::Pipeline&) {
+        state.capture(++captured);
+        state.poll();
+    });
+    state.drain();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
-    const Speeds end = speeds(v);
     r.max_speed = end.max;
     r.rms_speed = end.rms;
     const double h = 2.0 * dx;
@@ -477,20 +503,23 @@ StandingWaveResult standing_wave(const scene::Scene& given, const shader::FileSo
     fluid.upload_state(x, std::vector<glm::vec4>(x.size(), glm::vec4(0.0f)));
     StatsTally tally(scene, pipeline);
     tally.listen(fluid, r.steps);
-    auto moment = [&](double t) {
-        const std::vector<glm::vec4> p = fluid.positions().read<glm::vec4>(fluid.count());
-        double m = 0.0;
-        for (const glm::vec4& q : p) m += (double(q.y) - scene.tank_min.y) * std::cos(k * (double(q.x) - scene.tank_min.x));
-        r.moment.emplace_back(t, m / double(std::max<std::size_t>(p.size(), 1)));
-    };
     const int frames = int(std::ceil(3.0 * r.period_theory / scene.frame_dt));
+    r.moment.reserve(std::size_t(frames) + 1);
+    // m(t) of each frame's positions, read back asynchronously: the frames run without a wait.
+    ParticleSnapshots positions(fluid, ParticleSnapshots::kPositions, [&](const ParticleSnapshots::View& s) {
+        double m = 0.0;
+        for (const glm::vec4& q : s.positions) m += (double(q.y) - scene.tank_min.y) * std::cos(k * (double(q.x) - scene.tank_min.x));
+        r.moment.emplace_back(double(s.tag) * scene.frame_dt, m / double(std::max<std::size_t>(s.positions.size(), 1)));
+    });
     if (progress) progress->expect(std::uint64_t(frames));
     const auto start = std::chrono::steady_clock::now();
-    moment(0.0);
-    for (int f = 0; f < frames; ++f) {
-        run(pipeline, 1, progress);
-        moment(double(f + 1) * scene.frame_dt);
-    }
+    std::uint64_t captured = 0;
+    positions.capture(captured);   // the start, t = 0
+    run_observed(pipeline, frames, progress, [&](frame::Pipeline&) {
+        positions.capture(++captured);
+        positions.poll();
+    });
+    positions.drain();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
 

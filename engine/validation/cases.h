@@ -56,7 +56,8 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
 // relaxed start"): the lattice the scene places is no equilibrium beside the walls. The block is run
 // with the scene's solver a frame at a time, its velocities set to zero after every frame, until a
 // frame begun at rest ends with an rms speed at or below `rms_speed` (m/s), or `max_frames` frames
-// have run (then the result says it was not reached). The measured run starts from the relaxed
+// have run (then the result says it was not reached). The speeds come back asynchronously, frames late
+// (ParticleSnapshots), so a few more frames from rest run after the one that met the bound. The measured run starts from the relaxed
 // positions at rest in a fresh pipeline: time 0, the solver's warm starts and records fresh.
 // max_frames = 0: the lattice start as it is.
 struct Relaxation {
@@ -107,8 +108,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
 // surface raised to H + A cos(k x), k = pi/L, released at rest. Linear theory: the first mode's period
 // T = 2 pi / sqrt(g k tanh(k H)), and viscosity damps its amplitude as exp(-2 nu k^2 t) in the bulk
 // (the walls' boundary layers add more). The mode's amplitude is read as the fluid's first cosine
-// moment m(t) = (1/N) sum_i y_i cos(k x_i) (read back once a frame: a validation run, not the frame
-// path); its period from the times m crosses its mean, its decay from the ratio of its swings.
+// moment m(t) = (1/N) sum_i y_i cos(k x_i) of every frame's positions, read back asynchronously
+// (ParticleSnapshots); its period from the times m crosses its mean, its decay from the ratio of its swings.
 // `scene()` builds the case's scene (tank 0.4 x 0.3 x 0.04 m, H = 0.1 m, A = 0.01 m, spacing 0.01 m).
 struct StandingWaveResult {
     double length = 0.0, depth = 0.0, amplitude = 0.0, wavenumber = 0.0, spacing = 0.0;
