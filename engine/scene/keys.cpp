@@ -127,6 +127,8 @@ std::vector<Key> make_keys() {
         number("sph.divergence_warm_start", "", h.divergence_warm_start, 0.0, 1.0,
                "DFSPH: the divergence solve's warm-start weight w (docs/DFSPH.md (D6))."),
         number("sph.relaxation", "", h.relaxation, 0.05, 1.0, "DFSPH: the relaxed Jacobi's ω (docs/DFSPH.md (D6))."),
+        number("sph.chebyshev", "", h.chebyshev, 0.0, 0.999,
+               "DFSPH: ρ of the density solve's Chebyshev acceleration (docs/DFSPH.md (D10)), the spectral radius it assumes of the relaxed Jacobi iteration, e.g. 0.95; 0: plain relaxed Jacobi."),
         number("sph.boundary_viscosity", "m²/s", h.boundary_viscosity, 0.0, 10.0,
                "DFSPH: the walls' viscosity ν_b (docs/DFSPH.md (D7)); 0: free-slip walls."),
         string("sph.neighbour_keys", h.morton ? "morton" : "linear", {"linear", "morton"}, "The neighbour grid's cell order."),

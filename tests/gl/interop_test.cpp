@@ -157,7 +157,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.groups", {offsetof(gpu::DfsphParams, groups), GL_UNSIGNED_INT}},
         {"dfsph.warm_start_divergence", {offsetof(gpu::DfsphParams, warm_start_divergence), GL_FLOAT}},
         {"dfsph.boundary_relaxation", {offsetof(gpu::DfsphParams, boundary_relaxation), GL_FLOAT}},
-        {"dfsph.pad1", {offsetof(gpu::DfsphParams, pad1), GL_UNSIGNED_INT}},
+        {"dfsph.chebyshev", {offsetof(gpu::DfsphParams, chebyshev), GL_FLOAT}},
         {"dfsph.pad2", {offsetof(gpu::DfsphParams, pad2), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
@@ -435,7 +435,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.groups = d.u();
     dp.warm_start_divergence = d.f();
     dp.boundary_relaxation = d.f();
-    for (std::uint32_t* u : {&dp.pad1, &dp.pad2}) *u = d.u();
+    dp.chebyshev = d.f();
+    dp.pad2 = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -487,7 +488,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.min_iterations); expect.put(dp.min_divergence_iterations); expect.put(dp.issued);
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
-    expect.put(dp.boundary_relaxation); expect.put(dp.pad1); expect.put(dp.pad2);
+    expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.pad2);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve);

@@ -107,7 +107,14 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     const int hi = which == Solve::density ? s.max_iterations : s.max_divergence_iterations;
     const double eta = which == Solve::density ? s.eta : s.eta_divergence;
     // (D6): relaxed Jacobi on κ ≥ 0; the error is the residual of the κ the iteration started from.
+    // (D10): the density solve's iteration k ≥ 2 takes κ ← max(w_k (J − κ^(k−1)) + κ^(k−1), 0).
+    const bool chebyshev = which == Solve::density && s.chebyshev > 0.0;
+    std::vector<double> previous(n, 0.0);
+    double weight = 1.0;
     while (r.iterations < hi) {
+        const double rho2 = s.chebyshev * s.chebyshev;
+        if (r.iterations == 2) weight = 2.0 / (2.0 - rho2);
+        else if (r.iterations > 2) weight = 4.0 / (4.0 - rho2 * weight);
         const std::vector<dvec3> a = pressure_accelerations(x, kappa, boundary, psi, params, s);
         double error = 0.0;
         for (size_t i = 0; i < n; ++i) {
@@ -118,7 +125,10 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
             change *= dt * dt;
             const double residual = change - r.source[i];
             const double start = r.iterations == 0 && drop[i] ? 0.0 : kappa[i];
-            kappa[i] = std::max(start + s.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            double next = std::max(start + s.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            if (chebyshev && r.iterations >= 2) next = std::max(weight * (next - previous[i]) + previous[i], 0.0);
+            previous[i] = start;
+            kappa[i] = next;
             error += std::max(residual, 0.0) / rho0;
         }
         ++r.iterations;

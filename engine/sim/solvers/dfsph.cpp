@@ -80,6 +80,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.eta = scene.sph.max_density_error;
     params_.eta_divergence = scene.sph.max_divergence_error;
     params_.relaxation = scene.sph.relaxation;
+    params_.chebyshev = scene.sph.chebyshev;
     params_.warm_start = scene.sph.warm_start;
     params_.warm_start_divergence = scene.sph.divergence_warm_start;
     params_.boundary_relaxation = scene.sph.boundary_relaxation;
@@ -107,6 +108,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     const std::vector<float> no_pressure(n + 2 * nb, 0.0f);
     kappa_ = gl::Buffer(no_pressure.size() * sizeof(float), GL_DYNAMIC_COPY, no_pressure.data(), "dfsph.kappa");
     pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+    kappa_previous_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
         if (prepare_rows_.local_size()[0] != 128 || correct_rows_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
@@ -121,9 +123,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
 }
 
 std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows) {
-    const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_ and pressure_accel_
+    const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE +
-                             n * (sizeof(float) + sizeof(glm::vec4)) + Fluid::carried_bytes(count, kWarmWords);
+                             n * (2 * sizeof(float) + sizeof(glm::vec4)) + Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_; rows_state_
     return base + boundary * (2 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
@@ -166,7 +168,7 @@ void Dfsph::begin_frame(Fluid& fluid) {
 shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_DFSPH);
     shader::StorageSet set = fluid.bind_state();
-    set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_);
+    set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_).add("KappaPrevious", kappa_previous_);
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
     if (rows_)
         set.add("BoundaryMark", boundary_mark_)

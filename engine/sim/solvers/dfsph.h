@@ -97,7 +97,7 @@ private:
     std::uint64_t seen_frame_ = ~std::uint64_t(0);
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
-    gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_;
+    gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
     // (D9), per boundary particle: the step's mark, list entry and row; the rows' BoundaryRowsState.
     gl::Buffer boundary_mark_, boundary_list_, boundary_row_, rows_state_;
     Fluid& fluid_;

@@ -2,7 +2,11 @@
 // A Jacobi iteration's second half (docs/DFSPH.md (D6)): the density change the pressure accelerations
 // make over the step,
 //     delta_i = dt^2 [Σ_j m (a_i − a_j)·gradW_ij + Σ_b psi_b a_i·gradW_ib],
-// the residual r_i = delta_i − s_i, and kappa_i ← max(kappa_i + omega r_i factor_i / dt^2, 0). In the
+// the residual r_i = delta_i − s_i, and the relaxed Jacobi update J_i = max(kappa_i + omega r_i factor_i / dt^2, 0);
+// the density solve accelerates it (D10): from its iteration k = kChebyshevStart on,
+//     kappa_i ← max(w_k (J_i − kappa_i^(k−1)) + kappa_i^(k−1), 0),
+// w_k the Chebyshev weight of dfsph.chebyshev (chebyshev_weight, dfsph.glsl), kappa^(k−1) the kappa the
+// iteration before started from (KappaPrevious); otherwise kappa_i ← J_i. In the
 // solve's first iteration a particle that separates from the fluid (warm_start_drop(), dfsph.glsl)
 // drops its warm start first: the last step's pressure is a guess only where the fluid still holds
 // together, and a stale one would throw a splash particle away as if it were still compressed.
@@ -21,6 +25,7 @@ layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) buffer Kappa { float kappa[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 layout(std430) coherent buffer Solve { SolveState solve; };
+layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1)
 
 #include "../fluid/neighbours.glsl"
 
@@ -63,8 +68,15 @@ void main() {
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
         float residual = dt2 * change_ - own.w;
-        float kappa_i = solve.iterations == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
-        kappa[i] = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
+        uint k = solve.iterations;
+        float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
+        float next = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
+        if (solve.solve == 0u) {   // (D10), the density solve only
+            float w = chebyshev_weight(k), before = kappa_previous[i];
+            kappa_previous[i] = kappa_i;
+            if (k >= kChebyshevStart && dfsph.chebyshev > 0.0) next = max(w * (next - before) + before, 0.0);
+        }
+        kappa[i] = next;
         error = clamp(residual / sph.rest_density, 0.0, 1.0);
     }
     wg_error_[l] = error;

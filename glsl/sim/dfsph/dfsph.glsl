@@ -2,6 +2,7 @@
 // solver's constants, and its per-particle arrays, which each pass declares as it uses them:
 //     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags)
 //     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
+//     KappaPrevious   float: the kappa_i the density solve's previous iteration started from (D10)
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
 //                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
@@ -14,6 +15,16 @@ layout(std140, binding = RANRYU_UBO_DFSPH) uniform DfsphBlock { DfsphParams dfsp
 
 // 2(d + 2) of (D7), d = 3.
 const float kViscosityFactor = 10.0;
+
+// (D10): the density solve's Chebyshev acceleration starts at its iteration kChebyshevStart (counted
+// from 0), and iteration k ≥ kChebyshevStart takes the weight w_k: w = 2/(2 − rho²) at the first, then
+// w ← 4/(4 − rho² w), rho = dfsph.chebyshev (Wang 2015). A loop of at most k scalar steps per call.
+const uint kChebyshevStart = 2u;
+float chebyshev_weight(uint k) {
+    float r2 = dfsph.chebyshev * dfsph.chebyshev, w = 2.0 / (2.0 - r2);
+    for (uint m = kChebyshevStart; m < k; ++m) w = 4.0 / (4.0 - r2 * w);
+    return w;
+}
 
 // A particle whose predicted density change leaves it this far below rho0 (or that is deficient in
 // neighbours) starts its solve from no pressure instead of the last step's (D6): 1 % of rho0 is
