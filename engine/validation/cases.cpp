@@ -263,7 +263,13 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
                               const Relaxation& relaxation, frame::Progress* progress) {
     if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("hydrostatic: the scene must be SPH with one block");
     HydrostaticResult r;
-    r.height = scene.blocks.front().max.y - scene.tank_min.y;
+    // H is the depth of the lattice that fills the block, whole layers of dx (the top layer's centre
+    // plus half a spacing), so the reference and the fluid have one depth: a block height that is not
+    // a whole number of spacings (0.25 m at 0.02 m: 12 layers, 0.24 m) would put the reference half a
+    // layer's weight above the column.
+    double top = scene.tank_min.y;
+    for (const glm::vec4& x : scene.initial_positions()) top = std::max(top, double(x.y) + 0.5 * scene.spacing);
+    r.height = top - scene.tank_min.y;
     r.spacing = scene.spacing;
     std::vector<glm::vec4> relaxed;   // the relaxed positions, empty for the lattice start
     if (relaxation.max_frames > 0) {

@@ -73,7 +73,7 @@ Relaxation hydrostatic_relaxation(const scene::Scene& scene);
 // thick, averaged over the next half second, against rho0 g (H - z); and the spurious velocity at
 // the end.
 struct HydrostaticResult {
-    double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H, dx, rho0 g H
+    double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H (the lattice's depth, whole layers), dx, rho0 g H
     std::size_t particles = 0;
     struct Layer { double z, pressure, reference; int particles; };
     std::vector<Layer> layers;

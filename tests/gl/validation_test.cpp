@@ -90,9 +90,10 @@ TEST_CASE("validate: WCSPH tank at rest follows rho0 g (H - z) in its interior",
     for (std::size_t k = 1; k + 2 < r.layers.size(); ++k)
         CHECK(r.layers[k].pressure >= r.layers[k + 1].pressure - 1000.0 * g * r.spacing);
     // Interior against rho0 g (H - z), averaged over half a second of the acoustic ringing: WCSPH at
-    // 12 layers carries an offset of a few layers' weight; bound 0.2 rho0 g H (2.5 layers of 12).
-    // Measured: 0.13 on llvmpipe and on the H100.
-    CHECK(r.max_error <= 0.2);
+    // 12 layers carries an offset of a few layers' weight; bound 0.25 rho0 g H (3 layers of 12).
+    // Measured on llvmpipe: 0.21 against the lattice's depth H = 0.24 m (cases.h; 0.13 on llvmpipe
+    // and on the H100 against the block's 0.25 m, half a layer above the fluid).
+    CHECK(r.max_error <= 0.25);
     // Spurious velocity: the column starts uncompressed and rings acoustically with a velocity
     // amplitude of about g H / c (the compression rho0 g H / (rho0 c^2) over a period of 4 H / c);
     // nu = 1e-4 m^2/s barely damps it in a second. Bound rms <= 1.5 g H / c, max <= 4 g H / c
@@ -109,7 +110,8 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
     // interior 0.21 and 0.15 of rho0 g H, floor layer 1.09 and 1.00, spurious rms speed 0.11 and 0.08
     // m/s, with Akinci's boundary term (the default), whose floor layer read about twice hydrostatic.
     // With the boundary rows of docs/DFSPH.md (D9), switched on here, the floor layer carries what a
-    // fluid layer would: measured 0.036 of rho0 g H at 0.025 m (interior 0.022) on llvmpipe. Bound: 0.15, a tenth
+    // fluid layer would: measured 0.031 of rho0 g H at 0.025 m (interior 0.011) on llvmpipe, with the
+    // rows' hydrostatic start of (D9). Bound: 0.15, a tenth
     // of Akinci's, for the floor layer. Issue 11 asks for 1 % and 2 %: not met by the interior; these
     // bounds guard what there is and that the error does not grow as dx shrinks.
     const auto& shaders = shader::FileSource::embedded();
@@ -145,11 +147,13 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
 
 TEST_CASE("validate: DFSPH tank with the boundary rows from a relaxed start", "[validation]") {
     test::context();
-    // cases.h Relaxation: frames from rest, velocities zeroed after each, here for 1 s at 0.025 m (480
-    // particles). The first frame reads the lattice's rearrangement beside the walls; later frames
-    // from rest read what the solver itself sets moving. Measured on llvmpipe: 0.083 m/s rms after
-    // the first frame, 0.0136 after the 60th (6x less), and the bound of hydrostatic_relaxation(),
-    // 1 % of g frame_dt = 0.0016 m/s, not reached (0.008-0.013 from the 60th frame to the 180th).
+    // cases.h Relaxation: frames from rest, velocities zeroed after each, here for at most 1 s at
+    // 0.025 m (480 particles), until a frame from rest ends within the bound of
+    // hydrostatic_relaxation(), 1 % of g frame_dt = 0.0016 m/s. With the boundary rows' kappa_b
+    // starting hydrostatic (docs/DFSPH.md (D9)) the lattice starts held: measured on llvmpipe 0.0033
+    // m/s rms after the first frame and the bound reached at the 7th (0.0011 m/s); from kappa_b = 0
+    // the first frame ended at 0.083 m/s and the bound was not reached in 3 s (docs/VALIDATION.md
+    // "Where the motion at rest comes from").
     scene::Scene s = case_scene("hydrostatic", 0.025f, scene::Solver::dfsph);
     s.sph.boundary_rows = true;
     validation::Relaxation relax = validation::hydrostatic_relaxation(s);
@@ -163,9 +167,10 @@ TEST_CASE("validate: DFSPH tank with the boundary rows from a relaxed start", "[
     CHECK(relax.rms_speed == Approx(0.01 * 9.81 * s.frame_dt));
     CHECK(r.relax_frames <= relax.max_frames);
     CHECK(r.relax_steps >= std::uint64_t(r.relax_frames));
-    // The relaxation takes out the lattice's rearrangement: the last frame from rest at most a third
-    // of the first (half the measured 6x).
-    CHECK(r.relax_rms_speeds.back() <= r.relax_rms_speeds.front() / 3.0);
+    // The relaxation reaches its bound within the second, and ends there.
+    CHECK(r.relaxed);
+    CHECK(r.relax_rms_speeds.back() <= relax.rms_speed);
+    CHECK(r.relax_frames < relax.max_frames);
     // The measured run from the relaxed start keeps the lattice start's bounds (the test above): the
     // motion of about 0.05 m/s rms comes back within the first second whatever the start
     // (docs/VALIDATION.md "The relaxed start"), so the start does not buy tighter ones.

@@ -36,6 +36,26 @@ std::vector<std::uint32_t> initial_warm_start(const scene::Scene& scene) {
     return words;
 }
 
+// The boundary rows' kappa_b before the first step (docs/DFSPH.md (D9)): the pressure of the fluid at
+// rest at the boundary particle's height, rho0 |g| (top - y_b), where a block resting on the tank's
+// floor lies within a kernel support of it horizontally (its footprint grown by h), 0 elsewhere: the
+// wall as fluid at rest, as initial_warm_start() starts the fluid.
+std::vector<float> initial_boundary_kappa(const scene::Scene& scene, const std::vector<glm::vec4>& boundary) {
+    std::vector<float> kappa(2 * boundary.size(), 0.0f);
+    const float g = glm::length(scene.gravity), rho0 = scene.sph.rest_density, h = 2.0f * scene.spacing;
+    for (std::size_t b = 0; b < boundary.size(); ++b) {
+        float p = 0.0f;
+        for (const scene::Block& block : scene.blocks) {
+            const bool resting = block.min.y <= scene.tank_min.y + 1e-6f && glm::length(block.velocity) == 0.0f;
+            const glm::vec3 x(boundary[b]);
+            if (!resting || x.x < block.min.x - h || x.x > block.max.x + h || x.z < block.min.z - h || x.z > block.max.z + h) continue;
+            p = std::max(p, rho0 * g * std::max(block.max.y - x.y, 0.0f));
+        }
+        kappa[2 * b] = p / (rho0 * rho0);
+    }
+    return kappa;
+}
+
 std::string defines(const Fluid& fluid, bool divergence, bool rows) {
     return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "") +
            (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "");
@@ -103,10 +123,15 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
     solve_ = gl::Buffer(opened.size(), GL_DYNAMIC_COPY, opened.data(), "dfsph.solve");
     opened_ = gl::Buffer(opened.size(), GL_STATIC_DRAW, opened.data(), "dfsph.solve.opened");
-    // The fluid's kappa_i, then (D9)'s (kappa_b, kappa_v,b) per boundary particle, which start at 0.
+    // The fluid's kappa_i, then (D9)'s (kappa_b, kappa_v,b) per boundary particle: kappa_b from
+    // initial_boundary_kappa() (the first step's density solve starts from it), kappa_v,b at 0.
     const std::size_t nb = rows_ ? fluid.boundary_count() : 0;
-    const std::vector<float> no_pressure(n + 2 * nb, 0.0f);
-    kappa_ = gl::Buffer(no_pressure.size() * sizeof(float), GL_DYNAMIC_COPY, no_pressure.data(), "dfsph.kappa");
+    std::vector<float> start(n, 0.0f);
+    if (rows_) {
+        const std::vector<float> kb = initial_boundary_kappa(scene, fluid.boundary().read<glm::vec4>(nb));
+        start.insert(start.end(), kb.begin(), kb.end());
+    }
+    kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
     pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
     kappa_previous_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
