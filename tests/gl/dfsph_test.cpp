@@ -64,6 +64,7 @@ struct Rig : ranryu::test::SphRig {
         s.eta = double(p.eta);
         s.eta_divergence = double(p.eta_divergence);
         s.relaxation = double(p.relaxation);
+        s.chebyshev = double(p.chebyshev);
         s.warm_start = double(p.warm_start);
         s.divergence_warm_start = double(p.warm_start_divergence);
         s.deficient_neighbours = int(p.deficient_neighbours);
@@ -117,6 +118,62 @@ Magnitudes magnitudes(const std::vector<dvec3>& x, const std::vector<dvec3>& xb,
     return m;
 }
 
+// One relaxed Jacobi update (D6) of the GPU's passes, recomputed in double from the GPU's own κ and
+// a(κ) of the stage before it, with the bound of the GPU's float rounding.
+struct JacobiUpdate {
+    const std::vector<dvec3>& xs;
+    const std::vector<dvec3>& xb;
+    const std::vector<double>& psi;
+    const ref::Params& p;
+    const df::Settings& set;
+    const df::Factors& f;
+    const Magnitudes& m;
+    double dt;
+
+    // The bound of a(κ) as the GPU computes it from κ.
+    std::vector<double> accel_bound(const std::vector<float>& kappa) const {
+        double kmax = 0.0;
+        for (float q : kappa) kmax = std::max(kmax, double(q));
+        std::vector<double> e(xs.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) e[i] = (double(m.terms[i]) + kC) * kU * (2.0 * kmax * m.fluid[i] + kmax * m.wall[i]);
+        return e;
+    }
+    // The new κ, and in `bound` its bound, given the bound `a_err` of the accelerations it read;
+    // `first`: the solve's first iteration, which drops the warm start where the source says so.
+    std::vector<double> operator()(const std::vector<float>& kappa_in, const std::vector<glm::vec4>& accel_in,
+                                   const std::vector<double>& a_err, bool first, std::vector<double>& bound) const {
+        const std::size_t n = xs.size();
+        const ref::CubicKernel k{p.h};
+        std::vector<double> out(n);
+        bound.assign(n, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            double change = 0.0, size = 0.0, carried = 0.0;
+            for (std::size_t j = 0; j < n; ++j) {
+                if (j == i || glm::length(xs[i] - xs[j]) >= p.h) continue;
+                const dvec3 g = k.gradW(xs[i] - xs[j]);
+                change += p.mass * glm::dot(d3(accel_in[i]) - d3(accel_in[j]), g);
+                size += p.mass * (glm::length(d3(accel_in[i])) + glm::length(d3(accel_in[j]))) * glm::length(g);
+                carried += p.mass * (a_err[i] + a_err[j]) * glm::length(g);
+            }
+            for (std::size_t b = 0; b < xb.size(); ++b) {
+                if (glm::length(xs[i] - xb[b]) >= p.h) continue;
+                const dvec3 g = k.gradW(xs[i] - xb[b]);
+                change += psi[b] * glm::dot(d3(accel_in[i]), g);
+                size += psi[b] * glm::length(d3(accel_in[i])) * glm::length(g);
+                carried += psi[b] * a_err[i] * glm::length(g);
+            }
+            const double w = double(accel_in[i].w), source = w;
+            const double residual = dt * dt * change - source;
+            const double start = first && w > 0.01 * p.rest_density ? 0.0 : double(kappa_in[i]);
+            out[i] = std::max(start + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            const double terms = double(m.terms[i]) + kC;
+            bound[i] = set.relaxation * f.factor[i] * (terms * kU * size + carried) + 4.0 * kU * (std::abs(out[i]) + std::abs(start)) +
+                       set.relaxation * std::abs(residual) * f.factor[i] / (dt * dt) * (terms * kU * 3.0);
+        }
+        return out;
+    }
+};
+
 // Runs the stages of one step on the state (x, v, warm), reading everything back after each.
 struct Stages {
     std::vector<glm::vec4> x, v, density, accel, kappa_v0_accel, v_after_divergence, predict, last_accel, x_end, v_end, density_end;
@@ -164,6 +221,27 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     rig.timer.end_frame();
     rig.finish();
     return s;
+}
+
+// The reference's view of one run of the stages: the parameters, the boundary, the sorted positions,
+// the magnitudes the bounds scale with, the time step and the factors (D2).
+struct StepReference {
+    ref::Params p;
+    df::Settings set;
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    std::vector<dvec3> xs;
+    Magnitudes m;
+    double dt;
+    std::size_t n;
+    df::Factors f;
+};
+StepReference step_reference(Rig& rig, const Stages& s) {
+    StepReference r{rig.params(), rig.settings(), {}, {}, d3(s.x), {}, double(s.dt), s.x.size(), {}};
+    rig.boundary(r.xb, r.psi);
+    r.m = magnitudes(r.xs, r.xb, r.psi, r.p);
+    r.f = df::factors(r.xs, r.xb, r.psi, r.p, r.set);
+    return r;
 }
 
 }  // namespace
@@ -249,57 +327,10 @@ TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and t
     for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
     const Stages s = run_stages(rig, x, v, warm, 4e-4f, 1);
 
-    const ref::Params p = rig.params();
-    const df::Settings set = rig.settings();
-    std::vector<dvec3> xb;
-    std::vector<double> psi;
-    rig.boundary(xb, psi);
-    const std::vector<dvec3> xs = d3(s.x);
-    const Magnitudes m = magnitudes(xs, xb, psi, p);
-    const double dt = double(s.dt);
-    const std::size_t n = xs.size();
-    const ref::CubicKernel k{p.h};
-    const df::Factors f = df::factors(xs, xb, psi, p, set);
+    const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
 
-    // One relaxed Jacobi update (D6) from the GPU's own κ and a(κ) of the stage before it: returns the
-    // new κ and its bound, given the bound `a_err` of the accelerations it read.
-    auto iterate = [&](const std::vector<float>& kappa_in, const std::vector<glm::vec4>& accel_in, const std::vector<double>& a_err,
-                       bool first, std::vector<double>& bound) {
-        std::vector<double> out(n);
-        bound.assign(n, 0.0);
-        for (std::size_t i = 0; i < n; ++i) {
-            double change = 0.0, size = 0.0, carried = 0.0;
-            for (std::size_t j = 0; j < n; ++j) {
-                if (j == i || glm::length(xs[i] - xs[j]) >= p.h) continue;
-                const dvec3 g = k.gradW(xs[i] - xs[j]);
-                change += p.mass * glm::dot(d3(accel_in[i]) - d3(accel_in[j]), g);
-                size += p.mass * (glm::length(d3(accel_in[i])) + glm::length(d3(accel_in[j]))) * glm::length(g);
-                carried += p.mass * (a_err[i] + a_err[j]) * glm::length(g);
-            }
-            for (std::size_t b = 0; b < xb.size(); ++b) {
-                if (glm::length(xs[i] - xb[b]) >= p.h) continue;
-                const dvec3 g = k.gradW(xs[i] - xb[b]);
-                change += psi[b] * glm::dot(d3(accel_in[i]), g);
-                size += psi[b] * glm::length(d3(accel_in[i])) * glm::length(g);
-                carried += psi[b] * a_err[i] * glm::length(g);
-            }
-            const double w = double(accel_in[i].w), source = w;
-            const double residual = dt * dt * change - source;
-            const double start = first && w > 0.01 * p.rest_density ? 0.0 : double(kappa_in[i]);
-            out[i] = std::max(start + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
-            const double terms = double(m.terms[i]) + kC;
-            bound[i] = set.relaxation * f.factor[i] * (terms * kU * size + carried) + 4.0 * kU * (std::abs(out[i]) + std::abs(start)) +
-                       set.relaxation * std::abs(residual) * f.factor[i] / (dt * dt) * (terms * kU * 3.0);
-        }
-        return out;
-    };
-    auto a_bound = [&](const std::vector<float>& kappa) {
-        double kmax = 0.0;
-        for (float q : kappa) kmax = std::max(kmax, double(q));
-        std::vector<double> e(n);
-        for (std::size_t i = 0; i < n; ++i) e[i] = (double(m.terms[i]) + kC) * kU * (2.0 * kmax * m.fluid[i] + kmax * m.wall[i]);
-        return e;
-    };
+    const JacobiUpdate iterate{xs, xb, psi, p, set, f, m, dt};
+    auto a_bound = [&](const std::vector<float>& kappa) { return iterate.accel_bound(kappa); };
 
     // The divergence solve's one iteration, from the density pass's κ_v^0 and a(κ_v^0).
     std::vector<double> kv_bound;
@@ -429,51 +460,20 @@ TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference
     REQUIRE(density.iterations == 3u);   // the third iteration ran: the solve had not converged
     REQUIRE(s1.v_after_divergence == s3.v_after_divergence);   // the density solves start alike
 
-    const ref::Params p = rig.params();
-    const df::Settings set = rig.settings();
-    std::vector<dvec3> xb;
-    std::vector<double> psi;
-    rig.boundary(xb, psi);
-    const std::vector<dvec3> xs = d3(s3.x);
-    const Magnitudes m = magnitudes(xs, xb, psi, p);
-    const double dt = double(s3.dt);
-    const std::size_t n = xs.size();
-    const ref::CubicKernel k{p.h};
-    const df::Factors f = df::factors(xs, xb, psi, p, set);
+    const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s3);
     const double w = 2.0 / (2.0 - rho * rho);
-    double kmax = 0.0;
-    for (float q : s2.kappa) kmax = std::max(kmax, double(q));
+    const JacobiUpdate iterate{xs, xb, psi, p, set, f, m, dt};
+    std::vector<double> j_bound;
+    const std::vector<double> jacobi = iterate(s2.kappa, s3.last_accel, iterate.accel_bound(s2.kappa), false, j_bound);
     std::size_t accelerated = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        // J(kappa^2)_i, as the test above computes one update, from the GPU's a(kappa^2).
-        double change = 0.0, size = 0.0, carried = 0.0;
-        const auto a_err = [&](std::size_t j) { return (double(m.terms[j]) + kC) * kU * (2.0 * kmax * m.fluid[j] + kmax * m.wall[j]); };
-        for (std::size_t j = 0; j < n; ++j) {
-            if (j == i || glm::length(xs[i] - xs[j]) >= p.h) continue;
-            const dvec3 g = k.gradW(xs[i] - xs[j]);
-            change += p.mass * glm::dot(d3(s3.last_accel[i]) - d3(s3.last_accel[j]), g);
-            size += p.mass * (glm::length(d3(s3.last_accel[i])) + glm::length(d3(s3.last_accel[j]))) * glm::length(g);
-            carried += p.mass * (a_err(i) + a_err(j)) * glm::length(g);
-        }
-        for (std::size_t b = 0; b < xb.size(); ++b) {
-            if (glm::length(xs[i] - xb[b]) >= p.h) continue;
-            const dvec3 g = k.gradW(xs[i] - xb[b]);
-            change += psi[b] * glm::dot(d3(s3.last_accel[i]), g);
-            size += psi[b] * glm::length(d3(s3.last_accel[i])) * glm::length(g);
-            carried += psi[b] * a_err(i) * glm::length(g);
-        }
-        const double residual = dt * dt * change - double(s3.last_accel[i].w);
-        const double jacobi = std::max(double(s2.kappa[i]) + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
-        const double terms = double(m.terms[i]) + kC;
-        const double j_bound = set.relaxation * f.factor[i] * (terms * kU * size + carried) + 4.0 * kU * (jacobi + double(s2.kappa[i])) +
-                               set.relaxation * std::abs(residual) * f.factor[i] / (dt * dt) * (terms * kU * 3.0);
         const double before = double(s1.kappa[i]);
-        const double want = std::max(w * (jacobi - before) + before, 0.0);
-        const double bound = w * j_bound + 4.0 * kU * (want + w * (jacobi + before) + before);
-        INFO("particle " << i << ": kappa^1 " << before << ", kappa^2 " << s2.kappa[i] << ", J " << jacobi << ", kappa^3 " << s3.kappa[i]
+        const double want = std::max(w * (jacobi[i] - before) + before, 0.0);
+        const double bound = w * j_bound[i] + 4.0 * kU * (want + w * (jacobi[i] + before) + before);
+        INFO("particle " << i << ": kappa^1 " << before << ", kappa^2 " << s2.kappa[i] << ", J " << jacobi[i] << ", kappa^3 " << s3.kappa[i]
                          << " want " << want << " bound " << bound);
         CHECK(std::abs(double(s3.kappa[i]) - want) <= bound);
-        if (std::abs(want - jacobi) > 10.0 * bound) ++accelerated;
+        if (std::abs(want - jacobi[i]) > 10.0 * bound) ++accelerated;
     }
     CHECK(accelerated > n / 4);   // the weight changed kappa beyond the bound: not a plain Jacobi step
 
