@@ -57,16 +57,8 @@ frame::Pipeline simulation_only(const scene::Scene& scene, const shader::FileSou
     return frame::Pipeline(scene, shaders, view);
 }
 
-// Runs `frames` frames of the shared frame loop and waits for their records. Throws UnstableError,
-// or frame::interrupted() when a signal cut the frames short.
-void run(frame::Pipeline& pipeline, int frames, frame::Progress* progress) {
-    const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), progress ? progress->hooks() : frame::FrameHooks{});
-    pipeline.drain();
-    if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
-    if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
-}
-
-// The frame loop for `frames` frames with `hooks`, then waits for their records, as run() does.
+// Runs `frames` frames of the shared frame loop with `hooks` and waits for their records. Throws
+// UnstableError, or frame::interrupted() when a signal cut the frames short.
 void run_with(frame::Pipeline& pipeline, int frames, const frame::FrameHooks& hooks) {
     const std::uint64_t ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
     pipeline.drain();
@@ -89,6 +81,11 @@ void run_observed(frame::Pipeline& pipeline, int frames, frame::Progress* progre
             return (!first || first(p)) && keep_going(p);
         };
     run_with(pipeline, frames, hooks);
+}
+
+// run_with() with the progress line's hooks only.
+void run(frame::Pipeline& pipeline, int frames, frame::Progress* progress) {
+    run_with(pipeline, frames, progress ? progress->hooks() : frame::FrameHooks{});
 }
 
 // E of RunStats over the fluid's particles, read back (a validation run, not the frame path).

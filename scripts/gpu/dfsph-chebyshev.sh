@@ -10,17 +10,7 @@ frames=$(python3 -c "print(max(1, round(${SECONDS_RUN:-10} * 60)))")
 for name in ${SCENES:-dam-break}; do
   for rho in ${RHOS:-0 0.95}; do
     file="$out/$name-c$rho.json"
-    dx=$(python3 - "$name" "$file" "${PARTICLES:-250000}" "$rho" <<'PY'
-import json, sys
-name, path, n, rho = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
-s = json.load(open(f"media/scenes/{name}.json"))
-s.pop("$schema", None)
-s.setdefault("sph", {})["chebyshev"] = rho
-json.dump(s, open(path, "w"), indent=1)
-volume = sum((b["max"][0] - b["min"][0]) * (b["max"][1] - b["min"][1]) * (b["max"][2] - b["min"][2]) for b in s["particles"]["blocks"])
-print(f"{(volume / n) ** (1 / 3):.5f}")
-PY
-)
+    dx=$(python3 scripts/gpu/scene-at.py "$name" "$file" "${PARTICLES:-250000}" sph.chebyshev="$rho")
     timeout "${RUN_TIMEOUT:-200}" $B profile --scene "$file" --solver dfsph --spacing "$dx" --shading particles --size 640x360 \
       --frames "$frames" --warmup 0 --records "$out/$name-c$rho.csv" > "$out/$name-c$rho.txt" 2>&1
     echo "== $name, rho_c $rho, spacing $dx (rc $?) $(grep -m1 '^ranryu: simulation' "$out/$name-c$rho.txt")"

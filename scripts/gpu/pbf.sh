@@ -53,22 +53,8 @@ scene_variant=${PBF_SCENE_VARIANT:-10x8}
 for name in dam-break drop turbulent-jet hydrostatic; do
   file="$out/$name-pbf-$scene_variant.json"
   # The spacing that gives about 250k particles in the scene's blocks: (their volume / N)^(1/3).
-  dx=$(python3 - "$name" "$scene_variant" "$file" "${PBF_SCENE_PARTICLES:-250000}" <<'PY'
-import json, sys
-name, variant, path, n = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
-substeps, iterations = (int(k) for k in variant.split("x"))
-s = json.load(open(f"media/scenes/{name}.json"))
-s.pop("$schema", None)
-s["name"] = f"{name}-pbf-{variant}"
-s.setdefault("sph", {})["pbf"] = {"substeps": substeps, "iterations": iterations}
-json.dump(s, open(path, "w"), indent=1)
-volume = 0.0
-for b in s["particles"]["blocks"]:
-    lo, hi = b.get("min", [0, 0, 0]), b["max"]
-    volume += (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2])
-print(f"{(volume / n) ** (1 / 3):.5f}")
-PY
-)
+  dx=$(python3 scripts/gpu/scene-at.py "$name" "$file" "${PBF_SCENE_PARTICLES:-250000}" name="$name-pbf-$scene_variant" \
+    sph.pbf.substeps="${scene_variant%x*}" sph.pbf.iterations="${scene_variant#*x}")
   frames=$(python3 -c "print(max(1, round(${PBF_SECONDS:-10} * 60)))")
   run="pbf-scene-$name-$scene_variant"
   timeout "${RUN_TIMEOUT:-560}" $B profile --scene "$file" --solver pbf --spacing "$dx" --shading particles --size 640x360 \

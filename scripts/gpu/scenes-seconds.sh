@@ -17,18 +17,9 @@ frames=$(python3 -c "print(max(1, round($seconds * 60)))")
 solver=${SOLVER:-pbf}
 for name in ${SCENES:-dam-break drop turbulent-jet hydrostatic}; do
   file="$out/$name.json"
-  dx=$(python3 - "$name" "$file" "${PARTICLES:-1000000}" "${SUBSTEPS_dam_break:-}" <<'PY'
-import json, sys
-name, path, n, dam = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
-s = json.load(open(f"media/scenes/{name}.json"))
-s.pop("$schema", None)
-if name == "dam-break" and dam:
-    s.setdefault("sph", {}).setdefault("pbf", {})["substeps"] = int(dam)
-json.dump(s, open(path, "w"), indent=1)
-volume = sum((b["max"][0] - b["min"][0]) * (b["max"][1] - b["min"][1]) * (b["max"][2] - b["min"][2]) for b in s["particles"]["blocks"])
-print(f"{(volume / n) ** (1 / 3):.5f}")
-PY
-)
+  dam=()
+  [ "$name" = dam-break ] && [ -n "${SUBSTEPS_dam_break:-}" ] && dam=(sph.pbf.substeps="$SUBSTEPS_dam_break")
+  dx=$(python3 scripts/gpu/scene-at.py "$name" "$file" "${PARTICLES:-1000000}" "${dam[@]}")
   timeout "${RUN_TIMEOUT:-150}" $B profile --scene "$file" --solver "$solver" --spacing "$dx" --shading particles --size 640x360 \
     --frames "$frames" --warmup 0 --records "$out/$name.csv" > "$out/$name.txt" 2>&1
   rc=$?

@@ -50,6 +50,12 @@ TEST_CASE("memory: the estimate is within 10 % of what a pipeline allocates", "[
     SECTION("dam break, DFSPH, its surface") {
         check_estimate(scene::with_spacing(scene::load("dam-break"), 0.01f, "test"), sized(160, 90));
     }
+    SECTION("dam break, DFSPH with the boundary rows of (D9) and the Chebyshev iterates of (D10)") {
+        scene::Scene s = scene::with_spacing(scene::load("dam-break"), 0.01f, "test");
+        s.sph.boundary_rows = true;
+        s.sph.chebyshev = 0.95f;
+        check_estimate(s, sized(160, 90, render::Shading::particles));
+    }
     SECTION("dam break, WCSPH, drawn as particles") {
         scene::Scene s = scene::with_spacing(scene::load("dam-break"), 0.01f, "test");
         s.sph.solver = scene::Solver::wcsph;

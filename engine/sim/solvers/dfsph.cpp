@@ -133,7 +133,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
     kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
     pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
-    kappa_previous_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
+    // (D10)'s previous iterates; one float, bound but never read, when it is off.
+    kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
         if (prepare_rows_.local_size()[0] != 128 || correct_rows_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
@@ -147,10 +148,10 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows) {
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
-    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE +
-                             n * (2 * sizeof(float) + sizeof(glm::vec4)) + Fluid::carried_bytes(count, kWarmWords);
+    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
+                             (chebyshev ? n : 1) * sizeof(float) + Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_; rows_state_
     return base + boundary * (2 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +

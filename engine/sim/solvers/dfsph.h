@@ -42,8 +42,9 @@ class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
     // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
-    // (the rows of (D9) when `rows`), its carried warm start included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows);
+    // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`), its carried warm
+    // start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;

@@ -71,10 +71,10 @@ void main() {
         uint k = solve.iterations;
         float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
         float next = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
-        if (solve.solve == 0u) {   // (D10), the density solve only
-            float w = chebyshev_weight(k), before = kappa_previous[i];
+        if (solve.solve == 0u && dfsph.chebyshev > 0.0) {   // (D10): the density solve, when on
+            float before = kappa_previous[i];
             kappa_previous[i] = kappa_i;
-            if (k >= kChebyshevStart && dfsph.chebyshev > 0.0) next = max(w * (next - before) + before, 0.0);
+            if (k >= kChebyshevStart) next = max(chebyshev_weight(k) * (next - before) + before, 0.0);
         }
         kappa[i] = next;
         error = clamp(residual / sph.rest_density, 0.0, 1.0);
