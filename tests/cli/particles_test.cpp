@@ -2,13 +2,18 @@
 // particles_00000.EXT, read back by the tests' own reader of the PLY and VTK specifications
 // (tests/support/particle_reader.h): the count and fields run.json names, a well-nested VTP with
 // NumberOfPoints and its arrays. That the values are the GPU's is tests/gl/particle_export_test.cpp's.
+// Also scripts/gpu/fast-particles.py, which reads such files on the GPU host, against the same reader.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "run_helper.h"
+#include "scene/scene.h"
 #include "support/particle_reader.h"
 
 using namespace ranryu::test;
@@ -137,4 +142,71 @@ TEST_CASE("ranryu record --export-particles: an unknown format is exit 2 naming 
     INFO(f.describe());
     CHECK(f.exit_code == 0);
     CHECK_THAT(f.out, Contains("removed 3 files"));
+}
+
+TEST_CASE("scripts/gpu/fast-particles.py: the fastest particles of an exported frame, their distances to the walls, "
+          "and the count past a speed, as the tests' own reader of the file computes them", "[cli][particles][script]") {
+    // The turbulent jet at 320 particles (its PLY carries the uchar level, so the script's mixed-type
+    // path runs), frame 1; the script against the same numbers from read_ply() (particle_reader.h).
+    TempDir tmp;
+    const Result r = record_jet(tmp, "ply", 2, {"--no-png"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    const fs::path file = tmp / "out" / "particles_00001.ply";
+    const PointCloud pc = read_ply(file);
+    REQUIRE(pc.count > 100);
+    const ranryu::scene::Scene scene = ranryu::scene::load("turbulent-jet");
+    const glm::dvec3 lo(scene.tank_min), hi(scene.tank_max);
+    const double dx = 0.04, past = 1.0;
+    auto at = [&](const char* name, std::size_t i) { return pc.values.at(name)[i]; };
+    std::vector<double> speed(pc.count);
+    for (std::size_t i = 0; i < pc.count; ++i)
+        speed[i] = std::sqrt(at("vx", i) * at("vx", i) + at("vy", i) * at("vy", i) + at("vz", i) * at("vz", i));
+    const double fastest = *std::max_element(speed.begin(), speed.end());
+    // The five walls the script measures (no lid): -x, +x, floor, -z, +z, in spacings.
+    auto walls = [&](std::size_t i) {
+        return std::vector<double>{(at("x", i) - lo.x) / dx, (hi.x - at("x", i)) / dx, (at("y", i) - lo.y) / dx,
+                                   (at("z", i) - lo.z) / dx, (hi.z - at("z", i)) / dx};
+    };
+    std::size_t fast = 0;
+    std::vector<std::size_t> near(4, 0);
+    for (std::size_t i = 0; i < pc.count; ++i) {
+        if (speed[i] <= past) continue;
+        ++fast;
+        const std::vector<double> w = walls(i);
+        near[std::min<std::size_t>(3, std::count_if(w.begin(), w.end(), [](double d) { return d < 2.0; }))] += 1;
+    }
+    REQUIRE(fast > 0);   // the jet moves at 2.5 m/s
+
+    char tank[160];
+    std::snprintf(tank, sizeof tank, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    const Result s = run({"/usr/bin/python3", (source_dir() / "scripts" / "gpu" / "fast-particles.py").string(), "--spacing", "0.04",
+                          "--tank", tank, "--top", "3", "--speed", "1.0", file.string()});
+    INFO(s.describe());
+    REQUIRE(s.exit_code == 0);
+    const std::vector<std::string> out = s.out_lines();
+    REQUIRE(out.size() == 6);   // the file's line, the header, three particles, the count
+    char head[64];
+    std::snprintf(head, sizeof head, "%zu particles, fastest %.3f m/s", pc.count, fastest);
+    CHECK_THAT(out[0], Contains(head));
+    // The first listed particle: the fastest (another of equal speed may stand first), its walls.
+    std::istringstream row(out[2]);
+    std::size_t index = 0;
+    double listed = 0.0;
+    row >> index >> listed;
+    REQUIRE(index < pc.count);
+    CHECK(speed[index] == Approx(fastest).margin(1e-6));
+    CHECK(listed == Approx(fastest).margin(5e-4));
+    std::string token;
+    for (int k = 0; k < 4; ++k) row >> token;   // vx vy vz |
+    REQUIRE(token == "|");
+    for (double want : walls(index)) {
+        double got = 0.0;
+        row >> got;
+        CHECK(got == Approx(want).margin(0.051));   // printed with one decimal
+    }
+    char count[160];
+    std::snprintf(count, sizeof count, "past 1.0 m/s: %zu particles; within 2 spacings of 0/1/2/3 walls: %zu/%zu/%zu/%zu;", fast,
+                  near[0], near[1], near[2], near[3]);
+    CHECK_THAT(out[5], Contains(count));
 }
