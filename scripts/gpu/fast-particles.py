@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Where a run's fastest particles are: reads `ranryu record --export-particles ply` frames and prints,
-for each, the fastest particles with their distance to each tank wall and to the free surface in
-spacings, their density and pressure, and how many particles past a speed lie near 0, 1, 2 or 3 walls.
+for each, the fastest particles with their distance to each tank wall (the floor and the four side
+walls; a lid is not counted) and to the free surface in spacings, their density and pressure, and how
+many particles past a speed lie near 0, 1, 2 or 3 walls.
 
 usage: fast-particles.py --spacing DX --tank x0,y0,z0,x1,y1,z1 [--top N] [--speed V] FILE.ply...
 

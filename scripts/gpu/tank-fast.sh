@@ -12,13 +12,14 @@ for n in ${PARTICLES:-1000000 250000}; do
     name=${v%%:*}; keys=${v#*:}
     scene="/tmp/tank-$name.json"
     dx=$(scripts/gpu/scene-at.py hydrostatic "$scene" "$n" ${keys//,/ })
+    tank=$(python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["tank"]; print(",".join(map(str, t["min"] + t["max"])))' "$scene")
     tag="$name-$n"; dir="/tmp/tank-$tag"; rm -rf "$dir"
     timeout ${RUN_TIMEOUT:-200} "$B" record --scene "$scene" --solver dfsph --spacing "$dx" --frames "$FRAMES" \
       --shading particles --size 64x36 --no-png --export-particles ply --out "$dir" --force \
       --records "$o/$tag.csv" --quiet > "$o/$tag.txt" 2>&1
     echo "exit $? (spacing $dx)" >> "$o/$tag.txt"
     last=$(printf 'particles_%05d.ply' $((FRAMES - 1)))
-    (cd "$dir" && python3 "$OLDPWD/scripts/gpu/fast-particles.py" --spacing "$dx" --tank 0,0,0,0.3,0.4,0.1 --top 10 \
+    (cd "$dir" && python3 "$OLDPWD/scripts/gpu/fast-particles.py" --spacing "$dx" --tank "$tank" --top 10 \
        --speed 1.0 particles_00000.ply particles_00001.ply particles_00002.ply "$last") >> "$o/$tag.txt" 2>&1
     rm -rf "$dir"
   done
