@@ -569,7 +569,9 @@ Scene with_spacing(Scene s, float dx, const std::string& what) {
     const PbfSettings& q = s.sph.pbf;
     const bool referenced = q.reference_substeps > 0 && q.reference_spacing > 0.0f;
     const double from = referenced ? double(q.reference_substeps) * double(q.reference_spacing) : double(q.substeps) * double(s.spacing);
-    const double substeps = std::ceil(from / double(dx) - 1e-9);
+    // Rounded up, but a ratio within float rounding of a whole number is that number (8 at 0.0125 m
+    // are 5 at 0.02 m, not 6, although in doubles 8 · 0.0125f / 0.02f is 5.0000002).
+    const double ratio = from / double(dx), substeps = std::ceil(ratio * (1.0 - 1e-6));
     s.sph.pbf.substeps = int(std::clamp(substeps, 1.0, 1000.0));
     s.spacing = dx;
     s.particle_radius = 0.5f * dx;

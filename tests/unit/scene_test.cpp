@@ -93,6 +93,13 @@ TEST_CASE("another spacing scales PBF's substeps in inverse proportion, rounding
     CHECK(with_spacing(s, 0.002f, "t").sph.pbf.substeps == 25);
     CHECK(with_spacing(s, 0.025f, "t").sph.pbf.substeps == 2);
     CHECK(with_spacing(s, 0.1f, "t").sph.pbf.substeps == 1);
+    // A whole ratio stays whole through the floats' rounding: the tank at rest's 8 at 12.5 mm are 5 at
+    // 20 mm (in doubles 8 · 0.0125f / 0.02f is 5.0000002) and 4 at 25 mm; just past it rounds up.
+    const Scene tank = load("hydrostatic");
+    REQUIRE(tank.sph.pbf.substeps == 8);
+    CHECK(with_spacing(tank, 0.02f, "t").sph.pbf.substeps == 5);
+    CHECK(with_spacing(tank, 0.025f, "t").sph.pbf.substeps == 4);
+    CHECK(with_spacing(tank, 0.0199f, "t").sph.pbf.substeps == 6);
     // Twice over is the same as once: the substeps follow the spacing, not the path to it (the
     // window's slider moves the spacing many times).
     CHECK(with_spacing(with_spacing(s, 0.005f, "t"), 0.00317f, "t").sph.pbf.substeps == 16);
