@@ -179,8 +179,13 @@ RANRYU_STRUCT(SolveState) {
     uint error_sum;      // this iteration's Σ_i min(max(r_i, 0)/rho0, 1), in units of 1/error_scale
     uint groups_done;    // workgroups of this iteration's residual pass that have added their part
     uint solve;          // 0: the density solve, 1: the divergence solve (its StepState fields)
+    float weight;        // (D10): the Chebyshev weight w_k of this solve's next iteration k, once k >=
+                         // kChebyshevStart (glsl/sim/dfsph/dfsph.glsl); opens at w = 2/(2 - rho_c^2)
+    uint pad0;
+    uint pad1;
+    uint pad2;
 }
-RANRYU_STRUCT_END(SolveState, 32)
+RANRYU_STRUCT_END(SolveState, 48)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
 
 // The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block

@@ -462,6 +462,9 @@ TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference
 
     const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s3);
     const double w = 2.0 / (2.0 - rho * rho);
+    // The weight the third iteration left for the fourth in the SolveState: w_3 = 4/(4 − rho^2 w_2),
+    // one step of the recurrence, taken once an iteration by the deciding invocation.
+    CHECK(double(density.weight) == Approx(4.0 / (4.0 - rho * rho * w)).epsilon(1e-6));
     const JacobiUpdate iterate{xs, xb, psi, p, set, f, m, dt};
     std::vector<double> j_bound;
     const std::vector<double> jacobi = iterate(s2.kappa, s3.last_accel, iterate.accel_bound(s2.kappa), false, j_bound);

@@ -165,6 +165,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.error_sum", {offsetof(gpu::SolveState, error_sum), GL_UNSIGNED_INT}},
         {"solve.groups_done", {offsetof(gpu::SolveState, groups_done), GL_UNSIGNED_INT}},
         {"solve.solve", {offsetof(gpu::SolveState, solve), GL_UNSIGNED_INT}},
+        {"solve.weight", {offsetof(gpu::SolveState, weight), GL_FLOAT}},
 
         {"rows.dispatch", {offsetof(gpu::BoundaryRowsState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"rows.rows", {offsetof(gpu::BoundaryRowsState, rows), GL_UNSIGNED_INT}},

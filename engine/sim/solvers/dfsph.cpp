@@ -119,6 +119,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         gpu::SolveState st{};
         st.dispatch = glm::uvec4(params_.groups, 1u, 1u, 0u);
         st.solve = k;
+        // (D10)'s first weight, w = 2/(2 - rho_c^2) (glsl/sim/dfsph/dfsph.glsl); unread while it is off.
+        st.weight = 2.0f / (2.0f - params_.chebyshev * params_.chebyshev);
         std::memcpy(opened.data() + k * RANRYU_DFSPH_SOLVE_STRIDE, &st, sizeof st);
     }
     solve_ = gl::Buffer(opened.size(), GL_DYNAMIC_COPY, opened.data(), "dfsph.solve");

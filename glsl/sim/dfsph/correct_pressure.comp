@@ -5,7 +5,7 @@
 // the residual r_i = delta_i − s_i, and the relaxed Jacobi update J_i = max(kappa_i + omega r_i factor_i / dt^2, 0);
 // the density solve accelerates it (D10): from its iteration k = kChebyshevStart on,
 //     kappa_i ← max(w_k (J_i − kappa_i^(k−1)) + kappa_i^(k−1), 0),
-// w_k the Chebyshev weight of dfsph.chebyshev (chebyshev_weight, dfsph.glsl), kappa^(k−1) the kappa the
+// w_k the Chebyshev weight of dfsph.chebyshev (SolveState.weight, dfsph.glsl), kappa^(k−1) the kappa the
 // iteration before started from (KappaPrevious); otherwise kappa_i ← J_i. In the
 // solve's first iteration a particle that separates from the fluid (warm_start_drop(), dfsph.glsl)
 // drops its warm start first: the last step's pressure is a guess only where the fluid still holds
@@ -43,6 +43,7 @@ void decide() {
     float mean = float(total) / (dfsph.error_scale * float(max(step.live_count, 1u)));
     uint it = solve.iterations + 1u, s = solve.solve;
     solve.iterations = it;
+    if (it > kChebyshevStart) solve.weight = next_chebyshev_weight(solve.weight);   // (D10): w_it
     uint least = s == 0u ? dfsph.min_iterations : 1u;
     uint cap = s == 0u ? dfsph.issued : dfsph.issued_divergence;
     bool converged = it >= least && mean <= (s == 0u ? dfsph.eta : dfsph.eta_divergence);
@@ -74,7 +75,7 @@ void main() {
         if (solve.solve == 0u && dfsph.chebyshev > 0.0) {   // (D10): the density solve, when on
             float before = kappa_previous[i];
             kappa_previous[i] = kappa_i;
-            if (k >= kChebyshevStart) next = max(chebyshev_weight(k) * (next - before) + before, 0.0);
+            if (k >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
         }
         kappa[i] = next;
         error = clamp(residual / sph.rest_density, 0.0, 1.0);

@@ -18,13 +18,11 @@ const float kViscosityFactor = 10.0;
 
 // (D10): the density solve's Chebyshev acceleration starts at its iteration kChebyshevStart (counted
 // from 0), and iteration k ≥ kChebyshevStart takes the weight w_k: w = 2/(2 − rho²) at the first, then
-// w ← 4/(4 − rho² w), rho = dfsph.chebyshev (Wang 2015). A loop of at most k scalar steps per call.
+// w ← 4/(4 − rho² w), rho = dfsph.chebyshev (Wang 2015). The solve opens with the first in
+// SolveState.weight (engine/sim/solvers/dfsph.cpp); next_chebyshev_weight() is the step from w_k to
+// w_(k+1), which the residual pass's deciding invocation takes once an iteration.
 const uint kChebyshevStart = 2u;
-float chebyshev_weight(uint k) {
-    float r2 = dfsph.chebyshev * dfsph.chebyshev, w = 2.0 / (2.0 - r2);
-    for (uint m = kChebyshevStart; m < k; ++m) w = 4.0 / (4.0 - r2 * w);
-    return w;
-}
+float next_chebyshev_weight(float w) { return 4.0 / (4.0 - dfsph.chebyshev * dfsph.chebyshev * w); }
 
 // A particle whose predicted density change leaves it this far below rho0 (or that is deficient in
 // neighbours) starts its solve from no pressure instead of the last step's (D6): 1 % of rho0 is
