@@ -17,7 +17,7 @@
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
 //   DfsphParams:  its 16 scalars in order                                            16 words
-//   SolveState:   dispatch, iterations, error_sum, groups_done, solve (std430)        8 words
+//   SolveState:   dispatch, iterations, error_sum, groups_done, solve, weight, pads (std430)  12 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
 //   kMacros:      the RANRYU_* macros, in the order of the array below               25 words
@@ -94,6 +94,7 @@ void main() {
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.pad2);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
+    put(solve.weight); put(solve.pad0); put(solve.pad1); put(solve.pad2);
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
     put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);
