@@ -35,7 +35,7 @@ bool merge_rows(const scene::Scene& s) {
     return !s.sph.morton && !(off && std::string(off) == "1");
 }
 
-int layers_of(const scene::Scene& s) { return boundary_layers(s.spacing, 2.0f * s.spacing); }
+int layers_of(const scene::Scene& s) { return boundary_layers(s.spacing, kernel_support(s.spacing)); }
 std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_boundary(s, layers_of(s)); }
 
 // One vec4 a particle (at least one), the size of every state array.
@@ -59,7 +59,7 @@ std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
 std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array_bytes(boundary); }
 
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
-    const GridLayout g = fluid_grid(s, 2.0f * s.spacing, layers_of(s));
+    const GridLayout g = fluid_grid(s, kernel_support(s.spacing), layers_of(s));
     std::size_t b = 6 * vec4_array_bytes(count)                      // position, velocity (two each), density, accel
                     + (s.sph.neighbour_masks ? mask_bytes(count, merge_rows(s) ? 9 : 27) : 0)
                     + vec4_array_bytes(boundary)                     // boundary
@@ -78,7 +78,7 @@ namespace {
 
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary) {
     gpu::SphParams p{};
-    const float dx = s.spacing, h = 2.0f * dx, rho0 = s.sph.rest_density, c = s.sound_speed();
+    const float dx = s.spacing, h = kernel_support(dx), rho0 = s.sph.rest_density, c = s.sound_speed();
     p.gravity = glm::vec4(s.gravity, 0.0f);
     // The guard's domain: the tank, a spacing of slack at the walls and floor, and at the lid of a
     // closed tank (domain_max.w = 1). Above an open top it reaches as high as a particle at the guard's
@@ -170,7 +170,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       frame_dt_(scene.frame_dt),
       max_substeps_(scene.sph.max_substeps),
       grid_(shaders, timer,
-            fluid_grid(scene, 2.0f * scene.spacing, boundary_layers(scene.spacing, 2.0f * scene.spacing)),
+            fluid_grid(scene, kernel_support(scene.spacing), layers_of(scene)),
             sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),

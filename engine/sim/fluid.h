@@ -47,6 +47,9 @@ namespace ranryu::scene { struct Scene; }
 
 namespace ranryu::sim {
 
+// The kernel's support radius h for particles `spacing` apart: h = 2 dx (docs/SPH.md, symbols table).
+constexpr float kernel_support(float spacing) { return 2.0f * spacing; }
+
 // SphParams for a scene (docs/SPH.md symbols table), with `count` fluid and `boundary` particles. The
 // time step's sound speed is the scene's: WCSPH's c, 0 for DFSPH (docs/DFSPH.md (D8)).
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary);

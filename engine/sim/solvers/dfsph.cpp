@@ -42,7 +42,7 @@ std::vector<std::uint32_t> initial_warm_start(const scene::Scene& scene) {
 // wall as fluid at rest, as initial_warm_start() starts the fluid.
 std::vector<float> initial_boundary_kappa(const scene::Scene& scene, const std::vector<glm::vec4>& boundary) {
     std::vector<float> kappa(2 * boundary.size(), 0.0f);
-    const float g = glm::length(scene.gravity), rho0 = scene.sph.rest_density, h = 2.0f * scene.spacing;
+    const float g = glm::length(scene.gravity), rho0 = scene.sph.rest_density, h = kernel_support(scene.spacing);
     for (std::size_t b = 0; b < boundary.size(); ++b) {
         float p = 0.0f;
         for (const scene::Block& block : scene.blocks) {
