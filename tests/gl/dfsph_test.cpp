@@ -625,22 +625,30 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         for (std::size_t b = 0; b < nb; ++b) {
             if (!want_rows[b]) continue;
             double size = 0.0, source_size = 0.0;
+            // What the rounding of r_bj itself (a few ulps: the positions' own rounding is about 3 u of
+            // r at these sizes) does to ∇W_bj: |∇W(r (1 + 8u)) − ∇W(r)|, in units of u. Relative to
+            // ∇W it grows without bound as r → h, where ∇W ∝ (1 − r/h)², so a row whose neighbours
+            // all lie near the support's edge carries far more than (terms + c) u of its sums.
+            double edge = 0.0, source_edge = 0.0, diagonal_edge = 0.0;
             int terms = 0;
             for (std::size_t j = 0; j < n; ++j) {
-                const double distance = glm::length(xb[b] - xs[j]);
+                const dvec3 d = xb[b] - xs[j];
+                const double distance = glm::length(d);
                 if (distance >= p.h) continue;
-                size += p.mass * glm::length(a[j]) * glm::length(k.gradW(xb[b] - xs[j]));
-                source_size += p.mass * (k.W(distance) + double(dt) * glm::length(d3(v_in[j])) * glm::length(k.gradW(xb[b] - xs[j])));
+                const double g = glm::length(k.gradW(d)), e = glm::length(k.gradW(d * (1.0 + 8.0 * kU)) - k.gradW(d)) / kU;
+                size += p.mass * glm::length(a[j]) * g;
+                source_size += p.mass * (k.W(distance) + double(dt) * glm::length(d3(v_in[j])) * g);
+                edge += p.mass * glm::length(a[j]) * e;
+                source_edge += p.mass * double(dt) * glm::length(d3(v_in[j])) * e;
+                diagonal_edge += double(psi[b]) * u[j] * e;
                 ++terms;
             }
             source_size += which == df::Solve::density ? 2.0 * p.rest_density : 0.0;
             const double inv = r.diagonal[b] > 0.0 ? omega_b / (r.diagonal[b] * dt2) : 0.0;
             const double residual = dt2 * size + std::abs(r.source[b]);
-            // The derived bound, times 4: on random blocks a row's error reached 2.2 times it (3 seeds of
-            // 81 past it, 2026-11-26), which the count of terms above does not yet explain; a wrong
-            // update is off by its own size, orders of magnitude beyond either.
-            const double bound = 4.0 * (inv * (terms + 27.0 + kC) * kU * (dt2 * size + source_size) +
-                                        inv * residual * (terms + kC) * kU * 2.0 + 4.0 * kU * kb[b]);
+            const double diagonal_error = r.diagonal[b] > 0.0 ? kU * diagonal_edge / r.diagonal[b] : 0.0;
+            const double bound = inv * ((terms + 27.0 + kC) * kU * (dt2 * size + source_size) + kU * (dt2 * edge + source_edge)) +
+                                 inv * residual * ((terms + kC) * kU * 2.0 + diagonal_error) + 4.0 * kU * kb[b];
             const double gpu_kb = double(got[n + 2 * b + offset]);
             INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": got " << gpu_kb << " want " << kb[b]);
             CHECK(std::abs(gpu_kb - kb[b]) <= bound);
