@@ -4,6 +4,8 @@
 # scene as shipped): `ranryu record --export-particles ply` over FRAMES frames (default 6), then
 # scripts/gpu/fast-particles.py on frames 0, 1, 2 and the last. Output: $OUT/tank-fast/*.txt, *.csv.
 #     VARIANTS="base: rows:sph.boundary_rows=true" scripts/gpu/tank-fast.sh
+# DIVIDING=1 takes the spacing nearest N's that divides the block (scene-at.py --dividing), so that
+# the lattice stands half a spacing from every wall.
 . "$(dirname "$0")/env.sh" tank-fast-out
 o="$out/tank-fast"; mkdir -p "$o"
 FRAMES=${FRAMES:-6}
@@ -11,7 +13,7 @@ for n in ${PARTICLES:-1000000 250000}; do
   for v in ${VARIANTS:-base:}; do
     name=${v%%:*}; keys=${v#*:}
     scene="/tmp/tank-$name.json"
-    dx=$(scripts/gpu/scene-at.py hydrostatic "$scene" "$n" ${keys//,/ })
+    dx=$(scripts/gpu/scene-at.py ${DIVIDING:+--dividing} hydrostatic "$scene" "$n" ${keys//,/ })
     tank=$(python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["tank"]; print(",".join(map(str, t["min"] + t["max"])))' "$scene")
     tag="$name-$n"; dir="/tmp/tank-$tag"; rm -rf "$dir"
     timeout ${RUN_TIMEOUT:-200} "$B" record --scene "$scene" --solver dfsph --spacing "$dx" --frames "$FRAMES" \

@@ -210,3 +210,41 @@ TEST_CASE("scripts/gpu/fast-particles.py: the fastest particles of an exported f
                   near[0], near[1], near[2], near[3]);
     CHECK_THAT(out[5], Contains(count));
 }
+
+TEST_CASE("scripts/gpu/scene-at.py: the spacing for about N particles, and with --dividing one that divides every block", "[cli]") {
+    // The tank at rest's block is 0.3 x 0.25 x 0.1 m (media/scenes/hydrostatic.json): (V / N)^(1/3) for
+    // about 1M particles is 1.96 mm, which leaves the far walls 0.56 and 0.52 spacings from the lattice;
+    // the dividing spacings are 0.05 m / k, and the nearest is 0.05 / 26 (1,054,560 particles).
+    TempDir tmp;
+    const std::string script = (source_dir() / "scripts" / "gpu" / "scene-at.py").string();
+    RunOptions in_source;
+    in_source.cwd = source_dir();
+    auto spacing_of = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), {"/usr/bin/python3", script});
+        const Result r = run(args, in_source);
+        INFO(r.describe());
+        REQUIRE(r.exit_code == 0);
+        REQUIRE(r.out_lines().size() == 1);
+        return std::stod(r.out_lines()[0]);
+    };
+    const std::string out = tmp.str("tank.json");
+    CHECK(spacing_of({"hydrostatic", out, "1000000", "sph.solver=dfsph"}) == Approx(std::cbrt(0.3 * 0.25 * 0.1 / 1e6)).margin(5e-6));
+    const nlohmann::json written = nlohmann::json::parse(read_file(out));
+    CHECK(written["sph"]["solver"] == "dfsph");
+    for (const double n : {1e6, 2.5e5, 3e4}) {
+        INFO(n << " particles asked");
+        const double dx = spacing_of({"--dividing", "hydrostatic", out, std::to_string(int(n))});
+        double count = 1.0;
+        for (const double extent : {0.3, 0.25, 0.1}) {
+            const double cells = extent / dx;
+            CHECK(std::abs(cells - std::round(cells)) < 1e-6);   // whole: the far wall half a spacing away
+            count *= std::round(cells);
+        }
+        // The nearest of the dividing spacings: the next finer or coarser one is farther from n.
+        const double k = std::round(0.05 / dx);
+        auto particles = [](double kk) { return 60.0 * kk * kk * kk; };   // 6k x 5k x 2k
+        CHECK(count == Approx(particles(k)));
+        CHECK(std::abs(std::cbrt(count) - std::cbrt(n)) <= std::abs(std::cbrt(particles(k + 1)) - std::cbrt(n)));
+        CHECK(std::abs(std::cbrt(count) - std::cbrt(n)) <= std::abs(std::cbrt(particles(k - 1)) - std::cbrt(n)));
+    }
+}
