@@ -53,6 +53,9 @@ def main(argv):
     for e in extents:
         unit = math.gcd(unit, round(e * 1e6))
     pitch = unit * 1e-6
+    if pitch < 0.5 * spacing:   # the nearest dividing spacing would be far finer than the one asked
+        sys.exit(f"scene-at.py --dividing: the blocks of {name} share no divisor near {spacing:.5f} m "
+                 f"(the greatest common divisor of their extents is {pitch:.6g} m)")
     k = max(1, round(pitch / spacing))
     print(f"{pitch / k:.10g}")
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Where the tank at rest's fastest particles are in its first frames, at about N particles each
-# (PARTICLES, default "1000000 250000"), for each VARIANT ("name:key=value,key=value", "base:" the
-# scene as shipped): `ranryu record --export-particles ply` over FRAMES frames (default 6), then
+# (PARTICLES, default "1000000 250000"), with DFSPH (the scene itself ships PBF), for each VARIANT
+# ("name:key=value,key=value", "base:" the scene's other settings as shipped): `ranryu record
+# --export-particles ply` over FRAMES frames (default 6), then
 # scripts/gpu/fast-particles.py on frames 0, 1, 2 and the last. Output: $OUT/tank-fast/*.txt, *.csv.
 #     VARIANTS="base: rows:sph.boundary_rows=true" scripts/gpu/tank-fast.sh
 # DIVIDING=1 takes the spacing nearest N's that divides the block (scene-at.py --dividing), so that

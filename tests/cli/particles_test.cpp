@@ -247,4 +247,14 @@ TEST_CASE("scripts/gpu/scene-at.py: the spacing for about N particles, and with 
         CHECK(std::abs(std::cbrt(count) - std::cbrt(n)) <= std::abs(std::cbrt(particles(k + 1)) - std::cbrt(n)));
         CHECK(std::abs(std::cbrt(count) - std::cbrt(n)) <= std::abs(std::cbrt(particles(k - 1)) - std::cbrt(n)));
     }
+    // A block whose extents share no divisor near the spacing asked (0.1000007 m: their gcd is 1 um):
+    // one line naming the scene and the divisor, exit non-zero, where it printed a spacing of 1 um.
+    RunOptions quiet = in_source;
+    const Result bad = run({"/usr/bin/python3", script, "--dividing", "hydrostatic", out, "1000000",
+                            R"(particles.blocks=[{"min": [0, 0, 0], "max": [0.3, 0.25, 0.1000007]}])"},
+                           quiet);
+    INFO(bad.describe());
+    CHECK(bad.exit_code != 0);
+    CHECK(bad.out.empty());
+    CHECK_THAT(bad.err, Contains("hydrostatic") && Contains("no divisor near 0.00196 m") && Contains("1e-06 m"));
 }
