@@ -66,21 +66,28 @@ void run_with(frame::Pipeline& pipeline, int frames, const frame::FrameHooks& ho
     if (ran < std::uint64_t(frames) && frame::stop_requested()) throw frame::interrupted(pipeline.frames());
 }
 
-// Runs `frames` frames as run_with() does, calling `after` after each frame (after the progress line's
-// own hook), and before each frame asking `keep_going` too when there is one: the frame loop of a case
-// that observes every frame without stopping it (ParticleSnapshots).
-void run_observed(frame::Pipeline& pipeline, int frames, frame::Progress* progress, std::function<void(frame::Pipeline&)> after,
-                  std::function<bool(const frame::Pipeline&)> keep_going = {}) {
+// Runs `frames` frames as run_with() does (with the progress line's hooks, when there is one) and
+// observes each without stopping it: after each frame it captures `snapshots`, tagged with the count
+// of frames this call ran (1, 2, ...), calls `between` when there is one (the relaxation stops the
+// particles there, after the capture), and polls; before each frame it asks `keep_going` too, when
+// there is one. Drains the snapshots at the end and returns the frames run.
+int run_observed(frame::Pipeline& pipeline, int frames, frame::Progress* progress, ParticleSnapshots& snapshots,
+                 std::function<void()> between = {}, std::function<bool(const frame::Pipeline&)> keep_going = {}) {
+    int ran = 0;
     frame::FrameHooks hooks = progress ? progress->hooks() : frame::FrameHooks{};
-    hooks.after = [first = std::move(hooks.after), after = std::move(after)](frame::Pipeline& p) {
+    hooks.after = [&, first = std::move(hooks.after)](frame::Pipeline& p) {
         if (first) first(p);
-        after(p);
+        snapshots.capture(std::uint64_t(++ran));
+        if (between) between();
+        snapshots.poll();
     };
     if (keep_going)
         hooks.keep_going = [first = std::move(hooks.keep_going), keep_going = std::move(keep_going)](const frame::Pipeline& p) {
             return (!first || first(p)) && keep_going(p);
         };
     run_with(pipeline, frames, hooks);
+    snapshots.drain();
+    return ran;
 }
 
 // run_with() with the progress line's hooks only.
@@ -285,15 +292,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
             // The first frame starts from the lattice, not from a relaxed state: it never ends it.
             if (s.tag > 1 && now.rms <= relaxation.rms_speed) r.relaxed = true;
         });
-        run_observed(
-            settling, relaxation.max_frames, progress,
-            [&](frame::Pipeline&) {
-                speeds_of.capture(std::uint64_t(++r.relax_frames));
-                fluid.stop_particles();
-                speeds_of.poll();
-            },
-            [&](const frame::Pipeline&) { return !r.relaxed; });
-        speeds_of.drain();
+        r.relax_frames = run_observed(settling, relaxation.max_frames, progress, speeds_of, [&] { fluid.stop_particles(); },
+                                      [&](const frame::Pipeline&) { return !r.relaxed; });
         relaxed = fluid.positions().read<glm::vec4>(fluid.count());   // once, at rest after the last frame
         r.relax_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
@@ -335,12 +335,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
                                     if (in_core(x)) core_sum[std::size_t(k)] += s.densities[i].y, ++core_n[std::size_t(k)];
                                 }
                             });
-    std::uint64_t captured = 0;
-    run_observed(pipeline, average_frames, progress, [&](frame::Pipeline&) {
-        state.capture(++captured);
-        state.poll();
-    });
-    state.drain();
+    run_observed(pipeline, average_frames, progress, state);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
     r.max_speed = end.max;
@@ -516,13 +511,8 @@ StandingWaveResult standing_wave(const scene::Scene& given, const shader::FileSo
     });
     if (progress) progress->expect(std::uint64_t(frames));
     const auto start = std::chrono::steady_clock::now();
-    std::uint64_t captured = 0;
-    positions.capture(captured);   // the start, t = 0
-    run_observed(pipeline, frames, progress, [&](frame::Pipeline&) {
-        positions.capture(++captured);
-        positions.poll();
-    });
-    positions.drain();
+    positions.capture(0);   // the start, t = 0; frame f's state is tagged f + 1
+    run_observed(pipeline, frames, progress, positions);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
 
