@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # On the GPU host, after setup-and-build.sh: where the dam break's fastest particles are at 1M
-# particles (DFSPH as shipped), for each VARIANT "NAME:ETA" (default "base:5e-4"): `ranryu record
-# --export-particles ply` over FRAMES frames (default 130) with sph.max_density_error = ETA, then
+# particles (DFSPH as shipped), for each VARIANT "NAME:ETA[:KEY=VALUE,...]" (default "base:5e-4"):
+# `ranryu record --export-particles ply` over FRAMES frames (default 130) with sph.max_density_error =
+# ETA and the scene keys given (dotted, as scene-at.py takes them), then
 # scripts/gpu/fast-particles.py on the frames of PICK (default "90 110 129"), and each frame's fastest
-# particle and substeps from the records. NAME "base" runs the shaders built in; "nodrop" and "drop5"
-# run a copy of glsl/ whose warm-start drop (glsl/sim/dfsph/dfsph.glsl warm_start_drop()) is off or at
-# 5 % of rho0 instead of 1 %. Output: $OUT/dbfast.tgz (a report and the records per variant).
-#     VARIANTS="base:5e-4 nodrop:5e-4 base:1e-4" FRAMES=13 PICK="3 6 12" scripts/gpu/db-fast.sh
+# particle and substeps from the records. NAME "nodrop" and "drop5" run a copy of glsl/ whose
+# warm-start drop (glsl/sim/dfsph/dfsph.glsl warm_start_drop()) is off or at 5 % of rho0 instead of
+# 1 %; any other NAME the shaders built in. Output: $OUT/dbfast.tgz (a report and the records per
+# variant).
+#     VARIANTS="base:5e-4 nodrop:5e-4 rows:5e-4:sph.boundary_rows=true" FRAMES=13 PICK="3 6 12" scripts/gpu/db-fast.sh
 . "$(dirname "$0")/env.sh" dbfast-out
 o=$out/dbfast; mkdir -p "$o"
 variant() {
@@ -24,10 +26,10 @@ variant nodrop 1e30
 variant drop5 "0.05 * sph.rest_density"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader; date -u
 for v in ${VARIANTS:-base:5e-4}; do
-  name=${v%%:*} eta=${v#*:}
-  shaders=(); [ "$name" != base ] && shaders=(--shader-dir "/tmp/glsl-$name")
+  IFS=: read -r name eta keys <<< "$v"
+  shaders=(); [ -d "/tmp/glsl-$name" ] && shaders=(--shader-dir "/tmp/glsl-$name")
   scene=/tmp/db-$eta.json tag=$name-$eta
-  dx=$(python3 scripts/gpu/scene-at.py dam-break "$scene" 1000000 sph.max_density_error="$eta")
+  dx=$(python3 scripts/gpu/scene-at.py dam-break "$scene" 1000000 sph.max_density_error="$eta" ${keys//,/ })
   dir=/tmp/dbfast-$tag; rm -rf "$dir"
   start=$(date +%s)
   timeout "${RUN_TIMEOUT:-200}" $B record --scene "$scene" --solver dfsph --spacing "$dx" --frames "${FRAMES:-130}" \

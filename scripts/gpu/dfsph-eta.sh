@@ -2,7 +2,8 @@
 # On the GPU host, after setup-and-build.sh: the dam break as shipped (DFSPH with (D10)) for 10
 # simulated seconds at about each N of NS particles (default 250000), once for each mean density error
 # eta of ETAS (sph.max_density_error; default "1e-4 1e-3"), particle shading at 640x360; then the surge
-# front at a/dx = 40 for each eta of FRONT_ETAS (default none). Prints each run's verdict, substeps,
+# front at a/dx = 40 for each eta of FRONT_ETAS (default none). KEYS adds scene keys to every run
+# ("sph.boundary_rows=true", dotted, as scene-at.py takes them). Prints each run's verdict, substeps,
 # iterations, real-time factor and, from its per-frame records, the largest density and speed; the
 # scenes, reports and records go under $OUT/eta (as $OUT/eta-$TAG.tgz when $OUT is set).
 #     TAG=a NS="250000 1000000" ETAS="1e-4 5e-4" FRONT_ETAS="1e-4 5e-4" scripts/gpu/dfsph-eta.sh
@@ -28,7 +29,7 @@ PY
 for n in ${NS:-250000}; do
   for eta in ${ETAS:-1e-4 1e-3}; do
     f=$out/db-$n-$eta
-    dx=$(python3 scripts/gpu/scene-at.py dam-break "$f.json" "$n" sph.max_density_error="$eta")
+    dx=$(python3 scripts/gpu/scene-at.py dam-break "$f.json" "$n" sph.max_density_error="$eta" ${KEYS:-})
     start=$(date +%s)
     timeout "${RUN_TIMEOUT:-250}" $B profile --scene "$f.json" --spacing "$dx" --shading particles --size 640x360 \
       --frames "${FRAMES:-600}" --warmup 0 --records "$f.csv" > "$f.txt" 2>&1
@@ -39,7 +40,7 @@ for n in ${NS:-250000}; do
 done
 for eta in ${FRONT_ETAS:-}; do
   f=$out/front-$eta
-  python3 scripts/gpu/scene-at.py dam-break "$f.json" 1000 sph.max_density_error="$eta" > /dev/null
+  python3 scripts/gpu/scene-at.py dam-break "$f.json" 1000 sph.max_density_error="$eta" ${KEYS:-} > /dev/null
   timeout 200 $B validate dam-break --scene "$f.json" --solver dfsph --spacing 0.005 --json "$f.out.json" --quiet > "$f.txt" 2>&1
   echo "== front at a/dx = 40, eta $eta: rc $? $(grep -m1 'surge front error' "$f.txt")"
 done
