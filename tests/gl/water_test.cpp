@@ -7,8 +7,9 @@
 //     liquid's shadow (R10). The CPU replays the shadow map: for each of the (2r + 1)² texels the GPU
 //     reads, the ray through the texel centre along the sunlight meets the box over [t0, t1]: s_near is
 //     the sun depth (R8) at t0 and d_sun = t1 − t0. Left out: pixels whose footprint crosses an edge
-//     of what they show (floor/wall/sky, a grout line, the tank's footprint), a tank edge line (within
-//     2.5 px), or a texel whose centre lies within 0.05 texel of the box's outline seen from the sun.
+//     of what they show (floor/wall/sky, a grout line, the tank's footprint) or whose centre lies within
+//     a 64th of the footprint of such an edge, a tank edge line (within 2.5 px), or a texel whose
+//     centre lies within 0.05 texel of the box's outline seen from the sun.
 //     (The sky is compared where it is in view; the camera looks down 25°..55°, so it may not be.)
 //     The shadow is taken at the point the GPU's depth holds (R12), where compose.comp takes it (R13).
 //     Tolerance: 2e-3 relative + 2e-3 (half float keeps 11 bits; the GPU's floats against doubles).
@@ -282,6 +283,19 @@ public:
         return frac.x < g || frac.y < g ? 1 : 0;
     }
 
+    // Whether p lies within delta (m) of a grout line's side or of the tank's footprint on the floor.
+    bool near_albedo_edge(const Opaque& o, double delta) const {
+        const double t = double(RANRYU_TILE_SIZE), g = double(RANRYU_GROUT_WIDTH);
+        const glm::dvec2 uv = plane_uv(o.p, o.n);
+        for (int a = 0; a < 2; ++a) {
+            const double f = (uv[a] / t - std::floor(uv[a] / t)) * t;   // metres into the tile, grout first
+            if (f < delta || std::abs(f - g) < delta || t - f < delta) return true;
+        }
+        if (o.kind != 1) return false;
+        return std::abs(o.p.x - f_.tank_min.x) < delta || std::abs(o.p.x - f_.tank_max.x) < delta ||
+               std::abs(o.p.z - f_.tank_min.z) < delta || std::abs(o.p.z - f_.tank_max.z) < delta;
+    }
+
     // (R2) The sky with its sun, linear.
     glm::dvec3 sky(glm::dvec3 d) const {
         const glm::dvec3 ground = glm::mix(kGround, kHorizon, std::exp(RANRYU_SKY_HAZE * std::min(d.y, 0.0)));
@@ -369,10 +383,16 @@ public:
     std::optional<glm::dvec3> opaque_pixel(int i, int j, Opaque* out = nullptr, std::optional<double> depth = std::nullopt) const {
         const glm::dvec3 d = ray(i + 0.5, j + 0.5);
         const Opaque o = opaque(d);
+        double footprint = 0.0;
         for (int c = 0; c < 4; ++c) {
             const Opaque k = opaque(ray(i + double(c & 1), j + double(c >> 1)));
             if (k.kind != o.kind || k.albedo_class != o.albedo_class) return std::nullopt;
+            if (o.kind != 0) footprint = std::max(footprint, glm::length(k.p - o.p));
         }
+        // A grout line narrower than the footprint can pass between the corners: the centre is left out
+        // too where the GPU's interpolated position (to a sixty-fourth of the footprint, 1e-5 m) may
+        // fall on the other side of a boundary between albedos.
+        if (o.kind != 0 && near_albedo_edge(o, footprint / 64.0 + 1e-5)) return std::nullopt;
         if (near_edge_line(i, j)) return std::nullopt;
         if (out) *out = o;
         if (o.kind == 0) return sky(d);
