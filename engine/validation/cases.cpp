@@ -14,6 +14,7 @@
 #include "frame/pipeline.h"
 #include "frame/progress.h"
 #include "frame/stop.h"
+#include "sim/fluid.h"
 #include "sim/simulation.h"
 #include "validation/snapshots.h"
 
@@ -317,7 +318,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     const int layers = int(std::ceil(r.height / dx)) + 2;
     std::vector<double> sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0);
     std::vector<long> n(std::size_t(layers), 0), core_n(std::size_t(layers), 0);
-    const double support = 2.0 * dx;
+    const double support = sim::kernel_support(scene.spacing);
     auto in_core = [&](const glm::vec4& p) {
         return p.x - scene.tank_min.x > support && scene.tank_max.x - p.x > support && p.z - scene.tank_min.z > support &&
                scene.tank_max.z - p.z > support;
@@ -340,7 +341,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     r.stats = tally.end();
     r.max_speed = end.max;
     r.rms_speed = end.rms;
-    const double h = 2.0 * dx;
+    const double h = sim::kernel_support(scene.spacing);
     for (int k = 0; k < layers; ++k) {
         if (!n[std::size_t(k)]) continue;
         HydrostaticResult::Layer l;

@@ -29,7 +29,7 @@ double kernel_w(double r, double h) {
 
 gpu::PbfParams Pbf::params_for(const scene::Scene& scene) {
     const scene::PbfSettings& s = scene.sph.pbf;
-    const double dx = scene.spacing, h = 2.0 * dx;
+    const double dx = scene.spacing, h = kernel_support(scene.spacing);
     gpu::PbfParams p{};
     p.epsilon = float(s.relaxation / (dx * dx));
     p.s_corr_scale = float(s.s_corr_k * dx * dx);
