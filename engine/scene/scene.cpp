@@ -435,6 +435,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.divergence_warm_start = float(p.number("divergence_warm_start"));
         h.relaxation = float(p.number("relaxation"));
         h.chebyshev = float(p.number("chebyshev"));
+        h.complementarity_error = p.boolean("complementarity_error");
         h.boundary_viscosity = float(p.number("boundary_viscosity"));
         h.morton = p.string("neighbour_keys") == "morton";
         h.sort = p.string("sort");

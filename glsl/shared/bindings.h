@@ -165,7 +165,7 @@ RANRYU_STRUCT(DfsphParams) {
     float warm_start_divergence; // w of (D6), the divergence solve's
     float boundary_relaxation;   // omega_b of (D9): the boundary rows' l1-Jacobi relaxation
     float chebyshev;             // rho of (D6)'s Chebyshev acceleration of the density solve; 0: off
-    uint pad2;
+    uint complementarity_error;  // 1: the density solve's error counts |r_i| where kappa_i > 0 (D6); 0: max(r_i, 0)
 }
 RANRYU_STRUCT_END(DfsphParams, 64)
 

@@ -158,7 +158,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.warm_start_divergence", {offsetof(gpu::DfsphParams, warm_start_divergence), GL_FLOAT}},
         {"dfsph.boundary_relaxation", {offsetof(gpu::DfsphParams, boundary_relaxation), GL_FLOAT}},
         {"dfsph.chebyshev", {offsetof(gpu::DfsphParams, chebyshev), GL_FLOAT}},
-        {"dfsph.pad2", {offsetof(gpu::DfsphParams, pad2), GL_UNSIGNED_INT}},
+        {"dfsph.complementarity_error", {offsetof(gpu::DfsphParams, complementarity_error), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -440,7 +440,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.warm_start_divergence = d.f();
     dp.boundary_relaxation = d.f();
     dp.chebyshev = d.f();
-    dp.pad2 = d.u();
+    dp.complementarity_error = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -494,7 +494,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.min_iterations); expect.put(dp.min_divergence_iterations); expect.put(dp.issued);
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
-    expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.pad2);
+    expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.pad0); expect.put(ss.pad1); expect.put(ss.pad2);

@@ -129,7 +129,9 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
             if (chebyshev && r.iterations >= 2) next = std::max(weight * (next - previous[i]) + previous[i], 0.0);
             previous[i] = start;
             kappa[i] = next;
-            error += std::max(residual, 0.0) / rho0;
+            // (D6): the excess, or with the complementarity error |r_i| where i carries pressure.
+            const bool held = which == Solve::density && s.complementarity_error && start > 0.0;
+            error += std::min((held ? std::abs(residual) : std::max(residual, 0.0)) / rho0, 1.0);
         }
         ++r.iterations;
         r.error = n ? error / double(n) : 0.0;

@@ -29,6 +29,7 @@ struct Settings {
     int min_divergence_iterations = 1, max_divergence_iterations = 100;
     double relaxation = 0.5;           // ω of (D6)
     double chebyshev = 0.0;            // ρ of (D10), the density solve's Chebyshev acceleration; 0: off
+    bool complementarity_error = false;   // (D6): the density solve's error counts |r_i| where κ_i > 0
     double warm_start = 1.0;           // w of (D6): κ⁰ = w·κ of the previous step (density solve)
     double divergence_warm_start = 0.5;   // likewise, the divergence solve
     int deficient_neighbours = 20;     // (D5): fewer neighbours (fluid and boundary, within h) than this: no divergence correction

@@ -101,6 +101,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.eta_divergence = scene.sph.max_divergence_error;
     params_.relaxation = scene.sph.relaxation;
     params_.chebyshev = scene.sph.chebyshev;
+    params_.complementarity_error = scene.sph.complementarity_error ? 1u : 0u;
     params_.warm_start = scene.sph.warm_start;
     params_.warm_start_divergence = scene.sph.divergence_warm_start;
     params_.boundary_relaxation = scene.sph.boundary_relaxation;

@@ -10,7 +10,9 @@
 // solve's first iteration a particle that separates from the fluid (warm_start_drop(), dfsph.glsl)
 // drops its warm start first: the last step's pressure is a guess only where the fluid still holds
 // together, and a stale one would throw a splash particle away as if it were still compressed.
-// The iteration's mean error (1/N) Σ_i min(max(r_i, 0)/rho0, 1), N the particles not parked, is
+// The iteration's mean error (1/N) Σ_i min(e_i/rho0, 1), N the particles not parked, e_i = max(r_i, 0)
+// (the excess over rho0), or with dfsph.complementarity_error in the density solve e_i = |r_i| where
+// the iteration's kappa_i > 0 (a particle that carries pressure must be at rho0, (D4)), is
 // summed on the GPU: each workgroup adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
 // run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
@@ -78,7 +80,8 @@ void main() {
             if (k >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
         }
         kappa[i] = next;
-        error = clamp(residual / sph.rest_density, 0.0, 1.0);
+        bool held = solve.solve == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
+        error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
     }
     wg_error_[l] = error;
     barrier();
