@@ -245,6 +245,28 @@ StepReference step_reference(Rig& rig, const Stages& s) {
     return r;
 }
 
+// The rows' wall density (compute_wall_density.comp) against Σ_b' psi_b' W_bb' in double, from the
+// boundary as the GPU holds it; bound: (terms + c) u of the sum. Returns the rows' count of boundary
+// particles with a wall neighbour besides themselves (how much the check saw).
+int check_wall_density(const ranryu::test::SphRig& rig, const ranryu::gl::Buffer& wall, const ref::Params& p) {
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    rig.boundary(xb, psi);
+    const std::vector<float> got = wall.read<float>(xb.size());
+    const ref::CubicKernel k{p.h};
+    int seen = 0;
+    for (std::size_t b = 0; b < xb.size(); ++b) {
+        double sum = 0.0;
+        int terms = 0;
+        for (std::size_t q = 0; q < xb.size(); ++q)
+            if (glm::length(xb[b] - xb[q]) < p.h) sum += psi[q] * k.W(glm::length(xb[b] - xb[q])), ++terms;
+        INFO("boundary particle " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": " << got[b] << " want " << sum);
+        CHECK(std::abs(double(got[b]) - sum) <= (double(terms) + kC) * kU * sum);
+        seen += terms > 1;
+    }
+    return seen;
+}
+
 }  // namespace
 
 TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accelerations and divergence start match the reference",
@@ -592,160 +614,210 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
           "[dfsph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    // The compressed block in the corner of floor and two walls, one iteration of each solve.
-    Rig rig(R"("boundary_rows": true)");
+    // The compressed block in the corner of floor and two walls, one iteration of each solve. Twice: with
+    // the divergence solve, and without it, where the density solve's rows open the step's solving.
     std::vector<glm::vec4> x, v;
-    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
+    block_state(rng, Rig(R"("boundary_rows": true)"), glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
     std::vector<glm::vec2> warm(x.size());
     for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
-    auto& d = rig.dfsph();
-    const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
-    d.set_issued_iterations(1, 1);
-    rig.fluid.upload_state(x, v);
-    d.upload_warm_start(warm);
-    rig.fluid.set_fixed_dt(4e-4f);
-    rig.timer.begin_frame();
-    rig.sim.begin_frame(0);
-    rig.fluid.choose_time_step();
-    rig.fluid.rebuild_grid();
-    d.compute_density(rig.fluid);
-    const std::vector<glm::vec4> xs4 = rig.read(rig.fluid.positions()), v0 = rig.read(rig.fluid.velocities());
-    const std::vector<glm::vec4> accel = rig.read(rig.fluid.accelerations()), a_v0 = rig.read(d.pressure_accelerations());
-    gpu::BoundaryRowsState rows{};
-    rows = d.boundary_rows().read<gpu::BoundaryRowsState>(1).front();
-    const std::vector<std::uint32_t> list = d.boundary_list().read<std::uint32_t>(std::max<std::size_t>(rows.rows, 1));
-    d.solve_divergence(rig.fluid);
-    const std::vector<float> kappa_after_divergence = d.kappa().read<float>(n + 2 * nb);
-    const std::vector<glm::vec4> v_star = rig.read(rig.fluid.velocities());
-    d.predict_density(rig.fluid);
-    const std::vector<glm::vec4> a_0 = rig.read(d.pressure_accelerations());
-    const std::vector<float> kappa0 = d.kappa().read<float>(n + 2 * nb);
-    d.solve_density(rig.fluid);
-    const std::vector<float> kappa_after_density = d.kappa().read<float>(n + 2 * nb);
-    const float dt = rig.step().dt;
-    rig.sim.end_frame();
-    rig.timer.end_frame();
-    rig.finish();
-    // The rows' passes are timed under their own names (the row iterations inside their solve's).
-    for (const char* name : {"dfsph.boundary.list", "dfsph.boundary.prepare"}) {
-        INFO("pass " << name);
-        const auto& passes = rig.timer.passes();
-        const auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.name == name; });
-        REQUIRE(it != passes.end());
-        CHECK(!it->calls.empty());
-    }
+    for (const bool divergence : {true, false}) {
+        INFO("divergence solve " << (divergence ? "on" : "off"));
+        Rig rig(divergence ? R"("boundary_rows": true)" : R"("boundary_rows": true, "divergence_solve": false)");
+        auto& d = rig.dfsph();
+        const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
+        d.set_issued_iterations(1, 1);
+        rig.fluid.upload_state(x, v);
+        d.upload_warm_start(warm);
+        rig.fluid.set_fixed_dt(4e-4f);
+        rig.timer.begin_frame();
+        rig.sim.begin_frame(0);
+        rig.fluid.choose_time_step();
+        rig.fluid.rebuild_grid();
+        d.compute_density(rig.fluid);
+        const std::vector<glm::vec4> xs4 = rig.read(rig.fluid.positions()), v0 = rig.read(rig.fluid.velocities());
+        const std::vector<glm::vec4> accel = rig.read(rig.fluid.accelerations()), a_v0 = rig.read(d.pressure_accelerations());
+        gpu::BoundaryRowsState rows{};
+        rows = d.boundary_rows().read<gpu::BoundaryRowsState>(1).front();
+        const std::vector<std::uint32_t> list = d.boundary_list().read<std::uint32_t>(std::max<std::size_t>(rows.rows, 1));
+        d.solve_divergence(rig.fluid);
+        const std::vector<float> kappa_after_divergence = d.kappa().read<float>(n + 2 * nb);
+        const std::vector<glm::vec4> v_star = rig.read(rig.fluid.velocities());
+        d.predict_density(rig.fluid);
+        const std::vector<glm::vec4> a_0 = rig.read(d.pressure_accelerations());
+        const std::vector<float> kappa0 = d.kappa().read<float>(n + 2 * nb);
+        d.solve_density(rig.fluid);
+        const std::vector<float> kappa_after_density = d.kappa().read<float>(n + 2 * nb);
+        const float dt = rig.step().dt;
+        rig.sim.end_frame();
+        rig.timer.end_frame();
+        rig.finish();
+            // The rows' passes are timed under their own names (the row iterations inside their solve's); the
+        // wall's own density once, at the first step.
+        for (const char* name : {"dfsph.boundary.list", "dfsph.boundary.prepare", "dfsph.boundary.wall"}) {
+            INFO("pass " << name);
+            const auto& passes = rig.timer.passes();
+            const auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.name == name; });
+            REQUIRE(it != passes.end());
+            CHECK(!it->calls.empty());
+            if (std::string(name) == "dfsph.boundary.wall") CHECK(it->calls.size() == 1u);
+        }
 
-    const ref::Params p = rig.params();
-    std::vector<dvec3> xb;
-    std::vector<double> psi;
-    rig.boundary(xb, psi);
-    const std::vector<dvec3> xs = d3(xs4);
-    const ref::CubicKernel k{p.h};
-    const double omega_b = double(d.params().boundary_relaxation), dt2 = double(dt) * double(dt);
+        const ref::Params p = rig.params();
+        CHECK(check_wall_density(rig, d.boundary_wall(), p) > 100);
+        std::vector<dvec3> xb;
+        std::vector<double> psi;
+        rig.boundary(xb, psi);
+        const std::vector<dvec3> xs = d3(xs4);
+        const ref::CubicKernel k{p.h};
+        const double omega_b = double(d.params().boundary_relaxation), dt2 = double(dt) * double(dt);
 
-    // The list: exactly the boundary particles within h of the fluid, each once, none fresh (a first step).
-    const std::vector<bool> want_rows = df::boundary_rows(xs, xb, p);
-    std::vector<int> listed(nb, 0);
-    for (std::uint32_t k2 = 0; k2 < rows.rows; ++k2) {
-        CHECK((list[k2] & 0x80000000u) == 0u);
-        ++listed[list[k2] & 0x7fffffffu];
-    }
-    int row_count = 0;
-    for (std::size_t b = 0; b < nb; ++b) {
-        INFO("boundary particle " << b);
-        CHECK(listed[b] == (want_rows[b] ? 1 : 0));
-        row_count += want_rows[b];
-    }
-    CHECK(row_count > 100);   // the corner block touches floor and two walls
-    CHECK(rows.dispatch.x == (rows.rows + 127u) / 128u);
+        // The list: exactly the boundary particles within h of the fluid, each once, none fresh (a first step).
+        const std::vector<bool> want_rows = df::boundary_rows(xs, xb, p);
+        std::vector<int> listed(nb, 0);
+        for (std::uint32_t k2 = 0; k2 < rows.rows; ++k2) {
+            CHECK((list[k2] & 0x80000000u) == 0u);
+            ++listed[list[k2] & 0x7fffffffu];
+        }
+        int row_count = 0;
+        for (std::size_t b = 0; b < nb; ++b) {
+            INFO("boundary particle " << b);
+            CHECK(listed[b] == (want_rows[b] ? 1 : 0));
+            row_count += want_rows[b];
+        }
+        CHECK(row_count > 100);   // the corner block touches floor and two walls
+        CHECK(rows.dispatch.x == (rows.rows + 127u) / 128u);
 
-    // u_j as the density pass left it in Accelerations.w: a sum of 2·terms magnitudes, (terms + c) u relative.
-    const std::vector<double> u = df::spreads(xs, xb, psi, p);
-    const Magnitudes m = magnitudes(xs, xb, psi, p);
-    for (std::size_t i = 0; i < n; ++i) CHECK(std::abs(double(accel[i].w) - u[i]) <= (2.0 * m.terms[i] + kC) * kU * u[i]);
+        // u_j as the density pass left it in Accelerations.w: a sum of 2·terms magnitudes, (terms + c) u relative.
+        const std::vector<double> u = df::spreads(xs, xb, psi, p);
+        const Magnitudes m = magnitudes(xs, xb, psi, p);
+        for (std::size_t i = 0; i < n; ++i) CHECK(std::abs(double(accel[i].w) - u[i]) <= (2.0 * m.terms[i] + kC) * kU * u[i]);
 
-    // One update of the rows from the GPU's own accelerations: the divergence solve starts every row from
-    // no pressure, the density solve from its kept kappa_b (here the hydrostatic start of (D9), or none
-    // where the prepare pass dropped it), as the GPU's prepare pass left it. Bound: the change
-    // dt² Σ m a_j·∇W_bj carries (terms + c) u of its magnitude sum; D_b and s_b their own relative
-    // (terms + c) u; the update's few operations 4 u.
-    auto check_rows = [&](df::Solve which, const std::vector<glm::vec4>& v_in, const std::vector<glm::vec4>& a_in,
-                          const std::vector<float>& got, std::size_t offset, const std::vector<float>& start) {
-        const df::Rows r = df::row_sources(which, xs, d3(v_in), u, xb, psi, p, double(dt));
-        std::vector<dvec3> a(n);
-        for (std::size_t i = 0; i < n; ++i) a[i] = d3(a_in[i]);
-        std::vector<double> kb(nb, 0.0);
-        for (std::size_t b = 0; b < nb; ++b) kb[b] = want_rows[b] ? double(start[n + 2 * b + offset]) : 0.0;
-        df::correct_rows(xs, a, r, xb, p, omega_b, double(dt), kb);
-        int pushed = 0;
+        // One update of the rows from the GPU's own accelerations: the divergence solve starts every row from
+        // no pressure, the density solve from its kept kappa_b (here the hydrostatic start of (D9), or none
+        // where the prepare pass dropped it), as the GPU's prepare pass left it. Bound: the change
+        // dt² Σ m a_j·∇W_bj carries (terms + c) u of its magnitude sum; D_b and s_b their own relative
+        // (terms + c) u; the update's few operations 4 u.
+        auto check_rows = [&](df::Solve which, const std::vector<glm::vec4>& v_in, const std::vector<glm::vec4>& a_in,
+                              const std::vector<float>& got, std::size_t offset, const std::vector<float>& start) {
+            const df::Rows r = df::row_sources(which, xs, d3(v_in), u, xb, psi, p, double(dt));
+            std::vector<dvec3> a(n);
+            for (std::size_t i = 0; i < n; ++i) a[i] = d3(a_in[i]);
+            std::vector<double> kb(nb, 0.0);
+            for (std::size_t b = 0; b < nb; ++b) kb[b] = want_rows[b] ? double(start[n + 2 * b + offset]) : 0.0;
+            df::correct_rows(xs, a, r, xb, p, omega_b, double(dt), kb);
+            int pushed = 0;
+            for (std::size_t b = 0; b < nb; ++b) {
+                if (!want_rows[b]) continue;
+                double size = 0.0, source_size = 0.0;
+                // What the rounding of r_bj itself (a few ulps: the positions' own rounding is about 3 u of
+                // r at these sizes) does to ∇W_bj: |∇W(r (1 + 8u)) − ∇W(r)|, in units of u. Relative to
+                // ∇W it grows without bound as r → h, where ∇W ∝ (1 − r/h)², so a row whose neighbours
+                // all lie near the support's edge carries far more than (terms + c) u of its sums.
+                double edge = 0.0, source_edge = 0.0, diagonal_edge = 0.0;
+                int terms = 0;
+                for (std::size_t j = 0; j < n; ++j) {
+                    const dvec3 d = xb[b] - xs[j];
+                    const double distance = glm::length(d);
+                    if (distance >= p.h) continue;
+                    const double g = glm::length(k.gradW(d)), e = glm::length(k.gradW(d * (1.0 + 8.0 * kU)) - k.gradW(d)) / kU;
+                    size += p.mass * glm::length(a[j]) * g;
+                    source_size += p.mass * (k.W(distance) + double(dt) * glm::length(d3(v_in[j])) * g);
+                    edge += p.mass * glm::length(a[j]) * e;
+                    source_edge += p.mass * double(dt) * glm::length(d3(v_in[j])) * e;
+                    diagonal_edge += double(psi[b]) * u[j] * e;
+                    ++terms;
+                }
+                source_size += which == df::Solve::density ? 2.0 * p.rest_density : 0.0;
+                const double inv = r.diagonal[b] > 0.0 ? omega_b / (r.diagonal[b] * dt2) : 0.0;
+                const double residual = dt2 * size + std::abs(r.source[b]);
+                const double diagonal_error = r.diagonal[b] > 0.0 ? kU * diagonal_edge / r.diagonal[b] : 0.0;
+                const double bound = inv * ((terms + 27.0 + kC) * kU * (dt2 * size + source_size) + kU * (dt2 * edge + source_edge)) +
+                                     inv * residual * ((terms + kC) * kU * 2.0 + diagonal_error) + 4.0 * kU * kb[b];
+                const double gpu_kb = double(got[n + 2 * b + offset]);
+                INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": got " << gpu_kb << " want " << kb[b]);
+                CHECK(std::abs(gpu_kb - kb[b]) <= bound);
+                pushed += kb[b] > 0.0;
+            }
+            return pushed;
+        };
+        const std::vector<float> no_kappa(n + 2 * nb, 0.0f);
+        const int pushed_v = divergence ? check_rows(df::Solve::divergence, v0, a_v0, kappa_after_divergence, 1, no_kappa) : 0;
+        // The density solve's warm start before any step: w·kappa_b of the scene's block at rest,
+        // rho0 |g| (top - y_b) / rho0² (the block reaches 0.24 m, over the whole floor), or none where the
+        // row separates (its source above 1 % of rho0).
+        int held = 0;
         for (std::size_t b = 0; b < nb; ++b) {
             if (!want_rows[b]) continue;
-            double size = 0.0, source_size = 0.0;
-            // What the rounding of r_bj itself (a few ulps: the positions' own rounding is about 3 u of
-            // r at these sizes) does to ∇W_bj: |∇W(r (1 + 8u)) − ∇W(r)|, in units of u. Relative to
-            // ∇W it grows without bound as r → h, where ∇W ∝ (1 − r/h)², so a row whose neighbours
-            // all lie near the support's edge carries far more than (terms + c) u of its sums.
-            double edge = 0.0, source_edge = 0.0, diagonal_edge = 0.0;
-            int terms = 0;
-            for (std::size_t j = 0; j < n; ++j) {
-                const dvec3 d = xb[b] - xs[j];
-                const double distance = glm::length(d);
-                if (distance >= p.h) continue;
-                const double g = glm::length(k.gradW(d)), e = glm::length(k.gradW(d * (1.0 + 8.0 * kU)) - k.gradW(d)) / kU;
-                size += p.mass * glm::length(a[j]) * g;
-                source_size += p.mass * (k.W(distance) + double(dt) * glm::length(d3(v_in[j])) * g);
-                edge += p.mass * glm::length(a[j]) * e;
-                source_edge += p.mass * double(dt) * glm::length(d3(v_in[j])) * e;
-                diagonal_edge += double(psi[b]) * u[j] * e;
-                ++terms;
-            }
-            source_size += which == df::Solve::density ? 2.0 * p.rest_density : 0.0;
-            const double inv = r.diagonal[b] > 0.0 ? omega_b / (r.diagonal[b] * dt2) : 0.0;
-            const double residual = dt2 * size + std::abs(r.source[b]);
-            const double diagonal_error = r.diagonal[b] > 0.0 ? kU * diagonal_edge / r.diagonal[b] : 0.0;
-            const double bound = inv * ((terms + 27.0 + kC) * kU * (dt2 * size + source_size) + kU * (dt2 * edge + source_edge)) +
-                                 inv * residual * ((terms + kC) * kU * 2.0 + diagonal_error) + 4.0 * kU * kb[b];
-            const double gpu_kb = double(got[n + 2 * b + offset]);
-            INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": got " << gpu_kb << " want " << kb[b]);
-            CHECK(std::abs(gpu_kb - kb[b]) <= bound);
-            pushed += kb[b] > 0.0;
+            // Bound: float's top - y_b, off by u of the top's height, and the products' few u.
+            const double g = double(glm::length(rig.scene.gravity)), rho0 = double(p.rest_density);
+            const double hydrostatic = g * std::max(0.24 - xb[b].y, 0.0) / rho0;
+            INFO("row " << b << " at height " << xb[b].y << ": kappa_b " << kappa0[n + 2 * b] << ", hydrostatic " << hydrostatic);
+            CHECK((kappa0[n + 2 * b] == 0.0f || std::abs(double(kappa0[n + 2 * b]) - hydrostatic) <= 4.0 * kU * g * 0.24 / rho0));
+            held += kappa0[n + 2 * b] > 0.0f;
         }
-        return pushed;
-    };
-    const std::vector<float> no_kappa(n + 2 * nb, 0.0f);
-    const int pushed_v = check_rows(df::Solve::divergence, v0, a_v0, kappa_after_divergence, 1, no_kappa);
-    // The density solve's warm start before any step: w·kappa_b of the scene's block at rest,
-    // rho0 |g| (top - y_b) / rho0² (the block reaches 0.24 m, over the whole floor), or none where the
-    // row separates (its source above 1 % of rho0).
-    int held = 0;
-    for (std::size_t b = 0; b < nb; ++b) {
-        if (!want_rows[b]) continue;
-        // Bound: float's top - y_b, off by u of the top's height, and the products' few u.
-        const double g = double(glm::length(rig.scene.gravity)), rho0 = double(p.rest_density);
-        const double hydrostatic = g * std::max(0.24 - xb[b].y, 0.0) / rho0;
-        INFO("row " << b << " at height " << xb[b].y << ": kappa_b " << kappa0[n + 2 * b] << ", hydrostatic " << hydrostatic);
-        CHECK((kappa0[n + 2 * b] == 0.0f || std::abs(double(kappa0[n + 2 * b]) - hydrostatic) <= 4.0 * kU * g * 0.24 / rho0));
-        held += kappa0[n + 2 * b] > 0.0f;
-    }
-    CHECK(held > 0);
-    const int pushed = check_rows(df::Solve::density, v_star, a_0, kappa_after_density, 0, kappa0);
-    INFO(pushed_v << " rows pushed in the divergence solve, " << pushed << " in the density solve");
-    CHECK(pushed > 10);   // the compressed block presses on the walls
+        CHECK(held > 0);
+        const int pushed = check_rows(df::Solve::density, v_star, a_0, kappa_after_density, 0, kappa0);
+        INFO(pushed_v << " rows pushed in the divergence solve, " << pushed << " in the density solve");
+        CHECK(pushed > 10);   // the compressed block presses on the walls
 
-    // The divergence solve's end: v* = v + dt (a(κ_v, κ_v,b) + a_np), the rows' κ_v,b in the pair term.
-    std::vector<double> kv(n), kvb(nb);
-    for (std::size_t i = 0; i < n; ++i) kv[i] = double(kappa_after_divergence[i]);
-    for (std::size_t b = 0; b < nb; ++b) kvb[b] = double(kappa_after_divergence[n + 2 * b + 1]);
-    const std::vector<dvec3> a_v = df::pressure_accelerations(xs, kv, xb, psi, kvb, p);
-    double kmax = 0.0;
-    for (double q : kv) kmax = std::max(kmax, q);
-    for (double q : kvb) kmax = std::max(kmax, q);
-    for (std::size_t i = 0; i < n; ++i) {
-        const dvec3 want = d3(v0[i]) + double(dt) * (a_v[i] + d3(accel[i]));
-        const double a_err = (double(m.terms[i]) + kC) * kU * (2.0 * kmax * m.fluid[i] + 2.0 * kmax * m.wall[i]);
-        INFO("particle " << i);
-        CHECK(vec_error(v_star[i], want) <= double(dt) * a_err + 4.0 * kU * (glm::length(want) + double(dt) * glm::length(a_v[i])));
+        // The divergence solve's end: v* = v + dt (a(κ_v, κ_v,b) + a_np), the rows' κ_v,b in the pair term
+        // (without the solve v* = v + dt a_np).
+        std::vector<double> kv(n), kvb(nb);
+        for (std::size_t i = 0; i < n; ++i) kv[i] = divergence ? double(kappa_after_divergence[i]) : 0.0;
+        for (std::size_t b = 0; b < nb; ++b) kvb[b] = divergence ? double(kappa_after_divergence[n + 2 * b + 1]) : 0.0;
+        const std::vector<dvec3> a_v = df::pressure_accelerations(xs, kv, xb, psi, kvb, p);
+        double kmax = 0.0;
+        for (double q : kv) kmax = std::max(kmax, q);
+        for (double q : kvb) kmax = std::max(kmax, q);
+        for (std::size_t i = 0; i < n; ++i) {
+            const dvec3 want = d3(v0[i]) + double(dt) * (a_v[i] + d3(accel[i]));
+            const double a_err = (double(m.terms[i]) + kC) * kU * (2.0 * kmax * m.fluid[i] + 2.0 * kmax * m.wall[i]);
+            INFO("particle " << i);
+            CHECK(vec_error(v_star[i], want) <= double(dt) * a_err + 4.0 * kU * (glm::length(want) + double(dt) * glm::length(a_v[i])));
+        }
     }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: the boundary rows' wall density follows the paddle: computed at the first step, again after it moves",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A 0.24 m pool at dx = 0.04 m in an open 0.6 m tank, the paddle (radius 0.12 m, h = 0.08 m) first
+    // in the middle, then resting within h of the floor, where its particles' wall density takes in
+    // the floor's: the boundary is re-sorted (new indices) and the sums change, so a kept sum would fail.
+    ranryu::scene::Scene scene = ranryu::scene::parse(R"({"name": "paddle", "model": "sph",
+        "tank": {"min": [0, 0, 0], "max": [0.6, 0.6, 0.6]},
+        "particles": {"spacing": 0.04, "blocks": [{"min": [0, 0, 0], "max": [0.6, 0.24, 0.6]}]},
+        "sph": {"solver": "dfsph", "boundary_rows": true}})",
+                                                      "dfsph_test");
+    scene.paddle_radius = 0.12f;
+    ranryu::test::SphRig rig(scene);
+    auto& d = rig.dfsph();
+    const ref::Params p = ref::Params::from_spacing(double(rig.fluid.params().spacing), double(rig.fluid.params().rest_density), 0.0,
+                                                    0.0, dvec3(0.0));
+    auto first_steps_pass = [&](glm::vec3 centre, std::uint64_t frame) {
+        rig.timer.begin_frame();
+        rig.fluid.move_paddle(centre, glm::vec3(0.0f), true);
+        rig.sim.begin_frame(frame);
+        rig.fluid.choose_time_step();
+        rig.fluid.rebuild_grid();
+        d.compute_density(rig.fluid);
+        rig.sim.end_frame();
+        rig.timer.end_frame();
+        rig.finish();
+        const auto& passes = rig.timer.passes();
+        const auto it = std::find_if(passes.begin(), passes.end(), [](const auto& q) { return q.name == "dfsph.boundary.wall"; });
+        REQUIRE(it != passes.end());
+        return it->calls.size();   // over every frame so far
+    };
+    const glm::vec3 middle(rng.uniform(0.28f, 0.32f), rng.uniform(0.28f, 0.32f), rng.uniform(0.28f, 0.32f));
+    CHECK(first_steps_pass(middle, 0) == 1u);
+    CHECK(check_wall_density(rig, d.boundary_wall(), p) > 100);
+    const glm::vec3 low(rng.uniform(0.25f, 0.35f), rng.uniform(0.13f, 0.15f), rng.uniform(0.25f, 0.35f));
+    CHECK(first_steps_pass(low, 1) == 2u);   // the pass's calls so far
+    CHECK(check_wall_density(rig, d.boundary_wall(), p) > 100);
+    CHECK(first_steps_pass(low, 2) == 2u);   // the paddle stood: the sums stand, no new call
     ranryu::test::require_no_gl_errors();
 }
 

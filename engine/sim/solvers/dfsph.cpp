@@ -77,6 +77,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       integrate_pass_(timer.pass("dfsph.integrate")),
       prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
       list_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.list") : profile::PassId{}),
+      wall_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.wall") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, false))),
@@ -89,6 +90,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
       correct_rows_(rows_program(shaders, "sim/dfsph/correct_boundary_pressure.comp", fluid, rows_)),
+      wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
@@ -145,6 +147,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         boundary_mark_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, unmarked.data(), "dfsph.boundary_mark");
         boundary_list_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_list");
         boundary_row_ = gl::Buffer(nb * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_row");
+        boundary_wall_ = gl::Buffer(nb * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_wall");
         gpu::BoundaryRowsState opened_rows{};
         opened_rows.epoch = 1u;   // marks start at 0: "a row the step before", whose kappa_b is the initial 0
         rows_state_ = gl::Buffer(sizeof opened_rows, GL_DYNAMIC_COPY, &opened_rows, "dfsph.boundary_rows");
@@ -156,8 +159,8 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
                              (chebyshev ? n : 1) * sizeof(float) + Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
-    // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_; rows_state_
-    return base + boundary * (2 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
+    // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_, boundary_wall_; rows_state_
+    return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
 }
 
@@ -201,7 +204,8 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
     if (rows_)
         set.add("BoundaryMark", boundary_mark_)
-            .add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_);
+            .add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
+            .add("BoundaryWall", boundary_wall_);
     return set;
 }
 
@@ -239,6 +243,12 @@ void Dfsph::open_solve(int solve) {
 }
 
 void Dfsph::compute_density(Fluid& fluid) {
+    if (rows_ && fluid.boundary_generation() != wall_generation_) {   // at start, and after the paddle moved
+        wall_generation_ = fluid.boundary_generation();
+        auto pass = timer_.scope(wall_pass_);
+        wall_density_.bind(state(fluid, 1)).dispatch(fluid.boundary_count());
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     if (divergence_) open_solve(1);
     {
         auto pass = timer_.scope(density_pass_);

@@ -14,10 +14,12 @@
 //     "dfsph.pressure.solve"         (D6) iterations, likewise
 //     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
 //
-// With the boundary rows of (D9) (sph.boundary_rows), the density pass is followed by "dfsph.boundary.list":
-// list_boundary_rows.comp (the boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve
-// opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration
-// runs correct_boundary_pressure.comp before correct_pressure.comp, indirectly over the rows.
+// With the boundary rows of (D9) (sph.boundary_rows), the wall's own density of each boundary particle
+// is computed when the boundary is built ("dfsph.boundary.wall": at the first step, and after the
+// paddle moves), the density pass is followed by "dfsph.boundary.list": list_boundary_rows.comp (the
+// boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve opens with
+// "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration runs
+// correct_boundary_pressure.comp before correct_pressure.comp, indirectly over the rows.
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
@@ -77,6 +79,7 @@ public:
     // the ones that were no row the step before); empty without rows.
     const gl::Buffer& boundary_rows() const { return rows_state_; }
     const gl::Buffer& boundary_list() const { return boundary_list_; }
+    const gl::Buffer& boundary_wall() const { return boundary_wall_; }
 
 private:
     shader::StorageSet state(Fluid& fluid, int solve) const;
@@ -88,10 +91,10 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
-        prepare_pass_, list_pass_;
+        prepare_pass_, list_pass_, wall_pass_;
     bool divergence_, rows_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
-    shader::Program list_rows_, size_rows_, prepare_rows_, correct_rows_;   // (D9), built when rows_
+    shader::Program list_rows_, size_rows_, prepare_rows_, correct_rows_, wall_density_;   // (D9), built when rows_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
@@ -99,11 +102,13 @@ private:
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
-    // (D9), per boundary particle: the step's mark, list entry and row; the rows' BoundaryRowsState.
-    gl::Buffer boundary_mark_, boundary_list_, boundary_row_, rows_state_;
+    // (D9), per boundary particle: the step's mark, list entry and row, and the wall's own density
+    // (compute_wall_density.comp); the rows' BoundaryRowsState.
+    gl::Buffer boundary_mark_, boundary_list_, boundary_row_, boundary_wall_, rows_state_;
     Fluid& fluid_;
     int warm_;
     std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to
+    std::uint64_t wall_generation_ = ~std::uint64_t(0);   // ... and boundary_wall_ (none yet)
 };
 
 }  // namespace ranryu::sim

@@ -13,6 +13,9 @@
 // (s_b above warm_start_drop(), as for the fluid (D6)). The divergence solve's starts from none (its
 // first pressure accelerations come with the density pass, before the rows are listed).
 // Velocities: v_n (divergence) or v* (density).
+// The wall's part Σ_b' psi_b' W_bb' depends on the boundary alone: compute_wall_density.comp keeps it in
+// BoundaryWall, and this pass walks the fluid alone (docs/PERFORMANCE.md "The boundary rows' prepare
+// passes").
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -22,10 +25,11 @@ layout(std430) readonly buffer Accelerations { vec4 accel[]; };   // w: u_j
 layout(std430) writeonly buffer BoundaryRow { vec2 row[]; };
 layout(std430) readonly buffer Solve { SolveState solve; };
 layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
+layout(std430) readonly buffer BoundaryWall { float wall[]; };   // Σ_b' psi_b' W_bb', per boundary particle
 
 #include "boundary_rows.glsl"
 
-float rho_, wall_, rate_, diagonal_;
+float rho_, rate_, diagonal_;
 void visit_row_fluid(uint j, vec3 d, float r) {
     vec3 g = kernel_grad(d, r, sph.h);
     rho_ += sph.mass * kernel_w(r, sph.h);
@@ -38,18 +42,10 @@ void main() {
     if (k >= rows.rows) return;   // no barriers in this pass
     uint entry = boundary_list[k], b = entry & ~kFreshRow, s = solve.solve;
     vec3 xb = boundary[b].xyz;
-    rho_ = wall_ = rate_ = diagonal_ = 0.0;
+    rho_ = rate_ = diagonal_ = 0.0;
     for_each_fluid_near(xb);
-    ivec3 c = grid_cell(xb);
-    float h2 = sph.h * sph.h;
-    FOR_EACH_RUN {
-        uvec2 run = NEIGHBOUR_RUN(c, false);
-        for (uint q = run.x; q < run.y; ++q) {
-            vec3 d = xb - boundary[q].xyz;
-            if (dot(d, d) < h2) wall_ += boundary[q].w * kernel_w(length(d), sph.h);
-        }
-    }
-    float source = s == 0u ? max(sph.rest_density, wall_) - (rho_ + wall_ + step.dt * rate_) : -step.dt * rate_;
+    float w = wall[b];
+    float source = s == 0u ? max(sph.rest_density, w) - (rho_ + w + step.dt * rate_) : -step.dt * rate_;
     float d_b = boundary[b].w * diagonal_;
     row[k] = vec2(source, d_b > 0.0 ? 1.0 / d_b : 0.0);
     bool drop = s == 1u || (entry & kFreshRow) != 0u || source > warm_start_drop();
