@@ -16,9 +16,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -809,13 +813,13 @@ TEST_CASE("dfsph: the boundary rows' wall density follows the paddle: computed a
         const auto& passes = rig.timer.passes();
         const auto it = std::find_if(passes.begin(), passes.end(), [](const auto& q) { return q.name == "dfsph.boundary.wall"; });
         REQUIRE(it != passes.end());
-        return it->calls.size();   // over every frame so far
+        return it->calls.size();   // frames it ran in, so far
     };
     const glm::vec3 middle(rng.uniform(0.28f, 0.32f), rng.uniform(0.28f, 0.32f), rng.uniform(0.28f, 0.32f));
     CHECK(first_steps_pass(middle, 0) == 1u);
     CHECK(check_wall_density(rig, d.boundary_wall(), p) > 100);
     const glm::vec3 low(rng.uniform(0.25f, 0.35f), rng.uniform(0.13f, 0.15f), rng.uniform(0.25f, 0.35f));
-    CHECK(first_steps_pass(low, 1) == 2u);   // the pass's calls so far
+    CHECK(first_steps_pass(low, 1) == 2u);   // frames it ran in
     CHECK(check_wall_density(rig, d.boundary_wall(), p) > 100);
     CHECK(first_steps_pass(low, 2) == 2u);   // the paddle stood: the sums stand, no new call
     ranryu::test::require_no_gl_errors();
@@ -852,4 +856,71 @@ TEST_CASE("dfsph: with the boundary rows of (D9) a column at rest on the floor s
     INFO("rms speed after the first frame " << rms << " m/s");
     CHECK(rms <= 0.03 * 9.81 * rig.scene.frame_dt);
     ranryu::test::require_no_gl_errors();
+}
+
+// Benchmark (the GPU host; ctest never runs it): what an iteration a solve is issued costs once the
+// solve has converged (its dispatches of zero workgroups, the barriers between them, and with the
+// boundary rows their pass over the rows, which returns at once). The dam break (or
+// RANRYU_DFSPH_BENCH_SCENE) at RANRYU_DFSPH_BENCH_SPACING (default 0.00317 m, 246k particles), with
+// and without the rows: WARMUP frames (default 20) at the Dfsph's own caps, then FRAMES pairs of frames
+// (default 10), the first of each pair issued `lean` iterations a solve (1.5 times the most one step
+// of the warm-up needed, + 2) and the second 100. The two see the same flow a frame apart; the
+// difference of a step's solve time over the difference in issued iterations is the cost of one.
+//     RANRYU_DFSPH_BENCH_SPACING=0.00317 ranryu_gl_tests "[dfsph-bench]"
+TEST_CASE("dfsph: benchmark of issued iterations", "[.][dfsph-bench]") {
+    const auto env = [](const char* name, const char* fallback) {
+        const char* v = std::getenv(name);
+        return std::string(v ? v : fallback);
+    };
+    const float dx = std::stof(env("RANRYU_DFSPH_BENCH_SPACING", "0.00317"));
+    const int warmup = std::stoi(env("RANRYU_DFSPH_BENCH_WARMUP", "20")), pairs = std::stoi(env("RANRYU_DFSPH_BENCH_FRAMES", "10"));
+    std::printf("%s\n", ranryu::test::context().info().renderer.c_str());
+    for (const bool rows : {true, false}) {
+        ranryu::scene::Scene scene = ranryu::scene::load(env("RANRYU_DFSPH_BENCH_SCENE", "dam-break"));
+        scene.sph.boundary_rows = rows;
+        scene = ranryu::scene::with_spacing(scene, dx, "RANRYU_DFSPH_BENCH_SPACING");
+        ranryu::test::SphRig rig(scene);
+        glm::uvec2 most(0u);
+        std::uint32_t unconverged = 0;
+        rig.fluid.set_record_sink([&](const gpu::StepState& r) {
+            most = glm::max(most, glm::uvec2(r.iterations.z, r.iterations.w));
+            unconverged += r.unconverged.x + r.unconverged.y;
+        });
+        std::uint64_t f = 0;
+        for (; f < std::uint64_t(warmup); ++f) rig.frame(f);
+        rig.finish();
+        REQUIRE_FALSE(rig.fluid.instability().has_value());
+        const glm::ivec2 lean(int(1.5 * most.x) + 2, int(1.5 * most.y) + 2);
+        unconverged = 0;
+        // Per pass and issue: ms and steps (calls) over the timed frames.
+        struct Sum {
+            double ms = 0.0;
+            long steps = 0;
+        };
+        std::map<std::pair<std::string, int>, Sum> sums;
+        for (int k = 0; k < 2 * pairs; ++k, ++f) {
+            const bool full = k % 2 == 1;
+            rig.dfsph().set_issued_iterations(full ? 100 : lean.x, full ? 100 : lean.y);
+            rig.timer.drain();
+            rig.timer.reset_samples();
+            rig.frame(f);
+            rig.finish();
+            for (const auto& p : rig.timer.passes())
+                for (std::size_t q = 0; q < p.ms.size(); ++q) {
+                    Sum& s = sums[{p.name, full ? 100 : 0}];
+                    s.ms += p.ms[q];
+                    s.steps += p.calls[q];
+                }
+        }
+        REQUIRE_FALSE(rig.fluid.instability().has_value());
+        std::printf("%zu particles, boundary %s: issued %d/%d (lean) and 100/100 a step, %u steps stopped at a lean cap\n",
+                    rig.fluid.count(), rows ? "rows" : "Akinci", lean.x, lean.y, unconverged);
+        for (const auto& [name, issued_x, lean_x] : {std::tuple{std::string("dfsph.pressure.solve"), 100, lean.x},
+                                                     std::tuple{std::string("dfsph.divergence.solve"), 100, lean.y}}) {
+            const Sum a = sums[{name, 0}], b = sums[{name, 100}];
+            const double ms_a = a.ms / double(std::max(a.steps, 1L)), ms_b = b.ms / double(std::max(b.steps, 1L));
+            std::printf("  %-24s lean %.4f ms a step (%ld steps), 100: %.4f ms a step (%ld steps): %.2f us an issued iteration\n",
+                        name.c_str(), ms_a, a.steps, ms_b, b.steps, 1e3 * (ms_b - ms_a) / double(issued_x - lean_x));
+        }
+    }
 }
