@@ -334,12 +334,10 @@ shader::StorageSet Fluid::bind_state() {
                            {"Density", &density_},
                            {"Accelerations", &accel_},
                            {"Step", &step_},
-                           {"CellStart", &ranges_.start},
-                           {"CellEnd", &ranges_.end},
+                           {"CellRange", &ranges_.cells},
                            {"SortedKeys", &grid_.sort().sorted_keys()},   // validates ranges
                            {"Boundary", &boundary_},
-                           {"BoundaryCellStart", &boundary_ranges_.start},
-                           {"BoundaryCellEnd", &boundary_ranges_.end},
+                           {"BoundaryCellRange", &boundary_ranges_.cells},
                            {"BoundaryNear", &boundary_near_},
                            {"Obstacles", &obstacles_},
                            {"NeighbourMasks", &neighbours_}};

@@ -136,8 +136,8 @@ public:
     const NeighbourGrid& grid() const { return grid_; }
 
     // Every buffer of the state by the storage block name the passes declare (glsl/sim/fluid/*.glsl):
-    // Positions, Velocities, Density, Accelerations, Step, CellStart, CellEnd, SortedKeys, Boundary,
-    // BoundaryCellStart, BoundaryCellEnd, BoundaryNear, Obstacles, NeighbourMasks (when on) and each
+    // Positions, Velocities, Density, Accelerations, Step, CellRange, SortedKeys, Boundary,
+    // BoundaryCellRange, BoundaryNear, Obstacles, NeighbourMasks (when on) and each
     // carried array under its name. Binds the SphParams and GridParams uniform blocks too.
     shader::StorageSet bind_state();
     // "#define" lines every neighbour pass of this fluid is built with: RANRYU_MERGE_ROWS (9 merged

@@ -66,9 +66,7 @@ std::size_t NeighbourGrid::bytes_for(std::size_t capacity) { return KeySort::byt
 std::size_t NeighbourGrid::ranges_bytes(const GridLayout& layout) { return 2 * std::size_t(layout.key_count) * sizeof(std::uint32_t); }
 
 CellRanges NeighbourGrid::make_ranges(std::string_view name) const {
-    const std::size_t bytes = ranges_bytes(layout_) / 2;
-    return CellRanges{gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".start"),
-                      gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, std::string(name) + ".end")};
+    return CellRanges{gl::Buffer(ranges_bytes(layout_), GL_DYNAMIC_COPY, nullptr, std::string(name))};
 }
 
 void NeighbourGrid::bind_params(std::size_t count) {
@@ -98,15 +96,13 @@ void NeighbourGrid::build(const gl::Buffer& position, const gl::Buffer& velocity
         auto pass = timer_.scope(reorder_pass_);
         if (clear) {
             const GLuint zero = 0;
-            glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.start.id());
-            glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-            glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.end.id());
+            glBindBuffer(GL_COPY_WRITE_BUFFER, ranges.cells.id());
             glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
             glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
         shader::StorageSet buffers{{"SortedKeys", &sort_.sorted_keys()}, {"SortedValues", &sort_.sorted_values()},
-                                   {"CellStart", &ranges.start},         {"CellEnd", &ranges.end},
+                                   {"CellRange", &ranges.cells},
                                    {"Positions", &position},              {"Velocities", &velocity},
                                    {"SortedPositions", &sorted_position}, {"SortedVelocities", &sorted_velocity}};
         static constexpr std::string_view from[] = {"Carried0", "Carried1", "Carried2"},

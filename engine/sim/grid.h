@@ -1,7 +1,7 @@
 #pragma once
 // The uniform-grid neighbour search (docs/METHOD.md §1; Green 2008): hash -> sort -> cell ranges ->
 // reorder. After build(), the particles are in cell order and a cell's particles are the run
-// [cell_start[key], cell_end[key]) of the sorted arrays. Passes: "hash", the sort's own, and
+// cell_range[key] = [first, one past the last) of the sorted arrays. Passes: "hash", the sort's own, and
 // "reorder", which finds the cell ranges and gathers the particles in one pass.
 #include <array>
 #include <cstdint>
@@ -23,7 +23,7 @@ struct GridLayout {
     float cell = 1.0f;
     glm::uvec3 dims{1u};
     bool morton = false;
-    std::uint32_t key_count = 1;   // cell_start/cell_end entries
+    std::uint32_t key_count = 1;   // cell_range entries
     static GridLayout covering(glm::vec3 min, glm::vec3 max, float cell, bool morton);
     gpu::GridParams params(std::uint32_t count) const;
 };
@@ -31,9 +31,10 @@ struct GridLayout {
 // Morton keys: the low 10 bits of v spread to every third bit of 30 (glsl/sim/grid.glsl's spread_bits).
 std::uint32_t spread_bits(std::uint32_t v);
 
-// The cell ranges of one particle set.
+// The cell ranges of one particle set: per key, the run (first sorted index, one past its last) as a
+// uvec2, one storage block for the passes that walk the grid (GL's 16 a compute shader may bind).
 struct CellRanges {
-    gl::Buffer start, end;
+    gl::Buffer cells;
 };
 
 // A per-particle array that a reorder gathers along with the positions: `words` 32-bit words a

@@ -267,8 +267,7 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
     params_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SURFACE);
     shader::StorageSet buffers{{"Positions", &sorted_position},
                                {"SurfaceGridState", &grid_},
-                               {"CellStart", &ranges.start},
-                               {"CellEnd", &ranges.end},
+                               {"CellRange", &ranges.cells},
                                {"SortedKeys", &grid.sort().sorted_keys()},   // validates ranges
                                {"Phi", &phi_},
                                {"SplatGrid", &splat_grid_}};

@@ -3,7 +3,7 @@
 // Linear keys are the talk's i + j*nx + k*nx*ny. Morton keys interleave the bits of (i, j, k)
 // (bit b of i goes to bit 3b): cells close in space get close keys, so the sorted particles of
 // neighbouring cells sit closer in memory. Either way every cell has one key, and a key's particles
-// are the run [cell_start[key], cell_end[key]) of the sorted arrays.
+// are the run cell_range[key] = [first, one past the last) of the sorted arrays.
 
 ivec3 grid_cell(vec3 x) {
     ivec3 c = ivec3(floor((x - grid.origin.xyz) / grid.origin.w));

@@ -4,7 +4,7 @@
 //   - every particle's neighbours found through the 27 cells around its cell (read-back cell ranges,
 //     sorted positions, the key function of glsl/sim/grid.glsl redone on the CPU) are exactly
 //     reference::neighbours() on the same positions: every j with |x_i - x_j| < h;
-//   - the sorted keys are the keys of the sorted positions, ascending; cell_start/cell_end are exactly
+//   - the sorted keys are the keys of the sorted positions, ascending; the cell ranges are exactly
 //     the runs of equal keys for the cells that have particles, and every other cell's entry is one
 //     the readers reject: the fluid's ranges are not cleared between substeps (grid.h), so an empty
 //     cell may keep a stale entry, which sim/fluid/fluid.glsl's fluid_run() takes only if the sorted key at
@@ -127,9 +127,10 @@ Snapshot rebuild(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<gl
     sph.rebuild_grid();
     rig.timer.end_frame();
     const std::size_t n = sph.count(), keys = sph.grid().layout().key_count;
-    return {sph.positions().read<glm::vec4>(n), sph.velocities().read<glm::vec4>(n),
-            sph.grid().sort().sorted_keys().read<std::uint32_t>(n), sph.cell_ranges().start.read<std::uint32_t>(keys),
-            sph.cell_ranges().end.read<std::uint32_t>(keys)};
+    Snapshot s{sph.positions().read<glm::vec4>(n), sph.velocities().read<glm::vec4>(n),
+               sph.grid().sort().sorted_keys().read<std::uint32_t>(n), {}, {}};
+    for (const glm::uvec2& r : sph.cell_ranges().cells.read<glm::uvec2>(keys)) s.start.push_back(r.x), s.end.push_back(r.y);
+    return s;
 }
 
 void check_grid(const std::string& keys, const std::string& sort) {

@@ -6,12 +6,10 @@
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
 layout(std430) coherent buffer Step { StepState step; };
-layout(std430) readonly buffer CellStart { uint cell_start[]; };   // per key: first sorted index of the cell
-layout(std430) readonly buffer CellEnd { uint cell_end[]; };       // per key: one past its last
+layout(std430) readonly buffer CellRange { uvec2 cell_range[]; }; // per key: first sorted index of the cell, one past its last
 layout(std430) readonly buffer SortedKeys { uint sorted_keys[]; }; // per sorted index: the key (validates ranges)
 layout(std430) readonly buffer Boundary { vec4 boundary[]; };      // xyz, w: psi_b, in cell order
-layout(std430) readonly buffer BoundaryCellStart { uint boundary_start[]; };
-layout(std430) readonly buffer BoundaryCellEnd { uint boundary_end[]; };
+layout(std430) readonly buffer BoundaryCellRange { uvec2 boundary_range[]; };
 
 #include "../grid.glsl"
 #include "../kernel.glsl"
@@ -29,13 +27,12 @@ uint max_bits(float x) { return floatBitsToUint(max(x, 0.0)); }
 // sort): an entry is current only if the sorted key at its start is `key`. A stale entry fails that
 // test, because a cell that no particle has this substep has no particle with its key.
 uvec2 fluid_run(uint key) {
-    uint s = cell_start[key];
-    if (s < sph.particle_count && sorted_keys[s] == key) return uvec2(s, cell_end[key]);
-    return uvec2(0u);
+    uvec2 r = cell_range[key];
+    return r.x < sph.particle_count && sorted_keys[r.x] == key ? r : uvec2(0u);
 }
 
 // The boundary's ranges were cleared when they were built (once, at start): empty cells read 0, 0.
-uvec2 boundary_run(uint key) { return uvec2(boundary_start[key], boundary_end[key]); }
+uvec2 boundary_run(uint key) { return boundary_range[key]; }
 
 // The particles of the cell at `c`, as a run of the sorted arrays (empty outside the grid).
 uvec2 cell_run(ivec3 c, bool fluid) {

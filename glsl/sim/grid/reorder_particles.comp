@@ -1,10 +1,10 @@
 #version 430
 // Cell ranges and reorder (docs/METHOD.md §1 step 3), one invocation per sorted index i:
 //   - from the keys sorted ascending, the run of each key:
-//         cell_start[k] = first i with key[i] = k,   cell_end[k] = last such i + 1.
+//         cell_range[k] = (first i with key[i] = k, last such i + 1).
 //     Cells with no particle keep what they held: the 0, 0 they were cleared to (NeighbourGrid::build
 //     with clear), or a stale entry that readers reject (sim/fluid/fluid.glsl, fluid_run).
-//     Example: keys 2 2 5 7 7 7 -> start[2]=0 end[2]=2, start[5]=2 end[5]=3, start[7]=3 end[7]=6.
+//     Example: keys 2 2 5 7 7 7 -> range[2] = (0, 2), range[5] = (2, 3), range[7] = (3, 6).
 //   - the gather of the particle arrays into sorted order,
 //     out[i] = in[value[i]],
 // so that the particles of one cell, and of neighbouring cells, are close in memory. With
@@ -17,8 +17,7 @@ layout(local_size_x = 256) in;
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std430) readonly buffer SortedKeys { uint keys[]; };
 layout(std430) readonly buffer SortedValues { uint values[]; };
-layout(std430) writeonly buffer CellStart { uint cell_start[]; };
-layout(std430) writeonly buffer CellEnd { uint cell_end[]; };
+layout(std430) writeonly buffer CellRange { uvec2 cell_range[]; };
 layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) writeonly buffer SortedPositions { vec4 sorted_position[]; };
@@ -42,8 +41,8 @@ void main() {
     uint n = grid.count;
     if (i >= n) return;
     uint k = keys[i];
-    if (i == 0u || keys[i - 1u] != k) cell_start[k] = i;
-    if (i + 1u == n || keys[i + 1u] != k) cell_end[k] = i + 1u;
+    if (i == 0u || keys[i - 1u] != k) cell_range[k].x = i;
+    if (i + 1u == n || keys[i + 1u] != k) cell_range[k].y = i + 1u;
     uint src = values[i];
     sorted_position[i] = position[src];
     sorted_velocity[i] = velocity[src];
