@@ -171,19 +171,19 @@ RANRYU_STRUCT_END(DfsphParams, 64)
 
 // One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
 // bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual
-// pass sets dispatch.x to 0 once the solve has converged or reached its cap, so the iterations the
-// CPU issued beyond that dispatch no work.
+// pass sets dispatch.x and correct_groups to 0 once the solve has converged or reached its cap, so the
+// iterations the CPU issued beyond that dispatch no work.
 RANRYU_STRUCT(SolveState) {
-    uvec4 dispatch;      // xyz: workgroups of the next iteration's passes; w: unused
+    uvec4 dispatch;      // xyz: workgroups of the next iteration's accelerate pass; w: unused
     uint iterations;     // iterations run in this solve so far
     uint error_sum;      // this iteration's Σ_i min(max(r_i, 0)/rho0, 1), in units of 1/error_scale
     uint groups_done;    // workgroups of this iteration's residual pass that have added their part
     uint solve;          // 0: the density solve, 1: the divergence solve (its StepState fields)
     float weight;        // (D10): the Chebyshev weight w_k of this solve's next iteration k, once k >=
                          // kChebyshevStart (glsl/sim/dfsph/dfsph.glsl); opens at w = 2/(2 - rho_c^2)
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint correct_groups; // with correct_y, correct_z: the indirect arguments of its residual pass: the
+    uint correct_y;      // fluid's workgroups, then with the boundary rows of (D9) the rows' (set by the
+    uint correct_z;      // solve's prepare pass)
 }
 RANRYU_STRUCT_END(SolveState, 48)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)

@@ -94,7 +94,7 @@ void main() {
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.complementarity_error);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
-    put(solve.weight); put(solve.pad0); put(solve.pad1); put(solve.pad2);
+    put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
     put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);

@@ -166,9 +166,9 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.groups_done", {offsetof(gpu::SolveState, groups_done), GL_UNSIGNED_INT}},
         {"solve.solve", {offsetof(gpu::SolveState, solve), GL_UNSIGNED_INT}},
         {"solve.weight", {offsetof(gpu::SolveState, weight), GL_FLOAT}},
-        {"solve.pad0", {offsetof(gpu::SolveState, pad0), GL_UNSIGNED_INT}},
-        {"solve.pad1", {offsetof(gpu::SolveState, pad1), GL_UNSIGNED_INT}},
-        {"solve.pad2", {offsetof(gpu::SolveState, pad2), GL_UNSIGNED_INT}},
+        {"solve.correct_groups", {offsetof(gpu::SolveState, correct_groups), GL_UNSIGNED_INT}},
+        {"solve.correct_y", {offsetof(gpu::SolveState, correct_y), GL_UNSIGNED_INT}},
+        {"solve.correct_z", {offsetof(gpu::SolveState, correct_z), GL_UNSIGNED_INT}},
 
         {"rows.dispatch", {offsetof(gpu::BoundaryRowsState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"rows.rows", {offsetof(gpu::BoundaryRowsState, rows), GL_UNSIGNED_INT}},
@@ -446,7 +446,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     ss.dispatch = d.u4();
     for (std::uint32_t* u : {&ss.iterations, &ss.error_sum, &ss.groups_done, &ss.solve}) *u = d.u();
     ss.weight = d.f();
-    for (std::uint32_t* u : {&ss.pad0, &ss.pad1, &ss.pad2}) *u = d.u();
+    for (std::uint32_t* u : {&ss.correct_groups, &ss.correct_y, &ss.correct_z}) *u = d.u();
 
     gpu::BoundaryRowsState rs{};
     rs.dispatch = d.u4();
@@ -497,7 +497,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
-    expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.pad0); expect.put(ss.pad1); expect.put(ss.pad2);
+    expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);
     const std::size_t solve_end = expect.w.size();
     expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
     const std::size_t rows_end = expect.w.size();

@@ -89,7 +89,6 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       list_rows_(rows_program(shaders, "sim/dfsph/list_boundary_rows.comp", fluid, rows_)),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
-      correct_rows_(rows_program(shaders, "sim/dfsph/correct_boundary_pressure.comp", fluid, rows_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
@@ -121,6 +120,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     for (std::uint32_t k = 0; k < 2; ++k) {
         gpu::SolveState st{};
         st.dispatch = glm::uvec4(params_.groups, 1u, 1u, 0u);
+        st.correct_groups = params_.groups, st.correct_y = 1u, st.correct_z = 1u;   // the rows' added by their prepare
         st.solve = k;
         // (D10)'s first weight, w = 2/(2 - rho_c^2) (glsl/sim/dfsph/dfsph.glsl); unread while it is off.
         st.weight = 2.0f / (2.0f - params_.chebyshev * params_.chebyshev);
@@ -141,7 +141,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     // (D10)'s previous iterates; one float, bound but never read, when it is off.
     kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
-        if (prepare_rows_.local_size()[0] != 128 || correct_rows_.local_size()[0] != 128)
+        if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
         const std::vector<std::uint32_t> unmarked(nb, 0u);
         boundary_mark_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, unmarked.data(), "dfsph.boundary_mark");
@@ -280,31 +280,28 @@ void Dfsph::prepare_rows(Fluid& fluid, int solve) {
     auto pass = timer_.scope(prepare_pass_);
     prepare_rows_.bind(state(fluid, solve));
     dispatch_rows(prepare_rows_);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);   // it sized the solve's residual pass
 }
 
-// A solve's (D6) iterations, timed as one pass: the first "correct" directly (the pass before it
-// computed the first accelerations), then `issued` − 1 pairs from the solve's indirect arguments,
-// which the GPU sets to zero workgroups once it has converged.
+// A solve's (D6) iterations, timed as one pass: the first "correct" (the pass before it computed the
+// first accelerations), then `issued` − 1 pairs, all from the solve's indirect arguments, which the GPU
+// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9).
 void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
     const shader::StorageSet set = state(fluid, solve);
     auto pass = timer_.scope(pass_id);
-    if (rows_) dispatch_rows(correct_rows_.bind(set));
+    const auto at = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE);
+    const auto accelerate_args = at + GLintptr(offsetof(gpu::SolveState, dispatch)),
+               correct_args = at + GLintptr(offsetof(gpu::SolveState, correct_groups));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
     correct_.bind(set).use();
-    glDispatchCompute(params_.groups, 1, 1);
+    glDispatchComputeIndirect(correct_args);
     glMemoryBarrier(kAfterIteration);
-    if (issued <= 1) return;
-    const auto offset = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE + offsetof(gpu::SolveState, dispatch));
     for (int k = 1; k < issued; ++k) {
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
         accelerate_.bind(set).use();
-        glDispatchComputeIndirect(offset);
+        glDispatchComputeIndirect(accelerate_args);
         glMemoryBarrier(kAfterIteration);
-        if (rows_) {
-            dispatch_rows(correct_rows_.bind(set));
-            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
-        }
         correct_.bind(set).use();
-        glDispatchComputeIndirect(offset);
+        glDispatchComputeIndirect(correct_args);
         glMemoryBarrier(kAfterIteration);
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -18,8 +18,8 @@
 // is computed when the boundary is built ("dfsph.boundary.wall": at the first step, and after the
 // paddle moves), the density pass is followed by "dfsph.boundary.list": list_boundary_rows.comp (the
 // boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve opens with
-// "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration runs
-// correct_boundary_pressure.comp before correct_pressure.comp, indirectly over the rows.
+// "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration's
+// correct_pressure.comp updates the rows too, in workgroups after the fluid's.
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
@@ -94,7 +94,7 @@ private:
         prepare_pass_, list_pass_, wall_pass_;
     bool divergence_, rows_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
-    shader::Program list_rows_, size_rows_, prepare_rows_, correct_rows_, wall_density_;   // (D9), built when rows_
+    shader::Program list_rows_, size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;

@@ -17,8 +17,15 @@
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
 // run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
 // iterations issued after it do no work, and adds the solve to the frame's record in StepState. The
-// CPU issues the iterations and never waits for the decision. Dispatched directly for the first
-// iteration, then indirectly from the SolveState.
+// CPU issues the iterations and never waits for the decision. Dispatched indirectly from the
+// SolveState's correct_groups: dfsph.groups workgroups over the fluid's particles, then with
+// RANRYU_BOUNDARY_ROWS one invocation per boundary row of the step (docs/DFSPH.md (D9)), the rows'
+// update of the same iteration: the density change the fluid's pressure accelerations make at the
+// (immovable) boundary particle over the step,
+//     delta_b = dt^2 Σ_j m (0 − a_j)·gradW_bj,
+// the residual r_b = delta_b − s_b, and kappa_b ← max(kappa_b + omega_b r_b / (dt^2 D_b), 0).
+// The two read the same accelerations and write different kappa, so one dispatch serves both (and
+// one barrier, where two passes took two); the rows add nothing to the error, which is the fluid's.
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -30,6 +37,24 @@ layout(std430) coherent buffer Solve { SolveState solve; };
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1)
 
 #include "../fluid/neighbours.glsl"
+
+#ifdef RANRYU_BOUNDARY_ROWS
+layout(std430) readonly buffer BoundaryRow { vec2 row[]; };   // (s_b, 1/D_b), prepare_boundary_rows.comp
+#include "boundary_rows.glsl"
+float row_change_;
+void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r, sph.h)); }
+
+// Row k's update (above).
+void correct_row(uint k) {
+    uint b = boundary_list[k] & ~kFreshRow, s = solve.solve;
+    row_change_ = 0.0;
+    for_each_fluid_near(boundary[b].xyz);
+    vec2 rw = row[k];
+    float dt2 = step.dt * step.dt;
+    float residual = dt2 * row_change_ - rw.x;
+    KAPPA_B(b, s) = max(KAPPA_B(b, s) + dfsph.boundary_relaxation * residual * rw.y / dt2, 0.0);
+}
+#endif
 
 vec3 a_i_;
 float change_;
@@ -51,6 +76,7 @@ void decide() {
     bool converged = it >= least && mean <= (s == 0u ? dfsph.eta : dfsph.eta_divergence);
     if (converged || it >= cap) {
         solve.dispatch.x = 0u;
+        solve.correct_groups = 0u;
         step.iterations[s] += it;
         step.iterations[s + 2u] = max(step.iterations[s + 2u], it);
         if (!converged) step.unconverged[s] += 1u;
@@ -64,6 +90,12 @@ void decide() {
 void main() {
     uint i = gl_GlobalInvocationID.x, l = gl_LocalInvocationIndex;
     float error = 0.0;
+#ifdef RANRYU_BOUNDARY_ROWS
+    if (gl_WorkGroupID.x >= dfsph.groups) {   // a workgroup of the rows
+        uint k = i - dfsph.groups * gl_WorkGroupSize.x;
+        if (k < rows.rows) correct_row(k);
+    } else
+#endif
     if (i < sph.particle_count) {   // no early return: the workgroup sums below have barriers
         vec4 d = density[i], own = pressure_accel[i];
         a_i_ = own.xyz;

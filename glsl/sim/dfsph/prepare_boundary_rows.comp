@@ -12,7 +12,8 @@
 // none where the row is fresh (not a row the step before) or the particle separates from the wall
 // (s_b above warm_start_drop(), as for the fluid (D6)). The divergence solve's starts from none (its
 // first pressure accelerations come with the density pass, before the rows are listed).
-// Velocities: v_n (divergence) or v* (density).
+// Velocities: v_n (divergence) or v* (density). The first invocation sizes the solve's residual pass
+// (SolveState.correct_groups): the fluid's workgroups and the rows' (correct_pressure.comp).
 // The wall's part Σ_b' psi_b' W_bb' depends on the boundary alone: compute_wall_density.comp keeps it in
 // BoundaryWall, and this pass walks the fluid alone (docs/PERFORMANCE.md "The boundary rows' prepare
 // passes").
@@ -23,7 +24,7 @@ layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) readonly buffer Accelerations { vec4 accel[]; };   // w: u_j
 layout(std430) writeonly buffer BoundaryRow { vec2 row[]; };
-layout(std430) readonly buffer Solve { SolveState solve; };
+layout(std430) buffer Solve { SolveState solve; };
 layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
 layout(std430) readonly buffer BoundaryWall { float wall[]; };   // Σ_b' psi_b' W_bb', per boundary particle
 
@@ -39,6 +40,7 @@ void visit_row_fluid(uint j, vec3 d, float r) {
 
 void main() {
     uint k = gl_GlobalInvocationID.x;
+    if (k == 0u) solve.correct_groups = dfsph.groups + rows.dispatch.x;
     if (k >= rows.rows) return;   // no barriers in this pass
     uint entry = boundary_list[k], b = entry & ~kFreshRow, s = solve.solve;
     vec3 xb = boundary[b].xyz;

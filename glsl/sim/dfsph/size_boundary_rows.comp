@@ -7,7 +7,7 @@
 layout(local_size_x = 1) in;
 layout(std430) buffer BoundaryRows { BoundaryRowsState rows; };
 
-// The boundary passes' workgroup size (prepare_boundary_rows.comp, correct_boundary_pressure.comp;
+// The boundary passes' workgroup size (prepare_boundary_rows.comp, correct_pressure.comp's rows;
 // the Dfsph checks that both are built with it).
 const uint kRowGroup = 128u;
 
