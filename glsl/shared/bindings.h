@@ -189,9 +189,10 @@ RANRYU_STRUCT_END(SolveState, 48)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
 
 // The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block
-// BoundaryRows): those within h of a fluid particle, listed by the density pass (an atomic append to
-// BoundaryList, each once: BoundaryMark holds the step's epoch), then sized for the indirect dispatch of
-// the boundary passes by "size_boundary_rows", which also opens the next step's list.
+// BoundaryRows, followed there by one mark a boundary particle): those within h of a fluid particle,
+// listed by the density pass's walk (an atomic append to BoundaryList, each once: its mark takes the
+// step's epoch), then sized for the indirect dispatch of the boundary passes by "size_boundary_rows",
+// which also opens the next step's list.
 RANRYU_STRUCT(BoundaryRowsState) {
     uvec4 dispatch;   // xyz: workgroups of the boundary passes over this step's rows; w: unused
     uint rows;        // rows this step (BoundaryList[0, rows))

@@ -76,17 +76,15 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       pressure_solve_(timer.pass("dfsph.pressure.solve")),
       integrate_pass_(timer.pass("dfsph.integrate")),
       prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
-      list_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.list") : profile::PassId{}),
       wall_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.wall") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
-      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, false))),
+      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_))),
       accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_))),
       correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_))),
       finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_))),
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_))),
-      list_rows_(rows_program(shaders, "sim/dfsph/list_boundary_rows.comp", fluid, rows_)),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
@@ -143,14 +141,15 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     if (rows_) {
         if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
-        const std::vector<std::uint32_t> unmarked(nb, 0u);
-        boundary_mark_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, unmarked.data(), "dfsph.boundary_mark");
         boundary_list_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_list");
         boundary_row_ = gl::Buffer(nb * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_row");
         boundary_wall_ = gl::Buffer(nb * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_wall");
+        // The BoundaryRowsState, then a mark per boundary particle (compute_density.comp).
         gpu::BoundaryRowsState opened_rows{};
         opened_rows.epoch = 1u;   // marks start at 0: "a row the step before", whose kappa_b is the initial 0
-        rows_state_ = gl::Buffer(sizeof opened_rows, GL_DYNAMIC_COPY, &opened_rows, "dfsph.boundary_rows");
+        std::vector<std::uint8_t> rows_state(sizeof opened_rows + nb * sizeof(std::uint32_t), 0);
+        std::memcpy(rows_state.data(), &opened_rows, sizeof opened_rows);
+        rows_state_ = gl::Buffer(rows_state.size(), GL_DYNAMIC_COPY, rows_state.data(), "dfsph.boundary_rows");
     }
 }
 
@@ -159,7 +158,7 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
                              (chebyshev ? n : 1) * sizeof(float) + Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
-    // kappa_'s boundary part, boundary_mark_, boundary_list_, boundary_row_, boundary_wall_; rows_state_
+    // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_; rows_state_ and its marks
     return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
 }
@@ -203,8 +202,7 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_).add("KappaPrevious", kappa_previous_);
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
     if (rows_)
-        set.add("BoundaryMark", boundary_mark_)
-            .add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
+        set.add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
             .add("BoundaryWall", boundary_wall_);
     return set;
 }
@@ -250,16 +248,11 @@ void Dfsph::compute_density(Fluid& fluid) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     if (divergence_) open_solve(1);
-    {
-        auto pass = timer_.scope(density_pass_);
-        density_.bind(state(fluid, 1)).dispatch(fluid.count());
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        fluid.set_neighbour_masks_current(true);
-    }
-    if (rows_) {   // (D9): this step's rows, listed and sized
-        auto pass = timer_.scope(list_pass_);
-        list_rows_.bind(state(fluid, 1)).dispatch(fluid.count());
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    auto pass = timer_.scope(density_pass_);
+    density_.bind(state(fluid, 1)).dispatch(fluid.count());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    fluid.set_neighbour_masks_current(true);
+    if (rows_) {   // (D9): the rows the density pass listed become this step's
         size_rows_.bind(state(fluid, 1)).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);

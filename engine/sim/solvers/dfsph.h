@@ -16,9 +16,9 @@
 //
 // With the boundary rows of (D9) (sph.boundary_rows), the wall's own density of each boundary particle
 // is computed when the boundary is built ("dfsph.boundary.wall": at the first step, and after the
-// paddle moves), the density pass is followed by "dfsph.boundary.list": list_boundary_rows.comp (the
-// boundary particles near the fluid become rows) and size_boundary_rows.comp, each solve opens with
-// "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration's
+// paddle moves), the density pass's walk also lists the boundary particles near the fluid as the
+// step's rows and size_boundary_rows.comp closes the list (both timed as "dfsph.density"), each solve
+// opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration's
 // correct_pressure.comp updates the rows too, in workgroups after the fluid's.
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
@@ -91,10 +91,10 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
-        prepare_pass_, list_pass_, wall_pass_;
+        prepare_pass_, wall_pass_;
     bool divergence_, rows_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
-    shader::Program list_rows_, size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
+    shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
@@ -102,9 +102,9 @@ private:
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
-    // (D9), per boundary particle: the step's mark, list entry and row, and the wall's own density
-    // (compute_wall_density.comp); the rows' BoundaryRowsState.
-    gl::Buffer boundary_mark_, boundary_list_, boundary_row_, boundary_wall_, rows_state_;
+    // (D9), per boundary particle: the step's list entry and row, and the wall's own density
+    // (compute_wall_density.comp); the rows' BoundaryRowsState followed by a mark per boundary particle.
+    gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_;
     Fluid& fluid_;
     int warm_;
     std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to

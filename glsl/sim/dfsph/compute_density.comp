@@ -7,6 +7,10 @@
 //   iteration's first half.
 // Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
 // Accelerations[i].w = u_i of (D9), for the boundary rows' diagonals.
+// With RANRYU_BOUNDARY_ROWS, every boundary particle within h of a fluid particle becomes a row of this
+// step's solves (docs/DFSPH.md (D9)): listed once in BoundaryList (its mark after the BoundaryRowsState
+// takes the step's epoch; the first to mark it appends it), with kFreshRow where it was not a row the
+// step before; size_boundary_rows.comp then closes the list.
 // Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
@@ -19,6 +23,12 @@ layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
 layout(std430) readonly buffer Warm { vec2 warm[]; };
 layout(std430) writeonly buffer Kappa { float kappa[]; };
 layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };
+#endif
+
+#ifdef RANRYU_BOUNDARY_ROWS
+layout(std430) coherent buffer BoundaryRows { BoundaryRowsState rows; uint boundary_mark[]; };
+layout(std430) writeonly buffer BoundaryList { uint boundary_list[]; };
+uint epoch_;
 #endif
 
 #include "../fluid/density_walk.glsl"
@@ -52,6 +62,10 @@ void visit_boundary(uint b, vec3 d, float r2) {
 #ifdef RANRYU_DIVERGENCE_SOLVE
     pressure_ -= kappa_i_ * psi * g;   // (D9): the boundary rows' divergence solve starts from kappa_v,b = 0
 #endif
+#ifdef RANRYU_BOUNDARY_ROWS
+    uint last = atomicExchange(boundary_mark[b], epoch_);
+    if (last != epoch_) boundary_list[atomicAdd(rows.count, 1u)] = b | (last + 1u == epoch_ ? 0u : kFreshRow);
+#endif
 }
 
 void main() {
@@ -64,6 +78,9 @@ void main() {
         grad_fluid_ = grad_wall_ = viscous_ = viscous_wall_ = pressure_ = vec3(0.0);
         fluid_sum_ = wall_sum_ = squares_ = rate_ = spread_ = 0.0;
         kappa_i_ = 0.0;
+#ifdef RANRYU_BOUNDARY_ROWS
+        epoch_ = rows.epoch;
+#endif
 #ifdef RANRYU_DIVERGENCE_SOLVE
         kappa_i_ = dfsph.warm_start_divergence * warm[i].y;
 #endif

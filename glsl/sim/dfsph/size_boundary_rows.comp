@@ -1,5 +1,5 @@
 #version 430
-// "dfsph.density" (its tail), one invocation: the rows the density pass listed become this step's
+// "dfsph.density" (its tail), one invocation: the rows the density pass listed (compute_density.comp) become this step's
 // (docs/DFSPH.md (D9)): the boundary passes' indirect dispatch covers them, and the list opens empty
 // for the next step's density pass under a new epoch.
 #include "dfsph.glsl"
