@@ -1,32 +1,10 @@
 #!/usr/bin/env bash
-# Run on the GPU host from the repository root after scripts/gpu/setup-and-build.sh, with OUT set and
-# scratch/base = `git archive e8882c9 -- . ":!docs/perf"` (the commit before the change) unpacked.
-# The boundary rows' update inside the residual pass (one dispatch and barrier an iteration instead of
-# two): the committed engine before it (scratch/base, built here) against the working tree.
-. scripts/gpu/env.sh x
-o=$OUT/m; mkdir -p $o
-{ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader; date -u; git status --short | grep -v scratch; } > $o/device.txt
-cat $o/device.txt
-s=$(date +%s)
-(cd scratch/base && cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRANRYU_WINDOW=OFF >/dev/null && cmake --build build -j 16 --target ranryu >/dev/null) || echo "baseline build failed"
-echo "baseline built in $(( $(date +%s) - s )) s"
-BASE=scratch/base/build/app/ranryu
-for dx in 0.005 0.00317 0.002; do
-  for v in base merged; do
-    bin=$B; [ $v = base ] && bin=$BASE
-    f=$o/db-$v-$dx
-    timeout 150 $bin profile --scene dam-break --spacing $dx --size 1920x1080 --frames 20 --warmup 20 --json $f.json > $f.txt 2>&1
-    echo "== $v $dx rc $?"
-    grep -E "dfsph\.(divergence.solve|pressure.solve)|frame \(GPU|^simulation|density solve|fps and" $f.txt
-  done
-done
-RANRYU_DFSPH_BENCH_SPACING=0.00317 timeout 100 build/gpu/tests/ranryu_gl_tests "[dfsph-bench]" 2>&1 | grep -v "^Filters\|^====\|^All tests\|GL message" | tee $o/bench-merged-0.00317.txt
-for v in base merged; do
-  bin=$B; [ $v = base ] && bin=$BASE
-  f=$o/db10-$v
-  dx=$(python3 scripts/gpu/scene-at.py dam-break $o/db10-scene.json 250000)
-  timeout 120 $bin profile --scene $o/db10-scene.json --spacing $dx --shading particles --size 640x360 --frames 600 --warmup 0 --records $f.csv > $f.txt 2>&1
-  echo "== 10 s $v $dx rc $?"
-  grep -E "dfsph\.(divergence.solve|pressure.solve)|frame \(GPU|^simulation|density solve|fps and|^guard|^ranryu:" $f.txt
-done
-cd $OUT && tar czf m.tgz m && rm -rf m
+# What ran, as the script it was then factored into (scripts/gpu/compare-engines.sh): the run itself
+# was an inline copy of it with the same profile commands (the 10 s runs under a 120 s timeout, 150 s
+# in the script), its output folder named otherwise. It also ran
+#     RANRYU_DFSPH_BENCH_SPACING=0.00317 build/gpu/tests/ranryu_gl_tests "[dfsph-bench]"   (bench-merged-0.00317.txt)
+#
+# on the development machine
+#     rm -rf scratch/base && mkdir -p scratch/base && git archive e8882c9 -- . ':!docs/perf' | tar x -C scratch/base
+# then on the GPU host, after scripts/gpu/setup-and-build.sh, with the change's tree:
+TAG=merged scripts/gpu/compare-engines.sh
