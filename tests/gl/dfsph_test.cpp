@@ -249,6 +249,19 @@ StepReference step_reference(Rig& rig, const Stages& s) {
     return r;
 }
 
+// What a step left, per particle: the density its final velocities predict, ρ_i + dt Dρ/Dt(v), from
+// the state the solve ran on, less ρ0 (in double, from the GPU's positions, densities and velocities).
+std::vector<double> predicted_deviation(Rig& rig, const Stages& s) {
+    const ref::Params p = rig.params();
+    std::vector<dvec3> xb;
+    std::vector<double> psi;
+    rig.boundary(xb, psi);
+    const std::vector<double> rate = df::density_rates(d3(s.x), d3(s.v_end), xb, psi, p, rig.settings());
+    std::vector<double> r(rate.size());
+    for (std::size_t i = 0; i < r.size(); ++i) r[i] = double(s.density[i].x) + double(s.dt) * rate[i] - p.rest_density;
+    return r;
+}
+
 // The rows' wall density (compute_wall_density.comp) against Σ_b' psi_b' W_bb' in double, from the
 // boundary as the GPU holds it; bound: (terms + c) u of the sum. Returns the rows' count of boundary
 // particles with a wall neighbour besides themselves (how much the check saw).
@@ -441,15 +454,9 @@ TEST_CASE("dfsph: the density solve reaches its bound, the GPU stops iterating o
     // What the step left: the density the final velocities predict, ρ_i + dt Dρ/Dt(v), from the state
     // the solve ran on. Its mean excess over ρ0 is what the solve bounds: the reported error is the
     // residual of the last κ before its update, and the update contracts it (ω = 0.5).
-    const ref::Params p = rig.params();
-    std::vector<dvec3> xb;
-    std::vector<double> psi;
-    rig.boundary(xb, psi);
-    const std::vector<dvec3> xs = d3(s.x);
-    const std::vector<double> rate = df::density_rates(xs, d3(s.v_end), xb, psi, p, rig.settings());
     double excess = 0.0;
-    for (std::size_t i = 0; i < xs.size(); ++i) excess += std::max(double(s.density[i].x) + double(s.dt) * rate[i] - p.rest_density, 0.0);
-    excess /= double(xs.size()) * p.rest_density;
+    for (double r : predicted_deviation(rig, s)) excess += std::max(r, 0.0);
+    excess /= double(s.x.size()) * double(rig.params().rest_density);
     INFO("mean predicted excess " << excess);
     CHECK(excess <= eta);
     ranryu::test::require_no_gl_errors();
@@ -463,10 +470,11 @@ TEST_CASE("dfsph: the complementarity error (D6) keeps the density solve going w
     // the first iteration keeps a warm start) resting on the floor, one step of 2 ms, warm-started with
     // a pressure far above what holds it (kappa of 20-30 times the column's weight at the floor): every
     // particle carries pressure it should not, below rho0. The excess-only error reads most of that as
-    // converged; the complementarity error counts |r_i| there and iterates until the pressure is released. Then the predicted state
-    // itself must meet the complementarity bound: its mean of |rho_i − rho0| where kappa_i > 0 and of
-    // the excess elsewhere at most eta (the error of the kappa before the last update, which the
-    // update contracts, as in the test above), and the excess-only solve's far above it.
+    // converged; the complementarity error counts |r_i| there and iterates until the pressure is
+    // released. Then the predicted state itself must meet the complementarity bound: its mean of
+    // |rho_i − rho0| where kappa_i > 0 and of the excess elsewhere at most eta (the error of the kappa
+    // before the last update, which the update contracts, as in the test above), and the excess-only
+    // solve's far above it.
     std::vector<glm::vec4> x, v;
     Rig probe;
     block_state(rng, probe, glm::vec3(0.0f), 1.002f, 0.05f, 0.0f, x, v);
@@ -481,18 +489,10 @@ TEST_CASE("dfsph: the complementarity error (D6) keeps the density solve going w
         Rig rig(sph);
         const Stages s = run_stages(rig, x, v, warm, 2e-3f, 100);
         const gpu::StepState st = rig.step();
-        const ref::Params p = rig.params();
-        std::vector<dvec3> xb;
-        std::vector<double> psi;
-        rig.boundary(xb, psi);
-        const std::vector<dvec3> xs = d3(s.x);
-        const std::vector<double> rate = df::density_rates(xs, d3(s.v_end), xb, psi, p, rig.settings());
+        const std::vector<double> r = predicted_deviation(rig, s);
         double sum = 0.0;
-        for (std::size_t i = 0; i < xs.size(); ++i) {
-            const double r = double(s.density[i].x) + double(s.dt) * rate[i] - p.rest_density;
-            sum += s.kappa[i] > 0.0f ? std::abs(r) : std::max(r, 0.0);
-        }
-        return Result{st.iterations.x, st.unconverged.x, double(st.error.x), sum / (double(xs.size()) * p.rest_density)};
+        for (std::size_t i = 0; i < r.size(); ++i) sum += s.kappa[i] > 0.0f ? std::abs(r[i]) : std::max(r[i], 0.0);
+        return Result{st.iterations.x, st.unconverged.x, double(st.error.x), sum / (double(r.size()) * double(rig.params().rest_density))};
     };
     const double eta = double(probe.dfsph().params().eta);
     const Result excess = solve(R"("boundary_rows": false)"), held = solve(R"("boundary_rows": false, "complementarity_error": true)");
