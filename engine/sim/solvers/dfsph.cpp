@@ -13,7 +13,10 @@ namespace {
 
 constexpr int kInitialCap = 32;   // iterations a solve is issued before any record has come back
 constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
-constexpr GLbitfield kAfterIteration = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
+// After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
+// the next dispatch reads them; after an accelerate pass only its accelerations are read.
+constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
+constexpr GLbitfield kAfterAccelerate = GL_SHADER_STORAGE_BARRIER_BIT;
 
 // The next frames' cap: 1.5 times the most one step needed over the recent records, plus two; at
 // least twice the cap when the latest record has a step that stopped at it; within [least, most].
@@ -288,14 +291,14 @@ void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
     correct_.bind(set).use();
     glDispatchComputeIndirect(correct_args);
-    glMemoryBarrier(kAfterIteration);
+    glMemoryBarrier(kAfterResidual);
     for (int k = 1; k < issued; ++k) {
         accelerate_.bind(set).use();
         glDispatchComputeIndirect(accelerate_args);
-        glMemoryBarrier(kAfterIteration);
+        glMemoryBarrier(kAfterAccelerate);
         correct_.bind(set).use();
         glDispatchComputeIndirect(correct_args);
-        glMemoryBarrier(kAfterIteration);
+        glMemoryBarrier(kAfterResidual);
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
