@@ -39,4 +39,4 @@ if [ "${TEN_S:-1}" = 1 ]; then
     grep -E "$passes" "$f.txt"
   done
 fi
-[ -n "${OUT:-}" ] && (cd "$out" && tar czf compare.tgz compare && rm -rf compare)
+if [ -n "${OUT:-}" ]; then (cd "$out" && tar czf compare.tgz compare && rm -rf compare); fi

@@ -75,8 +75,9 @@ public:
     void upload_warm_start(const std::vector<glm::vec2>& kappa);
     const gl::Buffer& solve_states() const { return solve_; }             // SolveState, density at 0, divergence at RANRYU_DFSPH_SOLVE_STRIDE
     const gpu::DfsphParams& params() const { return params_; }
-    // (D9), tests: this step's rows (BoundaryRowsState) and their list (uint entries, kFreshRow's bit on
-    // the ones that were no row the step before); empty without rows.
+    // (D9), tests: this step's rows (BoundaryRowsState, then a uint mark per boundary particle), their
+    // list (uint entries, kFreshRow's bit on the ones that were no row the step before) and the walls'
+    // own density per boundary particle (compute_wall_density.comp); empty without rows.
     const gl::Buffer& boundary_rows() const { return rows_state_; }
     const gl::Buffer& boundary_list() const { return boundary_list_; }
     const gl::Buffer& boundary_wall() const { return boundary_wall_; }
