@@ -579,6 +579,58 @@ TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("dfsph: the iteration cap: the scene's most until a record, then learnt from the records, the most again after a stop",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // The 8x8x8 block at rest on the floor, its own 4 ms step: frames until the records have come back,
+    // then a compressed block (pitch 0.95, about 1.15 rho0), which needs more than the learnt cap.
+    Rig rig(R"("max_iterations": 60)");
+    auto& d = rig.dfsph();
+    CHECK(d.issued_iterations() == 60);   // before any record: the scene's most
+    CHECK(d.issued_divergence_iterations() == rig.scene.sph.max_divergence_iterations);
+    rig.fluid.set_fixed_dt(4e-3f);
+    std::vector<gpu::StepState> records;
+    rig.fluid.set_record_sink([&](const gpu::StepState& r) { records.push_back(r); });
+    std::uint64_t f = 0;
+    for (; f < 4; ++f) rig.frame(f);
+    rig.finish();
+    const std::size_t seen = records.size();
+    REQUIRE(seen == 4u);
+    rig.frame(f++);   // its begin_frame() reads the last of them
+    // The cap is the rule's for the most one step needed over the records the solver took in (the last
+    // of them always; earlier ones where a begin_frame() saw them last), the last having no stop.
+    const auto cap = [&](std::uint32_t needed) { return ranryu::sim::next_iteration_cap(needed, false, rig.scene.sph.min_iterations, 60); };
+    const std::uint32_t issued = std::uint32_t(d.issued_iterations());
+    REQUIRE(records[seen - 1].unconverged.x == 0u);
+    CHECK(issued >= cap(records[seen - 1].iterations.z));
+    bool from_a_record = false;
+    for (std::size_t k = 0; k < seen; ++k) {
+        INFO("record " << k << ": most " << records[k].iterations.z << " iterations a step, " << records[k].unconverged.x
+                       << " stopped; issued " << issued);
+        from_a_record = from_a_record || issued == cap(records[k].iterations.z);
+    }
+    CHECK(from_a_record);
+    REQUIRE(issued < 30u);   // the resting block needs few: the compressed one will stop at the cap
+    rig.finish();
+
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.0f, x, v);
+    rig.fluid.upload_state(x, v);
+    d.upload_warm_start(std::vector<glm::vec2>(x.size(), glm::vec2(0.0f)));
+    const std::size_t before = records.size();
+    rig.frame(f++);
+    rig.finish();
+    REQUIRE(records.size() > before);
+    INFO("the compressed block's frame: most " << records.back().iterations.z << " iterations a step, "
+                                               << records.back().unconverged.x << " steps stopped at the cap");
+    REQUIRE(records.back().unconverged.x > 0u);
+    rig.frame(f++);
+    CHECK(d.issued_iterations() == 60);   // the most at once, not twice the cap
+    rig.finish();
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("dfsph: warm-starting from the last step's pressure takes fewer iterations than starting from none", "[dfsph]") {
     // The 8x8x8 block at rest on the floor, three frames of one 4 ms step each: the column's pressure
     // settles, and each step needs only what changed since the last when it starts from the last.

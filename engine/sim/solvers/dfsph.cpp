@@ -11,20 +11,11 @@
 namespace ranryu::sim {
 namespace {
 
-constexpr int kInitialCap = 32;   // iterations a solve is issued before any record has come back
 constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
 constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
 constexpr GLbitfield kAfterAccelerate = GL_SHADER_STORAGE_BARRIER_BIT;
-
-// The next frames' cap: 1.5 times the most one step needed over the recent records, plus two; at
-// least twice the cap when the latest record has a step that stopped at it; within [least, most].
-std::uint32_t next_cap(std::uint32_t cap, std::uint32_t needed, bool stopped, int least, int most) {
-    double want = std::ceil(1.5 * needed) + 2.0;
-    if (stopped) want = std::max(want, 2.0 * cap);
-    return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
-}
 
 // The warm start before the first step: the density solve's kappa = p/rho^2 of each block at rest on
 // the floor under its own weight (Scene::initial_pressures), so a resting column starts out held.
@@ -70,6 +61,11 @@ shader::Program rows_program(const shader::FileSource& shaders, const char* path
 
 }  // namespace
 
+std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most) {
+    const double want = stopped ? double(most) : std::ceil(1.5 * double(needed)) + 2.0;
+    return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
+}
+
 Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid)
     : timer_(timer),
       density_pass_(timer.pass("dfsph.density")),
@@ -109,8 +105,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.boundary_relaxation = scene.sph.boundary_relaxation;
     params_.min_iterations = std::uint32_t(least_);
     params_.min_divergence_iterations = 1;
-    params_.issued = std::uint32_t(std::clamp(kInitialCap, least_, most_));
-    params_.issued_divergence = std::uint32_t(std::clamp(kInitialCap, 1, most_divergence_));
+    params_.issued = std::uint32_t(most_);   // until the first record: next_iteration_cap()
+    params_.issued_divergence = std::uint32_t(most_divergence_);
     params_.error_scale = float(2147483648.0 / double(n));
     params_.deficient_neighbours = 20;
     params_.boundary_viscosity = scene.sph.boundary_viscosity;
@@ -190,8 +186,8 @@ void Dfsph::begin_frame(Fluid& fluid) {
     recent_next_ = (recent_next_ + 1) % recent_.size();
     glm::uvec2 needed(0u);
     for (const glm::uvec2& k : recent_) needed = glm::max(needed, k);
-    const std::uint32_t cap = next_cap(params_.issued, needed.x, r->unconverged.x > 0, least_, most_);
-    const std::uint32_t cap_v = next_cap(params_.issued_divergence, needed.y, r->unconverged.y > 0, 1, most_divergence_);
+    const std::uint32_t cap = next_iteration_cap(needed.x, r->unconverged.x > 0, least_, most_);
+    const std::uint32_t cap_v = next_iteration_cap(needed.y, r->unconverged.y > 0, 1, most_divergence_);
     if (cap != params_.issued || cap_v != params_.issued_divergence) {
         params_.issued = cap;
         params_.issued_divergence = cap_v;

@@ -23,10 +23,11 @@
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
-// CPU issues a cap of iterations a solve each step, learnt from the records that come back frames
-// late: 1.5 times the most one step needed over the last records, plus two, doubled when a step
-// stopped at the cap, between the scene's minimum and maximum. Iterations run and the errors reached
-// come back in StepState; a step that stops at its cap is counted there, and profile reports it.
+// CPU issues a cap of iterations a solve each step (next_iteration_cap()), learnt from the records that
+// come back frames late: the scene's maximum until the first record and after any step stopped at the
+// cap, otherwise 1.5 times the most one step needed over the last records, plus two. Iterations run
+// and the errors reached come back in StepState; a step that stops at its cap is counted there, and
+// profile reports it.
 #include <array>
 #include <vector>
 
@@ -39,6 +40,14 @@
 #include "sim/solver.h"
 
 namespace ranryu::sim {
+
+// The iterations a solve is issued in the next frames, from the most one step `needed` over the recent
+// records and whether the latest had a step `stopped` at its cap: ceil(1.5 needed) + 2, or `most` after
+// a stop, within [least, most]. A stop means the cap fell behind what the steps need, as when the
+// time step grows (docs/DFSPH.md, "The iteration cap"); the records that would show how far come back
+// frames late, and a step cut short leaves its excess to the next as a kick, so the cap goes to the
+// maximum at once, and comes back down with the records.
+std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most);
 
 class Dfsph final : public Solver {
 public:
