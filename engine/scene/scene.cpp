@@ -428,6 +428,13 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.max_iterations = p.integer("max_iterations");
         if (h.min_iterations > h.max_iterations) p.fail("\"sph.min_iterations\" must not exceed \"sph.max_iterations\"");
         h.max_divergence_iterations = p.integer("max_divergence_iterations");
+        h.shrink_step_above = p.integer("shrink_step_above");
+        h.grow_step_below = p.integer("grow_step_below");
+        if (h.shrink_step_above > 0 && h.grow_step_below >= h.shrink_step_above)
+            p.fail("\"sph.grow_step_below\" (" + fmt(h.grow_step_below) + ") must be below \"sph.shrink_step_above\" (" + fmt(h.shrink_step_above) + ")");
+        if (h.shrink_step_above > 0 && h.min_iterations > h.shrink_step_above)
+            p.fail("\"sph.min_iterations\" (" + fmt(h.min_iterations) + ") must not exceed \"sph.shrink_step_above\" (" + fmt(h.shrink_step_above) +
+                   "): every solve would shrink the step");
         h.divergence_solve = p.boolean("divergence_solve");
         h.boundary_rows = p.boolean("boundary_rows");
         h.boundary_relaxation = float(p.number("boundary_relaxation"));

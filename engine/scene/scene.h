@@ -70,6 +70,8 @@ struct SphSettings {
     int min_iterations = 2;               // density solve
     int max_iterations = 100;             // density solve
     int max_divergence_iterations = 100;
+    int shrink_step_above = 20;           // (D8): a density solve of more iterations shrinks the step by 0.9; 0: off
+    int grow_step_below = 10;             // (D8): one of fewer lets it grow by 1.1
     bool divergence_solve = true;         // (D5); false: the density solve alone
     float warm_start = 1.0f;              // w of (D6), the density solve's
     float divergence_warm_start = 0.5f;   // w of (D6), the divergence solve's
@@ -77,7 +79,7 @@ struct SphSettings {
     float chebyshev = 0.0f;               // rho of (D10)'s Chebyshev acceleration; 0: plain relaxed Jacobi
     bool complementarity_error = false;   // (D6): the density solve's error counts |r_i| where kappa_i > 0
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
-    bool boundary_rows = false;           // (D9): boundary particles as rows of the solves; false: Akinci's term
+    bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
     float boundary_relaxation = 1.0f;     // omega_b of (D9)
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie

@@ -217,6 +217,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     s.max_speed = bits(v0);
     s.max_accel = bits(glm::length(scene.gravity));
     s.frame_min_dt = frame_dt_;
+    s.iteration_dt = params_.dt_max;   // DFSPH's (D8) lowers it from its solves' iterations
     s.nan_index = s.escaped_index = 0xFFFFFFFFu;
     s.live_count = std::uint32_t(scene_count_);
     step_ = gl::Buffer(sizeof s, GL_DYNAMIC_COPY, &s, "fluid.step");

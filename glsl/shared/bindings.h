@@ -142,8 +142,13 @@ RANRYU_STRUCT(StepState) {
     uvec4 unconverged;        // xy: steps this frame whose solve 0, 1 stopped at the issued cap above its bound
     vec4 error;               // xy: the solves' last mean error, summed over this frame's steps (units of rho0);
                               // zw: the largest of them
+    float stable_dt;          // this substep's stable dt: dt before the frame's remainder is spread (s)
+    float iteration_dt;       // the step the density solve's iterations allow (docs/DFSPH.md (D8)): a bound
+                              // on dt kept from step to step; sph.dt_max where no solve sets it (s)
+    uint pad0;
+    uint pad1;
 }
-RANRYU_STRUCT_END(StepState, 128)
+RANRYU_STRUCT_END(StepState, 144)
 
 // ---- DFSPH (engine/sim/solvers/dfsph.h, glsl/sim/dfsph/; docs/DFSPH.md) ----
 #define RANRYU_UBO_DFSPH 8   // DfsphParams
@@ -166,8 +171,12 @@ RANRYU_STRUCT(DfsphParams) {
     float boundary_relaxation;   // omega_b of (D9): the boundary rows' l1-Jacobi relaxation
     float chebyshev;             // rho of (D6)'s Chebyshev acceleration of the density solve; 0: off
     uint complementarity_error;  // 1: the density solve's error counts |r_i| where kappa_i > 0 (D6); 0: max(r_i, 0)
+    uint shrink_step_above;      // (D8): a density solve of more iterations than this shrinks the step; 0: off
+    uint grow_step_below;        // (D8): one of fewer lets it grow
+    float iteration_dt_min;      // (D8): the least step the iterations may ask for (s)
+    uint pad0;
 }
-RANRYU_STRUCT_END(DfsphParams, 64)
+RANRYU_STRUCT_END(DfsphParams, 80)
 
 // One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
 // bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual

@@ -13,10 +13,10 @@
 //                 viewport, speed_scale, tank_min, tank_max                          80 words
 //   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
 //   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
-//   StepState:    its 20 scalars, then iterations, unconverged, error                32 words
+//   StepState:    its 20 scalars, then iterations, unconverged, error, then its 4    36 words
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
-//   DfsphParams:  its 16 scalars in order                                            16 words
+//   DfsphParams:  its 20 scalars in order                                            20 words
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve, weight, pads (std430)  12 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
@@ -81,6 +81,7 @@ void main() {
     put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
     put(step.frame); put(step.steps); put(step.live_count);
     put(step.iterations); put(step.unconverged); put(step.error);
+    put(step.stable_dt); put(step.iteration_dt); put(step.pad0); put(step.pad1);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);
     put(subp.inv_sigma); put(subp.noise_lmax); put(subp.tile_size); put(subp.levels); put(subp.budget);
@@ -92,6 +93,7 @@ void main() {
     put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.complementarity_error);
+    put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.pad0);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
     put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);

@@ -121,6 +121,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.iterations", {offsetof(gpu::StepState, iterations), GL_UNSIGNED_INT_VEC4}},
         {"step.unconverged", {offsetof(gpu::StepState, unconverged), GL_UNSIGNED_INT_VEC4}},
         {"step.error", {offsetof(gpu::StepState, error), GL_FLOAT_VEC4}},
+        {"step.stable_dt", {offsetof(gpu::StepState, stable_dt), GL_FLOAT}},
+        {"step.iteration_dt", {offsetof(gpu::StepState, iteration_dt), GL_FLOAT}},
+        {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+        {"step.pad1", {offsetof(gpu::StepState, pad1), GL_UNSIGNED_INT}},
 
         {"subp.level_energy", {offsetof(gpu::SubparticleParams, level_energy), GL_FLOAT_VEC4}},
         {"subp.energy_scale", {offsetof(gpu::SubparticleParams, energy_scale), GL_FLOAT_VEC4}},
@@ -159,6 +163,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.boundary_relaxation", {offsetof(gpu::DfsphParams, boundary_relaxation), GL_FLOAT}},
         {"dfsph.chebyshev", {offsetof(gpu::DfsphParams, chebyshev), GL_FLOAT}},
         {"dfsph.complementarity_error", {offsetof(gpu::DfsphParams, complementarity_error), GL_UNSIGNED_INT}},
+        {"dfsph.shrink_step_above", {offsetof(gpu::DfsphParams, shrink_step_above), GL_UNSIGNED_INT}},
+        {"dfsph.grow_step_below", {offsetof(gpu::DfsphParams, grow_step_below), GL_UNSIGNED_INT}},
+        {"dfsph.iteration_dt_min", {offsetof(gpu::DfsphParams, iteration_dt_min), GL_FLOAT}},
+        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -419,6 +427,10 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     st.iterations = d.u4();
     st.unconverged = d.u4();
     st.error = d.v4();
+    st.stable_dt = d.f();
+    st.iteration_dt = d.f();
+    st.pad0 = d.u();
+    st.pad1 = d.u();
 
     gpu::SubparticleParams pp{};
     pp.level_energy = d.v4();
@@ -441,6 +453,10 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.boundary_relaxation = d.f();
     dp.chebyshev = d.f();
     dp.complementarity_error = d.u();
+    dp.shrink_step_above = d.u();
+    dp.grow_step_below = d.u();
+    dp.iteration_dt_min = d.f();
+    dp.pad0 = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -482,6 +498,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
     expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.live_count);
     expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
+    expect.put(st.stable_dt); expect.put(st.iteration_dt); expect.put(st.pad0); expect.put(st.pad1);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);
     expect.put(pp.coherence_time); expect.put(pp.inv_sigma); expect.put(pp.noise_lmax); expect.put(pp.tile_size);
@@ -495,6 +512,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
     expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
+    expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.pad0);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);

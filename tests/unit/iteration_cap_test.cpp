@@ -5,6 +5,7 @@
 #include "sim/solvers/dfsph.h"
 
 using ranryu::sim::next_iteration_cap;
+using ranryu::sim::next_iteration_dt;
 
 TEST_CASE("dfsph iteration cap: 1.5 times the most needed plus two, within the scene's least and most", "[dfsph][unit]") {
     CHECK(next_iteration_cap(3, false, 2, 100) == 7u);     // ceil(4.5) + 2
@@ -21,4 +22,14 @@ TEST_CASE("dfsph iteration cap: a step stopped at the cap sends it to the scene'
     CHECK(next_iteration_cap(3, true, 2, 100) == 100u);
     CHECK(next_iteration_cap(7, true, 2, 60) == 60u);
     CHECK(next_iteration_cap(0, true, 1, 1) == 1u);
+}
+
+TEST_CASE("dfsph iteration step: 0.9 times the stable step above the band, 1.1 times below, the same within, clamped", "[dfsph][unit]") {
+    // docs/DFSPH.md (D8): the band [grow_below, shrink_above] = [10, 20] of the defaults.
+    CHECK(next_iteration_dt(1e-3f, 21, 20, 10, 1e-5f, 5e-3f) == Approx(0.9e-3));
+    CHECK(next_iteration_dt(1e-3f, 9, 20, 10, 1e-5f, 5e-3f) == Approx(1.1e-3));
+    CHECK(next_iteration_dt(1e-3f, 20, 20, 10, 1e-5f, 5e-3f) == Approx(1e-3));   // the band's ends are in it
+    CHECK(next_iteration_dt(1e-3f, 10, 20, 10, 1e-5f, 5e-3f) == Approx(1e-3));
+    CHECK(next_iteration_dt(4.9e-3f, 2, 20, 10, 1e-5f, 5e-3f) == 5e-3f);        // not above the largest step
+    CHECK(next_iteration_dt(1.05e-5f, 100, 20, 10, 1e-5f, 5e-3f) == 1e-5f);      // nor below the floor
 }

@@ -66,6 +66,12 @@ std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, 
     return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
 }
 
+float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t shrink_above, std::uint32_t grow_below, float least,
+                        float most) {
+    const float f = iterations > shrink_above ? 0.9f : iterations < grow_below ? 1.1f : 1.0f;
+    return std::clamp(stable_dt * f, least, most);
+}
+
 Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid)
     : timer_(timer),
       density_pass_(timer.pass("dfsph.density")),
@@ -111,6 +117,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.deficient_neighbours = 20;
     params_.boundary_viscosity = scene.sph.boundary_viscosity;
     params_.groups = correct_.groups_for(fluid.count());
+    params_.shrink_step_above = std::uint32_t(scene.sph.shrink_step_above);
+    params_.grow_step_below = std::uint32_t(scene.sph.grow_step_below);
+    params_.iteration_dt_min = iteration_dt_floor(scene);
     params_ubo_ = gl::Buffer(sizeof params_, GL_DYNAMIC_DRAW, &params_, "DfsphParams");
     // A solve opens with its iterations' dispatch at full size, none run and no error summed.
     std::vector<std::uint8_t> opened(2 * RANRYU_DFSPH_SOLVE_STRIDE, 0);

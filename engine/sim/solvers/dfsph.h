@@ -28,6 +28,7 @@
 // cap, otherwise 1.5 times the most one step needed over the last records, plus two. Iterations run
 // and the errors reached come back in StepState; a step that stops at its cap is counted there, and
 // profile reports it.
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -48,6 +49,17 @@ namespace ranryu::sim {
 // frames late, and a step cut short leaves its excess to the next as a kick, so the cap goes to the
 // maximum at once, and comes back down with the records.
 std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most);
+
+// The step the density solve's iterations allow (docs/DFSPH.md (D8)), the CPU's mirror of the GPU's
+// next_iteration_dt() (glsl/sim/dfsph/dfsph.glsl), which the residual pass applies when a density solve
+// ends: 0.9 times the step's stable dt after more than `shrink_above` iterations, 1.1 times after fewer
+// than `grow_below`, the same between, within [least, most].
+float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t shrink_above, std::uint32_t grow_below, float least,
+                        float most);
+
+// The least step the iterations may ask for: a 64th of the scene's largest step (sph.max_time_step, at
+// most the frame), so that a solve that cannot converge stops costing steps there.
+inline float iteration_dt_floor(const scene::Scene& scene) { return std::min(scene.sph.max_time_step, scene.frame_dt) / 64.0f; }
 
 class Dfsph final : public Solver {
 public:

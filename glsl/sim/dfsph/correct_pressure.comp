@@ -26,6 +26,7 @@
 // the residual r_b = delta_b − s_b, and kappa_b ← max(kappa_b + omega_b r_b / (dt^2 D_b), 0).
 // The two read the same accelerations and write different kappa, so one dispatch serves both (and
 // one barrier, where two passes took two); the rows add nothing to the error, which is the fluid's.
+// A density solve that ends sets the step the next ones may take from its iterations (D8).
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -82,6 +83,7 @@ void decide() {
         if (!converged) step.unconverged[s] += 1u;
         step.error[s] += mean;
         step.error[s + 2u] = max(step.error[s + 2u], mean);
+        if (s == 0u && dfsph.shrink_step_above > 0u) step.iteration_dt = next_iteration_dt(step.stable_dt, it);
     }
     solve.error_sum = 0u;
     solve.groups_done = 0u;

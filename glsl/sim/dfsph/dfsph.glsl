@@ -24,6 +24,15 @@ const float kViscosityFactor = 10.0;
 const uint kChebyshevStart = 2u;
 float next_chebyshev_weight(float w) { return 4.0 / (4.0 - dfsph.chebyshev * dfsph.chebyshev * w); }
 
+// (D8): the step the density solve's iterations allow, from the step's stable dt and the iterations
+// its density solve took: 0.9 times it after more than shrink_step_above, 1.1 times after fewer than
+// grow_step_below, as it is between; within [iteration_dt_min, dt_max]. The CPU's mirror is
+// sim::next_iteration_dt() (engine/sim/solvers/dfsph.h).
+float next_iteration_dt(float stable_dt, uint iterations) {
+    float f = iterations > dfsph.shrink_step_above ? 0.9 : iterations < dfsph.grow_step_below ? 1.1 : 1.0;
+    return clamp(stable_dt * f, dfsph.iteration_dt_min, sph.dt_max);
+}
+
 // A particle whose predicted density change leaves it this far below rho0 (or that is deficient in
 // neighbours) starts its solve from no pressure instead of the last step's (D6): 1 % of rho0 is
 // separation (a splash, the free surface), far beyond the solve's own error, while the bulk of a
