@@ -49,6 +49,9 @@ struct SimulationSummary {
     std::uint64_t unconverged = 0, unconverged_divergence = 0;   // steps that stopped at the issued cap
     double density_error = 0.0, max_density_error = 0.0;         // the solve's last mean error (units of rho0): per step, most
     double divergence_error = 0.0;
+    // The step the density solve's iterations allowed (docs/DFSPH.md (D8)) at the end of a frame, the
+    // least over the frames (s; sph.dt_max where no solve lowered it).
+    double least_iteration_dt = 0.0;
 
     void add(const gpu::StepState& record);    // one frame's record, in frame order
     double substeps_per_frame() const { return frames ? double(steps) / double(frames) : 0.0; }

@@ -337,3 +337,42 @@ TEST_CASE("ranryu profile --overlay draws the window's panel offscreen as the pa
     REQUIRE(plain.exit_code == 0);
     CHECK_THAT(plain.out, !Contains("overlay"));
 }
+
+TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, iterations and least iteration step are the summary's",
+          "[cli][profile]") {
+    // The tank at rest at 0.025 m (480 particles) with DFSPH, 12 frames, none of warm-up: every frame's
+    // StepState record (engine/profile/report.h record_csv_row()) is a row, and the JSON's simulation
+    // summary is built from the same records: its steps are the rows' substeps, its iterations a step
+    // the rows' density iterations over them, its least_iteration_dt the least of the rows' iteration_dt
+    // (docs/DFSPH.md (D8)), within the scene's largest step of 5 ms.
+    TempDir tmp;
+    const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025", "--size",
+                                             "64x48", "--shading", "particles", "--frames", "12", "--warmup", "0", "--records",
+                                             "records.csv", "--json", "report.json"});
+    INFO(r.describe());
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("the step the iterations allow (D8): least"));
+    const auto csv = parse_csv(read_file(tmp / "records.csv"));
+    REQUIRE(csv.size() == 13u);   // the header and a row a frame
+    const std::vector<std::string>& head = csv[0];
+    auto column = [&](const std::string& name) {
+        const auto at = std::find(head.begin(), head.end(), name);
+        REQUIRE(at != head.end());
+        return std::size_t(at - head.begin());
+    };
+    const std::size_t steps_at = column("substeps"), iterations_at = column("iterations"), dt_at = column("iteration_dt");
+    double steps = 0.0, iterations = 0.0, least = 1.0;
+    for (std::size_t k = 1; k < csv.size(); ++k) {
+        REQUIRE(csv[k].size() == head.size());
+        const double dt = std::stod(csv[k][dt_at]);
+        CHECK(dt > 0.0);
+        CHECK(dt <= 0.005 * (1.0 + 1e-6));
+        steps += std::stod(csv[k][steps_at]);
+        iterations += std::stod(csv[k][iterations_at]);
+        least = std::min(least, dt);
+    }
+    const nlohmann::json s = nlohmann::json::parse(read_file(tmp / "report.json"))["simulation"];
+    CHECK(s["steps"].get<double>() == steps);
+    CHECK(s["iterations_per_step"].get<double>() == Approx(iterations / steps).epsilon(1e-12));
+    CHECK(s["least_iteration_dt"].get<double>() == Approx(least).epsilon(1e-6));
+}

@@ -146,29 +146,29 @@ TEST_CASE("validate: WCSPH tank at rest follows rho0 g (H - z) in its interior",
 TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings", "[validation]") {
     test::context();
     // 0.025 m and 0.02 m: 10 and 12 layers, 4 and 5 particles across the tank's 0.1 m depth, so most of
-    // the column lies within a kernel support of a wall. Measured on llvmpipe (docs/VALIDATION.md):
-    // interior 0.21 and 0.15 of rho0 g H, floor layer 1.09 and 1.00, spurious rms speed 0.11 and 0.08
-    // m/s, with Akinci's boundary term (the default), whose floor layer read about twice hydrostatic.
-    // With the boundary rows of docs/DFSPH.md (D9), switched on here, the floor layer carries what a
-    // fluid layer would: measured 0.031 of rho0 g H at 0.025 m (interior 0.011) on llvmpipe, with the
-    // rows' hydrostatic start of (D9). Bound: 0.15, a tenth
-    // of Akinci's, for the floor layer. Issue 11 asks for 1 % and 2 %: not met by the interior; these
-    // bounds guard what there is and that the error does not grow as dx shrinks.
+    // the column lies within a kernel support of a wall. DFSPH's defaults: the boundary rows of
+    // docs/DFSPH.md (D9), with which the floor layer carries what a fluid layer would (Akinci's term
+    // read it at about twice hydrostatic: 1.09 and 1.00 of rho0 g H here), and the step that follows
+    // the density solve's iterations ((D8)). Measured on llvmpipe (docs/VALIDATION.md), 2026-11-26:
+    // interior 0.0070 and 0.0108 of rho0 g H, floor layer 0.0173 and 0.0093. Bounds: 0.03 and 0.05,
+    // about three times those, because the column's slow motion moves a half-second average by about
+    // 0.01 from build to build (issue 11's 1 % and 2 % are met at 0.025 m here, the interior's not at
+    // 0.02 m); and the error not growing as dx shrinks beyond that scatter.
     const auto& shaders = shader::FileSource::embedded();
-    auto with_rows = [](scene::Scene s) {
-        s.sph.boundary_rows = true;
-        return s;
-    };
+    const scene::Scene coarse_scene = case_scene("hydrostatic", 0.025f, scene::Solver::dfsph);
+    REQUIRE(coarse_scene.sph.boundary_rows);   // DFSPH's default
+    REQUIRE(coarse_scene.sph.shrink_step_above > 0);
     // The lattice start (no relaxation): the relaxed start leaves the motion as it is (the next test).
-    const validation::HydrostaticResult coarse =
-        validation::hydrostatic(with_rows(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph)), shaders, 0.5, validation::Relaxation{});
+    const validation::HydrostaticResult coarse = validation::hydrostatic(coarse_scene, shaders, 0.5, validation::Relaxation{});
     const validation::HydrostaticResult fine =
-        validation::hydrostatic(with_rows(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph)), shaders, 0.5, validation::Relaxation{});
-    // Floor layer: a tenth of Akinci's. No acoustic ringing here: the initial lattice rearranges at the
-    // walls within the first frame (rms 0.1 m/s after it), and the solver at rest keeps moving it
-    // (docs/DFSPH.md "The tank at rest at 250k particles"), which the scene's nu = 1e-3 m^2/s does not
-    // damp away in a second: rms speed within a tenth of the free-fall speed.
-    check_columns(coarse, fine, 0.15, 0.1);
+        validation::hydrostatic(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph), shaders, 0.5, validation::Relaxation{});
+    // No acoustic ringing here: the initial lattice rearranges at the walls within the first frame (rms
+    // 0.1 m/s after it), and the solver at rest keeps moving it (docs/DFSPH.md "The tank at rest at 250k
+    // particles"), which the scene's nu = 1e-3 m^2/s does not damp away in a second: rms speed within a
+    // tenth of the free-fall speed.
+    check_columns(coarse, fine, 0.05, 0.1);
+    CHECK(coarse.max_error <= 0.03);
+    CHECK(fine.max_error <= 0.03);
     test::require_no_gl_errors();
 }
 

@@ -1,5 +1,6 @@
 // The DFSPH iteration cap the CPU issues (engine/sim/solvers/dfsph.h next_iteration_cap()): learnt from
-// the most one step needed, and the scene's maximum at once after a step stopped at the cap.
+// the most one step needed, and the scene's maximum at once after a step stopped at the cap; and the
+// CPU's mirror of the step the iterations allow (next_iteration_dt(), docs/DFSPH.md (D8)).
 #include <catch2/catch.hpp>
 
 #include "sim/solvers/dfsph.h"
