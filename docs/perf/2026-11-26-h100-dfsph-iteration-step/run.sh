@@ -5,7 +5,10 @@
 #    SOLVER=dfsph PARTICLES=250000 SCENES="hydrostatic" RUN_TIMEOUT=230 scripts/gpu/scenes-seconds.sh 10
 # 2. max-time-step-250k/ (same build): VARIANTS="drop/base: drop/dt15:sph.max_time_step=0.0015 drop/dt08:sph.max_time_step=0.0008 ..." FRAMES=300 dtvar.sh
 # 3. s250/, off/: OFF="dam-break/off:sph.shrink_step_above=0" gpu1.sh
-# 4. s1m-*/: TAG=1m-drop PARTICLES=1000000 SCENES=drop RUN_TIMEOUT=570 gpu1.sh; likewise turbulent-jet (560) and dam-break (300)
+# 4. s1m-*/: TAG=1m-drop PARTICLES=1000000 SCENES=drop RUN_TIMEOUT=570 gpu1.sh; likewise turbulent-jet (560) and dam-break (300);
+#    s1m-tank/: TAG=1m-tank PARTICLES=1000000 SCENES=hydrostatic SECS=2 RUN_TIMEOUT=330 gpu1.sh
+# 5. band/: OUT=$out/band VARIANTS="dam-break/b5-10:sph.grow_step_below=5,sph.shrink_step_above=10 dam-break/b15-30:sph.grow_step_below=15,sph.shrink_step_above=30
+#    dam-break/b20-40:sph.grow_step_below=20,sph.shrink_step_above=40 drop/b5-10:... drop/b15-30:... drop/b20-40:..." FRAMES=600 RUN_TIMEOUT=90 dtvar.sh
 
 # ---- gpu1.sh
 # scratch: DFSPH defaults (rows + iteration step) at ~250k, 10 s: drop, jet, tank; the dam break as shipped at 246k.
@@ -13,7 +16,7 @@ scripts/gpu/setup-and-build.sh ranryu >/dev/null 2>&1
 . scripts/gpu/env.sh x
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 export OUT=$out/s${TAG:-250}; mkdir -p $OUT
-SOLVER=dfsph PARTICLES=${PARTICLES:-250000} SCENES="${SCENES:-dam-break drop turbulent-jet hydrostatic}" RUN_TIMEOUT=${RUN_TIMEOUT:-150} scripts/gpu/scenes-seconds.sh 10
+SOLVER=dfsph PARTICLES=${PARTICLES:-250000} SCENES="${SCENES:-dam-break drop turbulent-jet hydrostatic}" RUN_TIMEOUT=${RUN_TIMEOUT:-150} scripts/gpu/scenes-seconds.sh ${SECS:-10}
 python3 scratch/summ.py $OUT/*.csv
 for f in $OUT/*.txt; do echo "== $f"; grep -E "^simulation|density solve|divergence solve|fps and" $f; done
 tar czf $out/s${TAG:-250}.tgz -C $out s${TAG:-250} && rm -rf $OUT
