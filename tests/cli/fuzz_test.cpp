@@ -122,6 +122,12 @@ std::vector<SceneCase> scene_corpus() {
     c.push_back({"zero-radius.json", edited([](json& j) { j["obstacles"] = {{{"center", {0.5, 0.5, 0.5}}, {"radius", 0}}}; }),
                  {"obstacles[0].radius", "out of range"}});
     c.push_back({"zero-iterations.json", edited([](json& j) { j["sph"]["max_iterations"] = 0; }), {"sph.max_iterations", "out of range"}});
+    // The step the iterations allow (docs/DFSPH.md (D8)): its band must be one, and reachable.
+    c.push_back({"step-band-inverted.json", edited([](json& j) { j["sph"]["shrink_step_above"] = 10; j["sph"]["grow_step_below"] = 10; }),
+                 {"sph.grow_step_below", "must be below", "sph.shrink_step_above"}});
+    c.push_back({"step-band-below-least.json", edited([](json& j) { j["sph"]["shrink_step_above"] = 3; j["sph"]["grow_step_below"] = 1;
+                                                                    j["sph"]["min_iterations"] = 5; }),
+                 {"sph.min_iterations", "must not exceed", "sph.shrink_step_above"}});
     c.push_back({"negative-zero-substeps.json", edited([](json& j) { j["sph"]["max_substeps"] = -0.0; }), {"sph.max_substeps", "out of range"}});
     c.push_back({"no-blocks.json", "{}", {"particles.blocks", "at least one block"}});
     c.push_back({"empty-blocks.json", edited([](json& j) { j["particles"]["blocks"] = json::array(); }), {"particles.blocks", "at least one block"}});
