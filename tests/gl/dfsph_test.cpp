@@ -681,6 +681,7 @@ TEST_CASE("dfsph: the step the density solve's iterations allow (D8): the GPU's 
     // Off: the bound stays the scene's largest step.
     const Step off = one_step(R"("shrink_step_above": 0)");
     CHECK(off.st.iteration_dt == off.dt_max);
+    CHECK(off.p.iteration_dt_min == off.dt_max / 64.0f);   // the floor: a 64th of the largest step (D8)
     ranryu::test::require_no_gl_errors();
 }
 

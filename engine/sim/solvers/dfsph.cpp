@@ -119,7 +119,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.groups = correct_.groups_for(fluid.count());
     params_.shrink_step_above = std::uint32_t(scene.sph.shrink_step_above);
     params_.grow_step_below = std::uint32_t(scene.sph.grow_step_below);
-    params_.iteration_dt_min = iteration_dt_floor(scene);
+    // The least step the iterations may ask for: a 64th of the fluid's largest step (SphParams.dt_max:
+    // sph.max_time_step, at most the frame), so a solve that cannot converge stops costing steps there.
+    params_.iteration_dt_min = fluid.params().dt_max / 64.0f;
     params_ubo_ = gl::Buffer(sizeof params_, GL_DYNAMIC_DRAW, &params_, "DfsphParams");
     // A solve opens with its iterations' dispatch at full size, none run and no error summed.
     std::vector<std::uint8_t> opened(2 * RANRYU_DFSPH_SOLVE_STRIDE, 0);

@@ -28,7 +28,6 @@
 // cap, otherwise 1.5 times the most one step needed over the last records, plus two. Iterations run
 // and the errors reached come back in StepState; a step that stops at its cap is counted there, and
 // profile reports it.
-#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -57,9 +56,6 @@ std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, 
 float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t shrink_above, std::uint32_t grow_below, float least,
                         float most);
 
-// The least step the iterations may ask for: a 64th of the scene's largest step (sph.max_time_step, at
-// most the frame), so that a solve that cannot converge stops costing steps there.
-inline float iteration_dt_floor(const scene::Scene& scene) { return std::min(scene.sph.max_time_step, scene.frame_dt) / 64.0f; }
 
 class Dfsph final : public Solver {
 public:
