@@ -1,9 +1,11 @@
 #pragma once
-// SIGINT and SIGTERM as a request to stop a run at the next frame boundary. The handler only sets a
+// SIGINT and SIGTERM as a request to stop a run at the next frame boundary. The handler sets a
 // flag (a std::sig_atomic_t); run_frames() (frame/loop.h) reads it before each frame and ends the
 // loop, and the command finishes what it started (record writes every frame it captured and
-// run.json) and exits 130 through interrupted(). A second signal ends the process the default way
-// (SA_RESETHAND), for a run that will not come to a frame boundary.
+// run.json) and exits 130 through interrupted(). A second signal a second or more after the first ends
+// the process the default way, for a run that will not come to a frame boundary; one within the
+// second is the same request delivered twice (timeout(1) signals the command, then its process group)
+// and is ignored.
 #include <cstdint>
 #include <optional>
 

@@ -131,3 +131,37 @@ TEST_CASE("interrupt: SIGINT stops profile and validate with exit code 130 and o
         CHECK_FALSE(fs::exists(tmp / "front.json"));
     }
 }
+
+TEST_CASE("interrupt: the same SIGTERM delivered twice at once, as timeout(1) sends it, still stops at a frame boundary "
+          "with the records written",
+          "[cli][interrupt]") {
+    // timeout(1) signals the command and then its whole process group: the run sees SIGTERM twice,
+    // microseconds apart. Until 2026-11-26 the second ended the process the default way (exit 143, no
+    // records), when the first had been delivered before it; engine/frame/stop.h now takes a signal
+    // within a second of the first as the same request. Here the second comes 50 ms after the first,
+    // after its delivery, the case that lost the records.
+    TempDir tmp;
+    RunOptions opt;
+    opt.set_env = {{"RANRYU_PROGRESS_SECONDS", "0"}};
+    const fs::path records = tmp / "records.csv";
+    Child child = start_ranryu(tmp.path(),
+                               {"profile", "--scene", scene_file("jet-at-box.json").string(), "--shading", "particles", "--size",
+                                "64x48", "--warmup", "0", "--frames", "1000000", "--records", records.string()},
+                               opt);
+    const bool started = wait_until([&] { return child.err_so_far().find("ranryu profile: frame 3/") != std::string::npos; });
+    kill(child.pid, SIGTERM);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    kill(child.pid, SIGTERM);
+    const Result r = wait(child);
+    INFO(r.describe());
+    REQUIRE(started);
+    CHECK(r.exit_code == 130);
+    const auto lines = r.err_lines();
+    REQUIRE(!lines.empty());
+    CHECK(std::regex_match(lines.back(), std::regex("ranryu: interrupted by SIGTERM after \\d+ of 1000000 frames")));
+    // The records of every frame run: a header and at least the three frames seen.
+    REQUIRE(fs::exists(records));
+    const std::string csv = read_file(records);
+    CHECK(std::count(csv.begin(), csv.end(), '\n') >= 4);
+    CHECK_THAT(csv, Contains("frame,time,substeps"));
+}
