@@ -264,7 +264,8 @@ commands:
 
 record, profile and validate show their progress on stderr (--quiet: none): a line rewritten in
 place on a terminal, else a plain line every 10 s (RANRYU_PROGRESS_SECONDS sets the interval).
-Ctrl-C (SIGINT) or SIGTERM stops a run after the frame in progress; a second one ends it at once.
+Ctrl-C (SIGINT) or SIGTERM stops a run after the frame in progress; a second one, a second or more
+later, ends it at once.
 
 exit codes: 0 success, 1 failure, 2 bad input (usage, scene, parameter, output folder),
             3 the simulation went unstable (reported with the step and the cause),
