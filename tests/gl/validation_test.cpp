@@ -243,7 +243,11 @@ TEST_CASE("validate: DFSPH tank with the boundary rows from a relaxed start", "[
     // m/s rms after the first frame and the bound reached at the 7th (0.0011 m/s); from kappa_b = 0
     // the first frame ended at 0.083 m/s and the bound was not reached in 3 s (docs/VALIDATION.md
     // "Where the motion at rest comes from").
-    scene::Scene s = case_scene("hydrostatic", 0.025f, scene::Solver::dfsph);
+    // The solve's defaults, as measured: with the scene's own weaker warm start (w = 0.75, the test
+    // above) each frame from rest starts its steps a quarter short of the column's pressure, and a frame
+    // from rest ends at about 0.02 m/s rms (60 frames, llvmpipe), so the relaxation never reaches its
+    // bound; what this test measures is the relaxation and the rows' hydrostatic start.
+    scene::Scene s = with_solve_defaults(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
     s.sph.boundary_rows = true;
     validation::Relaxation relax = validation::hydrostatic_relaxation(s);
     relax.max_frames = int(std::ceil(1.0 / s.frame_dt));
