@@ -56,7 +56,6 @@ std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, 
 float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t shrink_above, std::uint32_t grow_below, float least,
                         float most);
 
-
 class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
