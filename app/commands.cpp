@@ -106,12 +106,13 @@ std::string guard_spikes_line(const frame::Pipeline& p, nlohmann::json& extra) {
     char line[400];
     std::snprintf(line, sizeof line,
                   "guard: %d frame(s) past a bound, each followed by one within it (spikes, not stopped; sim/guard.h); the "
-                  "largest at frame %llu, t = %.4f s: %s (particle %u: %.4g, limit %.4g)\n",
-                  g.spikes(), static_cast<unsigned long long>(worst.frame), worst.time, worst.criterion.c_str(), worst.particle,
-                  worst.value, worst.limit);
+                  "largest at frame %llu, t = %.4f s: %s (%s)\n",
+                  g.spikes(), static_cast<unsigned long long>(worst.frame), worst.time, worst.criterion.c_str(),
+                  worst.detail().c_str());
     extra["guard_spikes"] = {{"frames", g.spikes()},
                              {"largest", {{"frame", worst.frame}, {"time", worst.time}, {"criterion", worst.criterion},
                                           {"value", worst.value}, {"limit", worst.limit}}}};
+    if (worst.position) extra["guard_spikes"]["largest"]["position"] = {worst.position->x, worst.position->y, worst.position->z};
     return line;
 }
 }  // namespace

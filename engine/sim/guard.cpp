@@ -14,14 +14,21 @@ float from_bits(std::uint32_t b) {
 }
 }  // namespace
 
-std::string Instability::message() const {
+std::string Instability::detail() const {
     // NaN and escape have no value to compare: they name the particle only.
-    char detail[96];
-    if (limit > 0.0) std::snprintf(detail, sizeof detail, "particle %u: %.6g, limit %.6g", particle, value, limit);
-    else std::snprintf(detail, sizeof detail, "particle %u", particle);
+    char where[96] = "";
+    if (position)
+        std::snprintf(where, sizeof where, " at (%.4f, %.4f, %.4f) m", double(position->x), double(position->y), double(position->z));
+    char detail[192];
+    if (limit > 0.0) std::snprintf(detail, sizeof detail, "particle %u%s: %.6g, limit %.6g", particle, where, value, limit);
+    else std::snprintf(detail, sizeof detail, "particle %u%s", particle, where);
+    return detail;
+}
+
+std::string Instability::message() const {
     char buf[512];
     std::snprintf(buf, sizeof buf, "simulation unstable at frame %llu, step %u, t = %.6f s: %s (%s); stopped",
-                  static_cast<unsigned long long>(frame), step, time, criterion.c_str(), detail);
+                  static_cast<unsigned long long>(frame), step, time, criterion.c_str(), detail().c_str());
     return buf;
 }
 
@@ -44,6 +51,7 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
     if (const float d = from_bits(r.frame_max_density); !(d <= limits.density_ratio)) {
         i.criterion = "density rho/rho0 beyond its bound";
         i.particle = r.density_index;
+        i.position = glm::vec3(r.density_position.x, r.density_position.y, r.density_position.z);
         i.value = d;
         i.limit = limits.density_ratio;
         return i;
@@ -51,6 +59,7 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
     if (const float v = from_bits(r.frame_max_speed); !(v <= limits.speed)) {
         i.criterion = "speed |v| (m/s) beyond its bound";
         i.particle = r.speed_index;
+        i.position = glm::vec3(r.speed_position.x, r.speed_position.y, r.speed_position.z);
         i.value = v;
         i.limit = limits.speed;
         return i;
@@ -58,6 +67,7 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
     if (r.frame_substeps > 0 && !(r.frame_min_dt >= limits.dt_floor)) {
         i.criterion = "stable time step (s) collapsed below its floor";
         i.particle = r.speed_index;
+        i.position = glm::vec3(r.speed_position.x, r.speed_position.y, r.speed_position.z);
         i.value = r.frame_min_dt;
         i.limit = limits.dt_floor;
         return i;

@@ -14,6 +14,8 @@
 #include <optional>
 #include <string>
 
+#include <glm/vec3.hpp>
+
 #include "core/error.h"
 #include "shared/bindings.h"
 
@@ -37,7 +39,9 @@ struct Instability {
     std::uint32_t step = 0;  // substeps since the start
     double time = 0.0;       // simulated time (s)
     std::uint32_t particle = 0;   // a worst particle (index in the frame's sorted order)
+    std::optional<glm::vec3> position;   // where it was (density, speed, time step: StepState's positions)
     double value = 0.0, limit = 0.0;
+    std::string detail() const;    // "particle N at (x, y, z) m: value, limit L"
     std::string message() const;
 };
 

@@ -147,8 +147,10 @@ RANRYU_STRUCT(StepState) {
                               // on dt kept from step to step; sph.dt_max where no solve sets it (s)
     uint pad0;
     uint pad1;
+    vec4 speed_position;      // xyz: where speed_index was when its speed was recorded (the end of its step, m)
+    vec4 density_position;    // xyz: where density_index was when its density was computed (m)
 }
-RANRYU_STRUCT_END(StepState, 144)
+RANRYU_STRUCT_END(StepState, 176)
 
 // ---- DFSPH (engine/sim/solvers/dfsph.h, glsl/sim/dfsph/; docs/DFSPH.md) ----
 #define RANRYU_UBO_DFSPH 8   // DfsphParams

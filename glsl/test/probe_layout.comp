@@ -82,6 +82,7 @@ void main() {
     put(step.frame); put(step.steps); put(step.live_count);
     put(step.iterations); put(step.unconverged); put(step.error);
     put(step.stable_dt); put(step.iteration_dt); put(step.pad0); put(step.pad1);
+    put(step.speed_position); put(step.density_position);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);
     put(subp.inv_sigma); put(subp.noise_lmax); put(subp.tile_size); put(subp.levels); put(subp.budget);

@@ -69,6 +69,21 @@ std::vector<glm::vec4> jittered(ranryu::test::Random& rng, const Rig& rig) {
     return {};
 }
 
+// One substep of frame `frame` (fixed dt = frame_dt) from the state x, v: its StepState record and the
+// state it leaves, read back at once.
+struct OneSubstep {
+    gpu::StepState record;
+    std::vector<glm::vec4> x, v;
+};
+OneSubstep one_substep(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, std::uint64_t frame) {
+    rig.fluid.upload_state(x, v);
+    rig.fluid.set_fixed_dt(rig.scene.frame_dt);
+    rig.frame(frame);
+    OneSubstep s{rig.fluid.step_state().read<gpu::StepState>(1)[0], rig.read(rig.fluid.positions()), rig.read(rig.fluid.velocities())};
+    rig.finish();
+    return s;
+}
+
 // A sound record: what a quiet frame reports.
 gpu::StepState sound_record() {
     gpu::StepState r{};
@@ -82,6 +97,8 @@ gpu::StepState sound_record() {
     r.nan_index = r.escaped_index = 0xFFFFFFFFu;
     r.speed_index = 11;
     r.density_index = 12;
+    r.speed_position = glm::vec4(0.125f, 0.5f, -0.25f, 0.0f);
+    r.density_position = glm::vec4(0.0625f, 0.03125f, 0.75f, 0.0f);
     return r;
 }
 
@@ -136,6 +153,7 @@ TEST_CASE("guard: check() names each criterion and passes a sound record", "[gua
         r.escaped_index = 9;
         const Instability i = expect(r, "left the domain");
         CHECK(i.particle == 9u);
+        CHECK_FALSE(i.position.has_value());   // the lowest index among them: no one place to name
         CHECK(contains(i.criterion, "2 particles"));
     }
     {
@@ -145,6 +163,8 @@ TEST_CASE("guard: check() names each criterion and passes a sound record", "[gua
         CHECK(i.particle == 12u);
         CHECK(i.value == Approx(1.75));
         CHECK(i.limit == Approx(1.5));
+        CHECK(contains(i.message(), "particle 12 at (0.0625, 0.0312, 0.7500) m: 1.75"));   // where it was
+
     }
     {
         gpu::StepState r = sound_record();   // a NaN maximum is beyond every bound
@@ -158,6 +178,7 @@ TEST_CASE("guard: check() names each criterion and passes a sound record", "[gua
         CHECK(i.particle == 11u);
         CHECK(i.value == Approx(25.0));
         CHECK(i.limit == Approx(10.0));
+        CHECK(contains(i.message(), "particle 11 at (0.1250, 0.5000, -0.2500) m: 25"));
     }
     {
         gpu::StepState r = sound_record();
@@ -207,6 +228,7 @@ TEST_CASE("guard: a density or speed past its bound stops the run when it persis
         CHECK(g.largest_spike()->frame == 1u);
         CHECK(g.largest_spike()->value == Approx(19.0));
         CHECK(contains(g.largest_spike()->criterion, "speed"));
+        CHECK(contains(g.largest_spike()->detail(), "particle 11 at (0.1250, 0.5000, -0.2500) m: 19"));   // the run's spike line
         CHECK_FALSE(g.observe(frame(3, 1.9f, 2.0f)).has_value());     // density 1.9: past 1.5, within 2.0
         CHECK_FALSE(g.observe(frame(4, 1.2f, 2.0f)).has_value());
         CHECK(g.spikes() == 2);
@@ -317,6 +339,45 @@ TEST_CASE("guard: a state compressed past the density bound is reported in its f
     CHECK(most > 1.6f);
     CHECK(float(i.value) == Approx(most).epsilon(1e-6));
     CHECK(i.particle < rig.fluid.count());
+    // Where the densest particle was when the density pass read it: one of the uploaded positions
+    // (the sort moves them bitwise), and inside the compressed block (its edges are less dense).
+    REQUIRE(i.position.has_value());
+    const glm::vec3 at = *i.position;
+    CHECK(std::any_of(x.begin(), x.end(), [&](const glm::vec4& p) { return glm::vec3(p) == at; }));
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (const glm::vec4& p : x) lo = glm::min(lo, glm::vec3(p)), hi = glm::max(hi, glm::vec3(p));
+    INFO("densest at (" << at.x << ", " << at.y << ", " << at.z << "), the block within (" << lo.x << ".." << hi.x << ")");
+    CHECK(glm::all(glm::greaterThan(at, lo)));
+    CHECK(glm::all(glm::lessThan(at, hi)));
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: the frame's fastest particle is named with where its step ended", "[guard]") {
+    // One substep (fixed dt = frame_dt) of the jittered block at rest, one random particle given 2-3 m/s
+    // in a random direction within 45 degrees of +x or -x (it stays inside the tank: 0.05 m in the step).
+    // The record names the fastest particle after the step; the position it carries is that particle's
+    // position as the step left it, exactly (the integration writes both), for either solver.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const std::string solver = GENERATE(as<std::string>(), "wcsph", "dfsph");
+    INFO(solver);
+    Rig rig(scene_json("", solver));
+    std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
+    const std::size_t shot = rng.below(unsigned(x.size()));
+    const glm::vec3 dir = glm::normalize(glm::vec3(rng.uniform(0.0f, 1.0f) < 0.5f ? -1.0f : 1.0f, rng.uniform(-0.7f, 0.7f), rng.uniform(-0.7f, 0.7f)));
+    v[shot] = glm::vec4(rng.uniform(2.0f, 3.0f) * dir, 0.0f);
+    INFO("input particle " << shot << " at " << glm::length(glm::vec3(v[shot])) << " m/s");
+    const auto [record, xs, vs] = one_substep(rig, x, v, 0);
+    std::uint32_t fastest = 0;
+    for (std::uint32_t k = 1; k < vs.size(); ++k)
+        if (glm::length(glm::vec3(vs[k])) > glm::length(glm::vec3(vs[fastest]))) fastest = k;
+    float speed;
+    std::memcpy(&speed, &record.frame_max_speed, sizeof speed);
+    CHECK(record.frame_substeps == 1u);
+    CHECK(speed == Approx(glm::length(glm::vec3(vs[fastest]))).epsilon(1e-6));
+    CHECK(speed > 1.0f);   // the shot particle, not one it pushed
+    CHECK(record.speed_index == fastest);
+    CHECK(glm::vec3(record.speed_position) == glm::vec3(xs[fastest]));
     ranryu::test::require_no_gl_errors();
 }
 
@@ -336,12 +397,7 @@ TEST_CASE("guard: a NaN written into one velocity is reported as non-finite", "[
     for (std::size_t k = 0; k < x.size(); ++k) xd[k] = glm::dvec3(glm::vec3(x[k]));
     const std::size_t spread = ranryu::reference::neighbours(xd, 2.0 * double(rig.scene.spacing))[poisoned].size();
 
-    rig.fluid.upload_state(x, v);
-    rig.fluid.set_fixed_dt(rig.scene.frame_dt);
-    rig.frame(3);
-    const gpu::StepState record = rig.fluid.step_state().read<gpu::StepState>(1)[0];
-    const auto xs = rig.read(rig.fluid.positions()), vs = rig.read(rig.fluid.velocities());
-    rig.finish();
+    const auto [record, xs, vs] = one_substep(rig, x, v, 3);
     std::vector<std::uint32_t> bad;
     for (std::uint32_t k = 0; k < xs.size(); ++k)
         if (glm::any(glm::isnan(glm::vec3(xs[k]))) || glm::any(glm::isnan(glm::vec3(vs[k])))) bad.push_back(k);
@@ -379,12 +435,7 @@ TEST_CASE("guard: a particle outside the tank is reported as having left the dom
                      : glm::vec4(rig.scene.tank_max.x + 4.0f * dx, 0.15f, 0.15f, 0.0f);
     // Either place is more than h from every other particle of the block ([0, 0.24]^3): it feels no
     // fluid, only boundary particles, and no pressure (p = 0 at its low density).
-    rig.fluid.upload_state(x, v);
-    rig.fluid.set_fixed_dt(rig.scene.frame_dt);
-    rig.frame(0);
-    const gpu::StepState record = rig.fluid.step_state().read<gpu::StepState>(1)[0];
-    const auto xs = rig.read(rig.fluid.positions());
-    rig.finish();
+    const auto [record, xs, vs] = one_substep(rig, x, v, 0);
     const glm::vec3 lo(rig.fluid.params().domain_min), hi(rig.fluid.params().domain_max);
     std::vector<std::uint32_t> outside;
     for (std::uint32_t k = 0; k < xs.size(); ++k)

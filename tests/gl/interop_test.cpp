@@ -125,6 +125,8 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.iteration_dt", {offsetof(gpu::StepState, iteration_dt), GL_FLOAT}},
         {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
         {"step.pad1", {offsetof(gpu::StepState, pad1), GL_UNSIGNED_INT}},
+        {"step.speed_position", {offsetof(gpu::StepState, speed_position), GL_FLOAT_VEC4}},
+        {"step.density_position", {offsetof(gpu::StepState, density_position), GL_FLOAT_VEC4}},
 
         {"subp.level_energy", {offsetof(gpu::SubparticleParams, level_energy), GL_FLOAT_VEC4}},
         {"subp.energy_scale", {offsetof(gpu::SubparticleParams, energy_scale), GL_FLOAT_VEC4}},
@@ -431,6 +433,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     st.iteration_dt = d.f();
     st.pad0 = d.u();
     st.pad1 = d.u();
+    st.speed_position = d.v4();
+    st.density_position = d.v4();
 
     gpu::SubparticleParams pp{};
     pp.level_energy = d.v4();
@@ -499,6 +503,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.live_count);
     expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
     expect.put(st.stable_dt); expect.put(st.iteration_dt); expect.put(st.pad0); expect.put(st.pad1);
+    expect.put(st.speed_position); expect.put(st.density_position);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);
     expect.put(pp.coherence_time); expect.put(pp.inv_sigma); expect.put(pp.noise_lmax); expect.put(pp.tile_size);

@@ -102,7 +102,10 @@ void main() {
         magnitude = length(a);
     }
     uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
-    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) step.density_index = m.y;
+    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) {
+        step.density_index = m.y;
+        step.density_position = vec4(position[m.y].xyz, 0.0);
+    }
     m = workgroup_max(live ? max_bits(magnitude) : 0u, i);
     if (gl_LocalInvocationIndex == 0u) atomicMax(step.max_accel, m.x);
 }

@@ -21,6 +21,8 @@ void main() {
     step.escaped_index = 0xFFFFFFFFu;
     step.speed_index = 0u;
     step.density_index = 0u;
+    step.speed_position = vec4(0.0);
+    step.density_position = vec4(0.0);
     step.front = 0u;
     step.frame = frame_index;
     step.iterations = uvec4(0u);

@@ -141,11 +141,15 @@ void keep_out_of_obstacles(vec3 x0, inout vec3 x, inout vec3 v) {
     }
 }
 
+vec3 recorded_x_;        // the invocation's particle's end-of-step position, for record_maxima()
+shared vec3 wg_fastest_x_;
+
 // Guard records (StepState) for the particle that ends the step at x with velocity v: non-finite
 // values and particles outside the domain (an atomic each: rare); returns the bits of |v| and of the
 // surge front (x - domain_min.x for particles within sph.front_band of domain_min.y), for the
 // caller's workgroup maxima (record_maxima).
 uvec2 record_particle(uint i, vec3 x, vec3 v) {
+    recorded_x_ = x;
     if (any(isnan(x)) || any(isinf(x)) || any(isnan(v)) || any(isinf(v))) {
         atomicAdd(step.nan_count, 1u);
         atomicMin(step.nan_index, i);
@@ -161,12 +165,18 @@ uvec2 record_particle(uint i, vec3 x, vec3 v) {
 
 // The workgroup's largest speed and front into StepState: one atomic a workgroup. Every invocation
 // calls it (barriers); `bits` is record_particle()'s result, or 0 for invocations past the count.
+// The fastest particle's position goes with its index (the second workgroup_max's barriers order the
+// winner's shared write before invocation 0 reads it).
 void record_maxima(uvec2 bits, uint i) {
     uvec2 s = workgroup_max(bits.x, i);
+    if (s.x != 0u && i == s.y) wg_fastest_x_ = recorded_x_;
     uvec2 f = workgroup_max(bits.y, i);
     if (gl_LocalInvocationIndex == 0u) {
         atomicMax(step.max_speed, s.x);
-        if (s.x > atomicMax(step.frame_max_speed, s.x)) step.speed_index = s.y;
+        if (s.x > atomicMax(step.frame_max_speed, s.x)) {
+            step.speed_index = s.y;
+            step.speed_position = vec4(wg_fastest_x_, 0.0);
+        }
         atomicMax(step.front, f.x);
     }
 }
