@@ -132,7 +132,7 @@ std::vector<Key> make_keys() {
                "DFSPH: the divergence solve's warm-start weight w (docs/DFSPH.md (D6))."),
         number("sph.relaxation", "", h.relaxation, 0.05, 1.0, "DFSPH: the relaxed Jacobi's ω (docs/DFSPH.md (D6))."),
         number("sph.chebyshev", "", h.chebyshev, 0.0, 0.999,
-               "DFSPH: ρ of the density solve's Chebyshev acceleration (docs/DFSPH.md (D10)), the spectral radius it assumes of the relaxed Jacobi iteration, e.g. 0.95; 0: plain relaxed Jacobi."),
+               "DFSPH: ρ of the density solve's Chebyshev acceleration (docs/DFSPH.md (D10)), the spectral radius it assumes of the relaxed Jacobi iteration; 0: plain relaxed Jacobi."),
         boolean("sph.complementarity_error", h.complementarity_error,
                 "DFSPH: the density solve's error also counts a particle that carries pressure below ρ0 (|r_i| where κ_i > 0, docs/DFSPH.md (D6)); false: the excess over ρ0 only."),
         number("sph.boundary_viscosity", "m²/s", h.boundary_viscosity, 0.0, 10.0,

@@ -143,20 +143,20 @@ TEST_CASE("validate: WCSPH tank at rest follows rho0 g (H - z) in its interior",
     test::require_no_gl_errors();
 }
 
-// The solver's own defaults for the density solve's warm start and acceleration, which the tank at rest
-// does not ship ((D6) w = 1, no (D10)): what the test below measured before the scene set its own.
-scene::Scene with_solve_defaults(scene::Scene s) {
-    const scene::SphSettings defaults{};
-    s.sph.warm_start = defaults.warm_start;
-    s.sph.chebyshev = defaults.chebyshev;
+// The density solve with the whole warm start of (D6) (w = 1) and plain relaxed Jacobi (no (D10)): the
+// solver's defaults until 2026-11-26 and what the tests below measured, before the tank at rest set its
+// own warm start and (D10) became the default.
+scene::Scene with_plain_solve(scene::Scene s) {
+    s.sph.warm_start = 1.0f;
+    s.sph.chebyshev = 0.0f;
     return s;
 }
 
-TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings", "[validation]") {
+TEST_CASE("validate: DFSPH tank at rest with the plain solve against rho0 g (H - z), at two spacings", "[validation]") {
     test::context();
     // 0.025 m and 0.02 m: 10 and 12 layers, 4 and 5 particles across the tank's 0.1 m depth, so most of
-    // the column lies within a kernel support of a wall. DFSPH's defaults (the scene's own warm start
-    // and Chebyshev radius undone: the next test measures those): the boundary rows of
+    // the column lies within a kernel support of a wall. DFSPH's defaults with the plain solve (w = 1, no
+    // (D10): with_plain_solve(); the next test measures the scene's own setting): the boundary rows of
     // docs/DFSPH.md (D9), with which the floor layer carries what a fluid layer would (Akinci's term
     // read it at about twice hydrostatic: 1.09 and 1.00 of rho0 g H here), and the step that follows
     // the density solve's iterations ((D8)). Measured on llvmpipe (docs/VALIDATION.md), 2026-11-26:
@@ -165,13 +165,13 @@ TEST_CASE("validate: DFSPH tank at rest against rho0 g (H - z), at two spacings"
     // 0.01 from build to build (issue 11's 1 % and 2 % are met at 0.025 m here, the interior's not at
     // 0.02 m); and the error not growing as dx shrinks beyond that scatter.
     const auto& shaders = shader::FileSource::embedded();
-    const scene::Scene coarse_scene = with_solve_defaults(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
+    const scene::Scene coarse_scene = with_plain_solve(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
     REQUIRE(coarse_scene.sph.boundary_rows);   // DFSPH's default
     REQUIRE(coarse_scene.sph.shrink_step_above > 0);
     // The lattice start (no relaxation): the relaxed start leaves the motion as it is (a test below).
     const validation::HydrostaticResult coarse = validation::hydrostatic(coarse_scene, shaders, 0.5, validation::Relaxation{});
     const validation::HydrostaticResult fine = validation::hydrostatic(
-        with_solve_defaults(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph)), shaders, 0.5, validation::Relaxation{});
+        with_plain_solve(case_scene("hydrostatic", 0.02f, scene::Solver::dfsph)), shaders, 0.5, validation::Relaxation{});
     // No acoustic ringing here: the initial lattice rearranges at the walls within the first frame (rms
     // 0.1 m/s after it), and the solver at rest keeps moving it (docs/DFSPH.md "The tank at rest at 250k
     // particles"), which the scene's nu = 1e-3 m^2/s does not damp away in a second: rms speed within a
@@ -189,14 +189,14 @@ TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it, stiller, 
     // step's pressure (sph.warm_start 0.75) with (D10)'s Chebyshev acceleration (0.98): with the whole
     // of it and plain relaxed Jacobi, the 991k tank kicked particles beside the walls' edges to 12-22
     // m/s and stopped at t = 1.14 s on the H100 (docs/DFSPH.md "The tank at rest: a weaker warm start").
-    // At 0.025 m (4 particles across the tank) that setting reads worse than the defaults above (2.6 %
+    // At 0.025 m (4 particles across the tank) that setting reads worse than the plain solve above (2.6 %
     // of rho0 g H in the interior, 4.2 % at the floor, llvmpipe, 1 s settle), so it is measured here at
     // 0.02 and 0.0125 m (12 and 20 layers), where it reads better and shrinks with dx: measured on
     // llvmpipe (`ranryu validate hydrostatic --solver dfsph`, 1 s settle) interior 2.3 % then 1.8 %,
-    // floor layer 1.1 % then 0.9 %, rms speed 0.038 then 0.028 m/s, against the defaults' 3.5 % then
+    // floor layer 1.1 % then 0.9 %, rms speed 0.038 then 0.028 m/s, against the plain solve's 3.5 % then
     // 2.6 %, 0.6 % then 4.2 %, 0.051 then 0.073 m/s. Bounds: 3 % and 5 % (the scatter of a half-second
     // average is about 1 % from build to build), the errors not growing beyond 0.02, and the column
-    // within a twentieth of the free-fall speed (0.11 m/s), half the defaults' bound above.
+    // within a twentieth of the free-fall speed (0.11 m/s), half the plain solve's bound above.
     const auto& shaders = shader::FileSource::embedded();
     const scene::Scene coarse_scene = case_scene("hydrostatic", 0.02f, scene::Solver::dfsph);
     REQUIRE(coarse_scene.sph.warm_start == 0.75f);
@@ -243,11 +243,11 @@ TEST_CASE("validate: DFSPH tank with the boundary rows from a relaxed start", "[
     // m/s rms after the first frame and the bound reached at the 7th (0.0011 m/s); from kappa_b = 0
     // the first frame ended at 0.083 m/s and the bound was not reached in 3 s (docs/VALIDATION.md
     // "Where the motion at rest comes from").
-    // The solve's defaults, as measured: with the scene's own weaker warm start (w = 0.75, the test
+    // The plain solve, as measured: with the scene's own weaker warm start (w = 0.75, the test
     // above) each frame from rest starts its steps a quarter short of the column's pressure, and a frame
     // from rest ends at about 0.02 m/s rms (60 frames, llvmpipe), so the relaxation never reaches its
     // bound; what this test measures is the relaxation and the rows' hydrostatic start.
-    scene::Scene s = with_solve_defaults(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
+    scene::Scene s = with_plain_solve(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
     s.sph.boundary_rows = true;
     validation::Relaxation relax = validation::hydrostatic_relaxation(s);
     relax.max_frames = int(std::ceil(1.0 / s.frame_dt));
