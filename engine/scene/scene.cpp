@@ -450,6 +450,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.neighbour_masks = p.boolean("neighbour_masks");
         h.density_limit = float(p.number("density_limit"));
         h.speed_limit = float(p.number("speed_limit"));
+        h.artificial_viscosity = float(p.number("artificial_viscosity"));
         {
             Reader b = p.object("pbf");
             PbfSettings& q = h.pbf;

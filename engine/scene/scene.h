@@ -60,6 +60,7 @@ struct SphSettings {
     Solver solver = Solver::dfsph;
     float rest_density = 1000.0f;   // rho0 (kg/m^3)
     float viscosity = 1e-4f;        // kinematic nu (m^2/s), eq. (5)
+    float artificial_viscosity = 0.0f;   // WCSPH: alpha of eq. (5a), on approaching pairs only
     float speed_of_sound = 0.0f;    // c (m/s) of WCSPH; 0: 10 * sqrt(2 g H), H the fluid's height
     float cfl = 0.4f;               // eq. (7), (D8)
     float force_factor = 0.25f;     // eq. (7), (D8)

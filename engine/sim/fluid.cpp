@@ -107,6 +107,7 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     p.speed_limit = guard_limits(s).speed;
     p.particle_count = std::uint32_t(count);
     p.boundary_count = std::uint32_t(boundary);
+    p.artificial_viscosity = s.sph.solver == scene::Solver::wcsph ? s.sph.artificial_viscosity : 0.0f;
     p.front_band = 3.0f * dx;   // from domain_min.y = floor - dx: particles within 2 dx of the floor
     return p;
 }

@@ -107,8 +107,12 @@ RANRYU_STRUCT(SphParams) {
     uint particle_count;
     uint boundary_count;
     float front_band;     // surge front: particles below floor + this count (m)
+    float artificial_viscosity;   // WCSPH: alpha of eq. (5a), Monaghan's on approaching pairs; 0: none
+    uint pad0;
+    uint pad1;
+    uint pad2;
 }
-RANRYU_STRUCT_END(SphParams, 112)
+RANRYU_STRUCT_END(SphParams, 128)
 
 // The adaptive time step, the instability guard's findings and the pressure solver's iteration
 // record, kept on the GPU (std430 storage block Step). Maxima of non-negative floats are kept as their

@@ -47,8 +47,10 @@ struct Rig : ranryu::test::SphRig {
     // The reference's constants from the GPU's own (float) parameters.
     ref::Params params() const {
         const gpu::SphParams& p = fluid.params();
-        return ref::Params::from_spacing(double(p.spacing), double(p.rest_density), double(p.sound_speed),
-                                         double(p.viscosity), dvec3(glm::vec3(p.gravity)));
+        ref::Params c = ref::Params::from_spacing(double(p.spacing), double(p.rest_density), double(p.sound_speed),
+                                                  double(p.viscosity), dvec3(glm::vec3(p.gravity)));
+        c.artificial_viscosity = double(p.artificial_viscosity);
+        return c;
     }
 };
 
@@ -151,8 +153,9 @@ TermSums term_sums(std::size_t i, const std::vector<dvec3>& x, const std::vector
         if (j == i || glm::length(xij) >= c.h) continue;
         const double g = glm::length(kernel.gradW(xij));
         s.pressure += c.mass * std::abs(Pi + p[j] / (rho[j] * rho[j])) * g;
-        s.viscous += 10.0 * c.viscosity * 2.0 * c.mass / (rho[i] + rho[j]) * std::abs(glm::dot(v[i] - v[j], xij)) /
-                     (glm::dot(xij, xij) + eta) * g;
+        const double vx = glm::dot(v[i] - v[j], xij);
+        const double nu10 = 10.0 * c.viscosity + (vx < 0.0 ? c.artificial_viscosity * c.speed_of_sound * c.spacing : 0.0);
+        s.viscous += nu10 * 2.0 * c.mass / (rho[i] + rho[j]) * std::abs(vx) / (glm::dot(xij, xij) + eta) * g;
         if (dP) s.perturbed += c.mass * ((*dP)[i] + (*dP)[j]) * g;
         ++s.terms;
     }
@@ -381,6 +384,21 @@ TEST_CASE("sph: pressure, viscous and gravity accelerations match the reference"
         for (const glm::vec4& a : f.accel) viscous = std::max(viscous, glm::length(d3(a) - dvec3(0.0, -9.81, 0.0)));
         INFO("max |a - g| " << viscous << " m/s^2");
         CHECK(viscous > 9.81);
+        check_forces(rig, f, false);
+    }
+    SECTION("stretched block, the artificial viscosity of eq. (5a) alone: approaching pairs only") {
+        // ν = 0 and α = 0.5: ν_α = α c Δx / 10 = 0.033 m²/s here (c = 21.7 m/s), on the pairs with
+        // v_ij · x_ij < 0 only; the reference counts those alone, so a term on every pair fails the bound.
+        Rig rig(scene_json(0.5, R"("viscosity": 0, "artificial_viscosity": 0.5)"));
+        REQUIRE(rig.fluid.params().artificial_viscosity == 0.5f);
+        std::vector<glm::vec4> x, v;
+        block_state(rng, rig, glm::vec3(0.12f), 1.1f, 0.05f, 0.5f, x, v);
+        const Fields f = run_fields(rig, x, v);
+        REQUIRE(std::all_of(f.density.begin(), f.density.end(), [](const glm::vec4& d) { return d.y == 0.0f; }));
+        double viscous = 0.0;
+        for (const glm::vec4& a : f.accel) viscous = std::max(viscous, glm::length(d3(a) - dvec3(0.0, -9.81, 0.0)));
+        INFO("max |a - g| " << viscous << " m/s^2");
+        CHECK(viscous > 1.0);
         check_forces(rig, f, false);
     }
     ranryu::test::require_no_gl_errors();

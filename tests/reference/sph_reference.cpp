@@ -106,7 +106,7 @@ std::vector<dvec3> pressure_accelerations(const std::vector<dvec3>& x, const std
     return accel;
 }
 
-// ---- eq. (5): viscosity (Monaghan 2005; Morris et al. 1997) --------------------------------------------
+// ---- eq. (5): viscosity (Monaghan 2005; Morris et al. 1997), and eq. (5a): α·c·Δx on approaching pairs ----
 
 std::vector<dvec3> viscosity_accelerations(const std::vector<dvec3>& x, const std::vector<dvec3>& v,
                                            const std::vector<double>& density, const Params& params) {
@@ -115,14 +115,17 @@ std::vector<dvec3> viscosity_accelerations(const std::vector<dvec3>& x, const st
     const double eta = 0.01 * params.h * params.h;
     std::vector<dvec3> accel(x.size());
     for (size_t i = 0; i < x.size(); ++i) {
-        dvec3 sum(0.0);
+        dvec3 sum(0.0), approaching(0.0);
         for (size_t j = 0; j < x.size(); ++j) {
             const dvec3 xij = x[i] - x[j];
             const dvec3 vij = v[i] - v[j];
-            sum += (2.0 * params.mass / (density[i] + density[j])) * glm::dot(vij, xij) / (glm::dot(xij, xij) + eta) *
-                   kernel.gradW(xij);
+            const dvec3 term = (2.0 * params.mass / (density[i] + density[j])) * glm::dot(vij, xij) /
+                               (glm::dot(xij, xij) + eta) * kernel.gradW(xij);
+            sum += term;
+            if (glm::dot(vij, xij) < 0.0) approaching += term;
         }
-        accel[i] = 2.0 * (d + 2.0) * params.viscosity * sum;
+        accel[i] = 2.0 * (d + 2.0) * params.viscosity * sum +
+                   params.artificial_viscosity * params.speed_of_sound * params.spacing * approaching;
     }
     return accel;
 }

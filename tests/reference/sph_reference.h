@@ -36,6 +36,7 @@ struct Params {
     double speed_of_sound;  // c (m/s)
     double viscosity;       // ν, kinematic (m²/s)
     glm::dvec3 gravity;     // g (m/s²)
+    double artificial_viscosity = 0.0;   // α of eq. (5a) (WCSPH), on approaching pairs; 0: none
 
     // Derives h = 2·Δx and m = ρ0·Δx³ from the spacing.
     static Params from_spacing(double spacing, double rest_density, double speed_of_sound, double viscosity,

@@ -1,7 +1,7 @@
 #version 430
-// WCSPH acceleration of every fluid particle (docs/SPH.md eqs. (4), (5)) plus gravity:
+// WCSPH acceleration of every fluid particle (docs/SPH.md eqs. (4), (5), (5a)) plus gravity:
 //     a_i = g - sum_j m (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij - sum_b psi_b (p_i/rho_i^2) gradW_ib
-//           + 10 nu sum_j (2m/(rho_i + rho_j)) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
+//           + sum_j (10 nu + [v_ij . x_ij < 0] alpha c dx) (2m/(rho_i + rho_j)) (v_ij . x_ij) / (|x_ij|^2 + 0.01 h^2) gradW_ij.
 // Input: sorted positions, velocities, density (rho, p, p/rho^2, flags) of i and the pair terms
 // (rho, p/rho^2) of its neighbours, found as the density pass left them (neighbours.glsl).
 // Output: accel[i].xyz. Records the substep's max |a| for the time step (eq. (7)).
@@ -16,14 +16,17 @@ layout(std430) readonly buffer PairTerms { vec2 pair_terms[]; };   // (rho_j, p_
 
 #include "../fluid/neighbours.glsl"
 
-vec3 vi_, di_, a_pressure_, a_viscous_, a_wall_;
+vec3 vi_, di_, a_pressure_, a_viscous_, a_approach_, a_wall_;
 
-// One fluid pair's pressure and viscous terms (eqs. (4), (5)).
+// One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a): the last for approaching pairs).
 void visit_fluid(uint j, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     vec2 tj = pair_terms[j];
     a_pressure_ -= (di_.z + tj.y) * g;
-    a_viscous_ += (2.0 * dot(vi_ - velocity[j].xyz, d) / ((r2 + 0.01 * sph.h * sph.h) * (di_.x + tj.x))) * g;
+    float vx = dot(vi_ - velocity[j].xyz, d);
+    vec3 viscous = (2.0 * vx / ((r2 + 0.01 * sph.h * sph.h) * (di_.x + tj.x))) * g;
+    a_viscous_ += viscous;
+    if (vx < 0.0) a_approach_ += viscous;
 }
 
 void visit_boundary(uint b, vec3 d, float r2) { a_wall_ -= boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
@@ -36,9 +39,12 @@ void main() {
         vec4 density_i = density[i];
         vi_ = velocity[i].xyz;
         di_ = density_i.xyz;
-        a_pressure_ = a_viscous_ = a_wall_ = vec3(0.0);
+        a_pressure_ = a_viscous_ = a_approach_ = a_wall_ = vec3(0.0);
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(density_i.w));
-        vec3 a = sph.gravity.xyz + sph.mass * (a_pressure_ + 10.0 * sph.viscosity * a_viscous_) + di_.z * a_wall_;
+        vec3 a = sph.gravity.xyz +
+                 sph.mass * (a_pressure_ + 10.0 * sph.viscosity * a_viscous_ +
+                             sph.artificial_viscosity * sph.sound_speed * sph.spacing * a_approach_) +
+                 di_.z * a_wall_;
         accel[i] = vec4(a, 0.0);
         magnitude = length(a);
     }
