@@ -85,8 +85,8 @@ void main() {
     if (last != 0u) {   // dynamically uniform: workgroup_max()'s barriers are met by every invocation
         uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
         if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) {
-        step.density_index = m.y;
-        step.density_position = vec4(position[m.y].xyz, 0.0);
-    }
+            step.density_index = m.y;
+            step.density_position = vec4(position[m.y].xyz, 0.0);
+        }
     }
 }
