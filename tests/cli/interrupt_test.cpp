@@ -169,3 +169,30 @@ TEST_CASE("interrupt: the same SIGTERM delivered twice at once, as timeout(1) se
     CHECK(std::count(csv.begin(), csv.end(), '\n') >= 4);
     CHECK_THAT(csv, Contains("frame,time,substeps"));
 }
+
+TEST_CASE("interrupt: a second SIGTERM a second or more after the first ends the run at once", "[cli][interrupt]") {
+    // engine/frame/stop.h: a second signal later than a second after the first is a second request, for
+    // a run that will not come to a frame boundary. The dam break at spacing 0.006 (15k particles) takes
+    // 3-14 s a frame on llvmpipe (measured 12-14 s for frames 3 and 4), so after frame 2's progress line
+    // the first SIGTERM waits for a frame boundary seconds away, and the second, 1.2 s later, must end
+    // the process the default way (killed by SIGTERM: 128 + 15) long before it.
+    TempDir tmp;
+    RunOptions opt;
+    opt.set_env = {{"RANRYU_PROGRESS_SECONDS", "0"}};
+    Child child = start_ranryu(tmp.path(),
+                               {"profile", "--scene", "dam-break", "--spacing", "0.006", "--shading", "particles", "--size", "64x48",
+                                "--warmup", "0", "--frames", "1000"},
+                               opt);
+    const bool started = wait_until([&] { return child.err_so_far().find("ranryu profile: frame 2/") != std::string::npos; });
+    kill(child.pid, SIGTERM);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+    const auto second = std::chrono::steady_clock::now();
+    kill(child.pid, SIGTERM);
+    const Result r = wait(child);
+    const double after = std::chrono::duration<double>(std::chrono::steady_clock::now() - second).count();
+    INFO(r.describe() << "; ended " << after << " s after the second signal");
+    REQUIRE(started);
+    CHECK(r.exit_code == 128 + SIGTERM);
+    CHECK(after < 2.0);
+    CHECK_THAT(r.err, !Contains("interrupted by"));   // not the frame boundary's stop
+}
