@@ -10,17 +10,23 @@
 
 namespace ranryu::test {
 
-// Each node gets ±m with m in [0.1, 1] and a fair coin for the sign; border nodes are negative.
+// Each node gets ±m with m in [0.1, 1] and a fair coin for the sign; border nodes are negative. At least
+// one inner node is inside, so there is a surface to check: a 4x4x4 grid has 8 inner nodes, all outside
+// with probability 1/256 (seed 2938675188 drew it: no triangle, zero volume). Needs dims >= 3 on each axis.
 inline surface::PhiGrid random_closed_field(Random& rng, glm::vec3 origin, float spacing, glm::uvec3 dims) {
     surface::PhiGrid g{origin, spacing, dims, {}};
     g.phi.resize(g.nodes());
+    bool inside = false;
     for (std::uint32_t k = 0; k < dims.z; ++k)
         for (std::uint32_t j = 0; j < dims.y; ++j)
             for (std::uint32_t i = 0; i < dims.x; ++i) {
                 const bool border = i == 0 || j == 0 || k == 0 || i + 1 == dims.x || j + 1 == dims.y || k + 1 == dims.z;
                 const float m = rng.uniform(0.1f, 1.0f);
-                g.phi[g.index({i, j, k})] = border || rng.below(2) ? -m : m;
+                const bool in = !border && rng.below(2) == 0;
+                g.phi[g.index({i, j, k})] = in ? m : -m;
+                inside = inside || in;
             }
+    if (!inside) g.phi[g.index(dims / 2u)] = -g.phi[g.index(dims / 2u)];   // an inner node (dims >= 3)
     return g;
 }
 
