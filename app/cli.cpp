@@ -20,9 +20,10 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"run", {"--scene", "--spacing", "--solver", "--frames", "--size", "--screenshot", "--script", "--shots", "--shading",
              "--record-dir", "--save-particles", "--budget", "--shader-dir", "--gl-debug"}},
     {"record", {"--scene", "--spacing", "--solver", "--frames", "--size", "--out", "--force", "--shading", "--export-mesh",
-                "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug"}},
+                "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint",
+                "--resume"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
-                 "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug"}},
+                 "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint", "--resume"}},
     {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug", "--relax"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--seconds", "--shard", "--list", "--quiet",
@@ -167,6 +168,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
         else if (opt == "--records") o.records = value;
+        else if (opt == "--checkpoint") o.checkpoint = value;
+        else if (opt == "--resume") o.resume = value;
         else if (opt == "--shader-dir") o.shader_dir = value;
         else if (opt == "--gl-debug") o.gl_debug = true;
         else if (opt == "--export-mesh") o.export_mesh = true;
@@ -346,6 +349,13 @@ std::string command_help(const std::string& cmd) {
   --no-png            write no frame_*.png (with --video: only the video)
   --records FILE      also write the SPH simulation's record of every frame as CSV (time, steps,
                       dt, speeds, density, solver iterations and errors, the guard's counts)
+  --checkpoint FILE   when the run ends (done, or stopped by Ctrl-C or SIGTERM: a batch job's time
+                      limit), write its state to FILE, to go on from with --resume (replaces FILE;
+                      not written after an instability)
+  --resume FILE       go on from a checkpoint: its scene, spacing and solver (so no --scene,
+                      --spacing or --solver), frame numbers from its last frame on; --frames N more
+                      into the same --out: the earlier frames and run.json stay, this run's
+                      report is run_from_NNNNN.json (a --video is this run's frames only)
   --quiet             no progress line on stderr
 )";
     if (cmd == "profile")
@@ -359,6 +369,12 @@ std::string command_help(const std::string& cmd) {
   --overlay           also draw the window's panel (Dear ImGui) into the picture each frame: its GPU
                       time is the pass "overlay", its CPU time the line "overlay: CPU ... ms a frame"
                       (builds without Dear ImGui refuse it)
+  --checkpoint FILE   when the run ends (done, or stopped by Ctrl-C or SIGTERM: a batch job's time
+                      limit), write its state to FILE, to go on from with --resume (replaces FILE;
+                      not written after an instability)
+  --resume FILE       go on from a checkpoint: its scene, spacing and solver (so no --scene,
+                      --spacing or --solver), frame numbers from its last frame on; --frames N more
+                      (--warmup frames included)
   --quiet             no progress line on stderr
 )";
     if (cmd == "scenes")

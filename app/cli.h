@@ -31,6 +31,8 @@ struct Options {
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
     std::string records;          // record/profile: the simulation's per-frame records as CSV
+    std::string checkpoint;       // record/profile: write the run's state here when it ends (frame/checkpoint.h)
+    std::string resume;           // record/profile: go on from this checkpoint
     std::string shader_dir;       // read shaders from this folder instead of the embedded copies
     bool gl_debug = false;        // debug context + KHR_debug messages (always on in Debug builds)
     std::string shading;          // run/record/profile: water | fresnel | phong | gouraud | particles; empty: the scene's default

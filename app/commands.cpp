@@ -12,6 +12,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/error.h"
+#include "frame/checkpoint.h"
 #include "frame/loop.h"
 #include "frame/pipeline.h"
 #include "frame/progress.h"
@@ -136,6 +137,31 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce) {
 
 scene::Scene load_scene(const Options& o) { return with_options(scene::load(o.scene), o); }
 
+// --resume FILE: the checkpoint's header (its scene is the run's; frame/checkpoint.h). The scene
+// options would contradict it, so they are refused. And --checkpoint FILE: checked writable first.
+std::optional<frame::CheckpointInfo> resumed_run(const Options& o) {
+    if (!o.checkpoint.empty()) frame::check_checkpoint_path(o.checkpoint, "--checkpoint " + o.checkpoint);
+    if (o.resume.empty()) return std::nullopt;
+    const std::string what = "--resume " + o.resume;
+    if (o.scene_given) throw InputError(what + ": the run goes on with the checkpoint's scene; drop --scene");
+    if (o.spacing) throw InputError(what + ": the run goes on at the checkpoint's spacing; drop --spacing");
+    if (!o.solver.empty()) throw InputError(what + ": the run goes on with the checkpoint's solver; drop --solver");
+    return frame::read_checkpoint(o.resume, what);
+}
+
+// --checkpoint FILE at the end of a run (after the drain): writes it and says so, or returns why not.
+std::string write_checkpoint(const Options& o, frame::Pipeline& pipeline) {
+    if (o.checkpoint.empty()) return {};
+    try {
+        frame::write_checkpoint(pipeline, o.checkpoint, "--checkpoint " + o.checkpoint);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    std::printf("wrote the checkpoint %s (frame %llu, t = %.4f s): go on with --resume %s\n", o.checkpoint.c_str(),
+                static_cast<unsigned long long>(pipeline.frames()), pipeline.simulated_time(), o.checkpoint.c_str());
+    return {};
+}
+
 frame::Progress make_progress(const Options& o, const std::string& label) {
     double interval = 10.0;
     if (const char* env = std::getenv("RANRYU_PROGRESS_SECONDS")) {
@@ -169,7 +195,9 @@ int scenes(const Options& o) {
 
 
 int record(const Options& o) {
-    const scene::Scene scene = load_scene(o);
+    const std::optional<frame::CheckpointInfo> resumed = resumed_run(o);
+    const scene::Scene scene = resumed ? resumed->scene : load_scene(o);
+    const std::uint64_t first = resumed ? resumed->frame : 0;
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(120);
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
@@ -192,11 +220,13 @@ int record(const Options& o) {
     auto ctx = headless(o, /*announce=*/false);
     frame::check_memory(scene, view, frame::device_memory());
     if (video) video->prepare();
-    if (const std::size_t removed = record::prepare_output(out, o.force))
+    if (const std::size_t removed = record::prepare_output(out, o.force, first))
         std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
     print_device(ctx->info());
     frame::Pipeline pipeline(scene, shaders, view);
+    if (resumed) frame::load_checkpoint(pipeline, o.resume, "--resume " + o.resume);
     SimulationLog log(pipeline, 0, o.records);
+    if (resumed) log.resume_at(first, resumed->time);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
     const bool gated = scene.model == scene::Model::sph;
     std::unique_ptr<record::Recorder> recorder;     // PNGs and the video (null with --no-png and no --video)
@@ -225,6 +255,9 @@ int record(const Options& o) {
     if (particle_format)
         particles = std::make_unique<record::ParticleExporter>(pipeline.timer(), out, *particle_format, pipeline.particle_count(),
                                                                record::particle_buffers(pipeline), gated, validate);
+    if (recorder) recorder->start_at(first);
+    if (meshes) meshes->start_at(first);
+    if (particles) particles->start_at(first);
     frame::FrameHooks hooks;
     hooks.after_draw = [&](frame::Pipeline& p) {
         if (recorder) recorder->capture(p.target());
@@ -235,7 +268,7 @@ int record(const Options& o) {
         validate();
         progress.update(p);
     };
-    progress.expect(std::uint64_t(frames));
+    progress.expect(first + std::uint64_t(frames));   // the progress line counts frames from the run's start
     log.start_clock();
     // A GPU fault (gl/faults.h: a GL error in a pass, a lost context, a fence that never signals)
     // stops the run like an instability: the frames before it are written, the faulting frame and
@@ -274,14 +307,21 @@ int record(const Options& o) {
         }
     }
     log.stop_clock();
+    const std::string checkpoint_error = fault ? std::string() : write_checkpoint(o, pipeline);
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, int(ran), 0), log.summary());
     nlohmann::json run = profile::to_json(report);
+    if (resumed)
+        run["resumed_from"] = {{"checkpoint", o.resume}, {"frame", resumed->frame}, {"time", resumed->time}};
+    if (!o.checkpoint.empty())
+        run["checkpoint"] = checkpoint_error.empty() && !fault
+                                ? nlohmann::json({{"file", o.checkpoint}, {"frame", pipeline.frames()}, {"time", pipeline.simulated_time()}})
+                                : nlohmann::json({{"file", nullptr}, {"not_written", fault ? "a GPU fault" : checkpoint_error}});
     run["scene_origin"] = scene.origin;
     run["frames_requested"] = frames;
     // A run stopped by SIGINT or SIGTERM: the frames before `interrupted_at_frame` ran.
     run["interrupted"] = interrupted;
-    run["interrupted_at_frame"] = interrupted ? nlohmann::json(ran) : nlohmann::json(nullptr);
+    run["interrupted_at_frame"] = interrupted ? nlohmann::json(pipeline.frames()) : nlohmann::json(nullptr);
     run["fault"] = fault ? nlohmann::json({{"frame", ran}, {"message", fault->what()}}) : nlohmann::json(nullptr);
     const std::uint64_t pngs = recorder && !o.no_png ? recorder->frames_written() : 0;
     run["frames_written"] = pngs;
@@ -313,10 +353,11 @@ int record(const Options& o) {
         run["instability"] = {{"frame", bad->frame}, {"step", bad->step}, {"time", bad->time},
                               {"criterion", bad->criterion}, {"particle", bad->particle},
                               {"value", bad->value}, {"limit", bad->limit}};
-    profile::write_text_file(out / "run.json", run.dump(2) + "\n", "run.json in --out " + out.string());
+    const std::string report_name = first > 0 ? record::resumed_report_name(first) : std::string("run.json");
+    profile::write_text_file(out / report_name, run.dump(2) + "\n", report_name + " in --out " + out.string());
     log.write_records(o.records);
-    std::printf("wrote %llu frames (%dx%d) and run.json to %s\n", static_cast<unsigned long long>(pngs), size.x, size.y,
-                out.string().c_str());
+    std::printf("wrote %llu frames (%dx%d) and %s to %s\n", static_cast<unsigned long long>(pngs), size.x, size.y,
+                report_name.c_str(), out.string().c_str());
     if (video)
         std::printf("wrote the video %s (%llu frames, %s, %s fps)\n", video->file.string().c_str(),
                     static_cast<unsigned long long>(recorder->video()->frames_written()), video->codec(),
@@ -328,23 +369,29 @@ int record(const Options& o) {
     std::printf("%s", spikes.c_str());
     if (fault) throw *fault;
     if (const auto& bad = pipeline.instability()) throw sim::UnstableError(*bad);
+    if (!checkpoint_error.empty()) throw InputError(checkpoint_error);
     if (interrupted) throw frame::interrupted(ran, std::uint64_t(frames));
     return 0;
 }
 
 int profile_cmd(const Options& o) {
-    const scene::Scene scene = load_scene(o);
+    const std::optional<frame::CheckpointInfo> resumed = resumed_run(o);
+    const scene::Scene scene = resumed ? resumed->scene : load_scene(o);
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(300);
     frame::Progress progress = make_progress(o, "ranryu profile");
-    progress.expect(std::uint64_t(o.warmup) + std::uint64_t(frames));
+    // The progress line counts frames from the run's start, a resumed run's from its checkpoint's.
+    progress.expect((resumed ? resumed->frame : 0) + std::uint64_t(o.warmup) + std::uint64_t(frames));
     const shader::FileSource shaders = shader_source(o);
 #ifndef RANRYU_HAVE_IMGUI
     if (o.overlay) throw InputError("--overlay: this build has no Dear ImGui (it was not found at configure time)");
 #endif
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
-    SimulationLog log(pipeline, std::uint64_t(o.warmup), o.records);
+    if (resumed) frame::load_checkpoint(pipeline, o.resume, "--resume " + o.resume);
+    const std::uint64_t first = resumed ? resumed->frame : 0;
+    SimulationLog log(pipeline, first + std::uint64_t(o.warmup), o.records);
+    if (resumed) log.resume_at(first + std::uint64_t(o.warmup), resumed->time);
     // --overlay: the window's panel drawn into the offscreen target after each frame's picture, as
     // the pass "overlay" (GPU) and timed on the CPU (building the panel and recording its draws).
     frame::FrameHooks hooks = progress.hooks();
@@ -372,14 +419,17 @@ int profile_cmd(const Options& o) {
         };
     }
 #endif
-    // Stopped by an instability or cut short by a signal: the records so far, and no report.
+    // Stopped by an instability or cut short by a signal: the records so far, and no report (a
+    // signal's stop writes the checkpoint first).
     auto check_stopped = [&](bool cut_short) {
         const auto& bad = pipeline.instability();
         if (!bad && !cut_short) return;
         progress.finish();
         log.write_records(o.records);
         if (bad) throw sim::UnstableError(*bad);
-        throw frame::interrupted(pipeline.frames(), std::uint64_t(o.warmup) + std::uint64_t(frames));
+        const std::string why = write_checkpoint(o, pipeline);
+        if (!why.empty()) throw InputError(why);
+        throw frame::interrupted(pipeline.frames() - first, std::uint64_t(o.warmup) + std::uint64_t(frames));
     };
     bool cut_short = frame::run_frames(pipeline, std::uint64_t(o.warmup), hooks) < std::uint64_t(o.warmup) &&
                      frame::stop_requested();
@@ -397,6 +447,7 @@ int profile_cmd(const Options& o) {
     pipeline.poll();
     check_stopped(cut_short);
     log.write_records(o.records);
+    const std::string checkpoint_error = write_checkpoint(o, pipeline);   // reported after the report
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());
@@ -467,6 +518,7 @@ int profile_cmd(const Options& o) {
     }
     if (!o.json.empty()) profile::write_text_file(o.json, extra.dump(2) + "\n", "--json " + o.json);
     if (!o.csv.empty()) profile::write_text_file(o.csv, csv, "--csv " + o.csv);
+    if (!checkpoint_error.empty()) throw InputError(checkpoint_error);
     return 0;
 }
 

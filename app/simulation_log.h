@@ -25,6 +25,12 @@ public:
             });
         }
     }
+    // A run resumed from a checkpoint (frame/checkpoint.h) at `frame`, simulated time `time`: its
+    // summary counts from there.
+    void resume_at(std::uint64_t frame, double time) {
+        from_ = std::max(from_, frame);
+        if (summary_) summary_->start_time = time;
+    }
     // Writes the rows (after the run: not the frame path).
     void write_records(const std::string& path) const {
         if (!path.empty()) profile::write_text_file(path, csv_, "--records " + path);

@@ -242,4 +242,11 @@ void Pipeline::set_camera(const render::Camera& cam) {
     if (renderer_) renderer_->set_frame(render::frame_params(scene_, camera_, target_.width(), target_.height()));
 }
 
+void Pipeline::persist(sim::StateIo& io) {
+    io.value("pipeline.frames", frames_);
+    io.value("pipeline.simulated_frames", simulated_frames_);
+    if (sph_) sph_->persist(io);
+    else ballistic_->persist(io);
+}
+
 }  // namespace ranryu::frame

@@ -128,6 +128,9 @@ public:
     // first), else the scene's fixed count.
     std::optional<std::uint32_t> substeps_per_frame() const;
     std::uint64_t frames() const { return frames_; }
+    // Checkpoints (frame/checkpoint.h): the frame count and the simulation's state (sim/state_io.h).
+    // What a frame draws or meshes is made again from that state by the next frame.
+    void persist(sim::StateIo& io);
     // Frames that simulated: frames() less those the frame loop held (FrameHooks::advance, run's pause).
     std::uint64_t simulated_frames() const { return simulated_frames_; }
 

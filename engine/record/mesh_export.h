@@ -51,6 +51,9 @@ public:
 
     // Pass "mesh-readback": queues the copy of `vertices` (gpu::MeshVertex[max_vertices]) and
     // `state` (gpu::MeshState) as frame number frames_captured(). Call after the mesh's passes.
+    // Numbers the first capture `frame` (the files' names and the frames validate_through() and
+    // discard_from() name): a run resumed from a checkpoint (frame/checkpoint.h). Before any capture.
+    void start_at(std::uint64_t frame) { queue_.start_at(frame); }
     void capture(const gl::Buffer& vertices, const gl::Buffer& state);
     void validate_through(std::uint64_t frame);
     void discard_from(std::uint64_t frame);

@@ -50,6 +50,9 @@ public:
 
     // Pass "particle-readback": queues the copies of `b` as frame number frames_captured(). Call after
     // the frame's simulation; `b` must hold exactly the buffers the constructor named.
+    // Numbers the first capture `frame` (the files' names and the frames validate_through() and
+    // discard_from() name): a run resumed from a checkpoint (frame/checkpoint.h). Before any capture.
+    void start_at(std::uint64_t frame) { queue_.start_at(frame); }
     void capture(const ParticleBuffers& b);
     void validate_through(std::uint64_t frame);
     void discard_from(std::uint64_t frame);

@@ -50,6 +50,12 @@ public:
         return ring_.acquire(retire_);
     }
     void submit() { ring_.submit(captured_++, retire_); }
+    // The frame number of the first capture (a run resumed from a checkpoint goes on from its frame).
+    // Before any capture.
+    void start_at(std::uint64_t frame) {
+        if (captured_ != first_) throw Error(owner_ + ": start_at after a capture");
+        captured_ = first_ = frame;
+    }
     void validate_through(std::uint64_t frame) { writer_->validate_through(frame); }
     void discard_from(std::uint64_t frame) { writer_->discard_from(frame); }
     // Waits for every copy and every validated frame's file, drops the rest. Throws ranryu::Error
@@ -67,7 +73,7 @@ private:
     std::function<void(Slot&)> retire_;
     std::size_t buffers_;
     std::unique_ptr<GatedWriter> writer_;
-    std::uint64_t captured_ = 0;
+    std::uint64_t captured_ = 0, first_ = 0;
     bool finished_ = false;
 };
 

@@ -23,6 +23,21 @@ bool is_run_file(const fs::path& p) {
     return name.starts_with("particles_") && (name.ends_with(".ply") || name.ends_with(".vtp"));
 }
 
+// A file a run resumed at frame `first` writes: a frame's file numbered `first` or later, or its report.
+bool written_from(const fs::path& p, std::uint64_t first) {
+    const std::string name = p.filename().string();
+    if (name == resumed_report_name(first)) return true;
+    if (!is_run_file(p) || name == "run.json") return false;
+    const std::size_t a = name.find('_'), b = name.find('.');
+    if (a == std::string::npos || b == std::string::npos || b <= a + 1) return false;
+    std::uint64_t index = 0;
+    for (std::size_t i = a + 1; i < b; ++i) {
+        if (name[i] < '0' || name[i] > '9') return false;
+        index = index * 10 + std::uint64_t(name[i] - '0');
+    }
+    return index >= first;
+}
+
 }  // namespace
 
 std::string frame_name(std::uint64_t index, const char* extension, const char* prefix) {
@@ -31,7 +46,11 @@ std::string frame_name(std::uint64_t index, const char* extension, const char* p
     return buf;
 }
 
-std::size_t prepare_output(const fs::path& dir, bool force) {
+std::size_t prepare_output(const fs::path& dir, bool force) { return prepare_output(dir, force, 0); }
+
+std::string resumed_report_name(std::uint64_t first) { return frame_name(first, "json", "run_from"); }
+
+std::size_t prepare_output(const fs::path& dir, bool force, std::uint64_t first) {
     std::error_code ec;
     const std::string what = "--out " + dir.string();
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError(what + ": exists and is not a folder");
@@ -50,8 +69,12 @@ std::size_t prepare_output(const fs::path& dir, bool force) {
 
     std::vector<fs::path> earlier;
     for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.is_regular_file() && is_run_file(e.path())) earlier.push_back(e.path());
+        if (e.is_regular_file() && (first == 0 ? is_run_file(e.path()) : written_from(e.path(), first)))
+            earlier.push_back(e.path());
     if (earlier.empty()) return 0;
+    if (first > 0 && !force)
+        throw InputError(what + ": already holds frames from frame " + std::to_string(first) + " on (" + std::to_string(earlier.size()) +
+                         " files), which the resumed run would write; pass --force to replace them, or choose another folder");
     if (!force)
         throw InputError(what + ": already holds an earlier run (" + std::to_string(earlier.size()) +
                          " files: frame_*.png/.ply, particles_*.ply/.vtp, run.json); pass --force to replace it, or choose another folder");

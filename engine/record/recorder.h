@@ -36,6 +36,13 @@ struct FrameSinks {
 // refuses with ranryu::InputError, unless `force`, which removes that earlier run first. Returns the
 // number of files removed.
 std::size_t prepare_output(const std::filesystem::path& dir, bool force);
+// The same for a run resumed at frame `first` (frame/checkpoint.h) into the folder of the run it goes
+// on from: that run's files are kept (its frames before `first`, its run.json); what the resumed run
+// would write over (frames from `first` on, its own report run_from_FIRST.json) is refused, unless
+// `force`, which removes those.
+std::size_t prepare_output(const std::filesystem::path& dir, bool force, std::uint64_t first);
+// The resumed run's report: "run_from_00300.json" (the first run's is run.json).
+std::string resumed_report_name(std::uint64_t first);
 
 // "frame_00042.png", "particles_00042.vtp"
 std::string frame_name(std::uint64_t index, const char* extension = "png", const char* prefix = "frame");
@@ -54,6 +61,9 @@ public:
     Recorder& operator=(const Recorder&) = delete;
 
     // Pass "readback": reads `target`'s colour into the ring as frame number frames_captured().
+    // Numbers the first capture `frame` (the files' names and the frames validate_through() and
+    // discard_from() name): a run resumed from a checkpoint (frame/checkpoint.h). Before any capture.
+    void start_at(std::uint64_t frame) { queue_.start_at(frame); }
     void capture(const gl::RenderTarget& target);
     // Frames up to and including `frame` may be written.
     void validate_through(std::uint64_t frame);

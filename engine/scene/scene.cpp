@@ -342,6 +342,7 @@ Scene parse(const std::string& text, const std::string& origin) {
     }
     Scene s;
     s.origin = origin;
+    s.source = text;
     Reader r(j, "", "", origin);
     r.string_or("$schema", "");   // for editors (docs/SCENES.md); nothing to ranryu
     s.name = r.string_or("name", "");

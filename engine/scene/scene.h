@@ -135,6 +135,7 @@ struct Scene {
     std::string name;          // file stem, or "name" key
     std::string description;
     std::string origin;        // where it came from: "bundled" or the file path
+    std::string source;        // the JSON text parse() read (a checkpoint rebuilds the scene from it)
 
     // Tank: the axis-aligned box the fluid lives in (m). Walls reflect with `restitution`.
     glm::vec3 tank_min{0.0f}, tank_max{1.0f};

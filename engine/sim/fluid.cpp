@@ -432,4 +432,23 @@ void Fluid::on_record(const void* bytes) {
         if (auto finding = guard_.observe(r)) instability_ = finding;
 }
 
+void Fluid::persist(StateIo& io) {
+    if (boundary_generation_ != 0)
+        throw InputError("checkpoint: the paddle has moved the boundary; a run with the paddle cannot be saved");
+    io.buffer("fluid.positions", position_[current_]);
+    io.buffer("fluid.velocities", velocity_[current_]);
+    io.buffer("fluid.densities", density_);
+    io.buffer("fluid.accelerations", accel_);
+    io.buffer("fluid.step", step_);
+    for (Carried& c : carried_) io.buffer("fluid.carried." + c.block, c.buffer[carried_current_]);
+    if (emit_claimed_) io.buffer("fluid.emit_claimed", emit_claimed_);
+    bool has_last = last_.has_value();
+    gpu::StepState last = last_.value_or(gpu::StepState{});
+    io.value("fluid.has_last_record", has_last);
+    io.value("fluid.last_record", last);
+    last_ = has_last ? std::optional<gpu::StepState>(last) : std::nullopt;
+    io.value("fluid.dt_estimate", dt_estimate_);
+    masks_current_ = false;
+}
+
 }  // namespace ranryu::sim

@@ -42,6 +42,7 @@
 #include "shared/bindings.h"
 #include "sim/grid.h"
 #include "sim/guard.h"
+#include "sim/state_io.h"
 
 namespace ranryu::scene { struct Scene; }
 
@@ -178,6 +179,14 @@ public:
     // Frames of `frame_dt` made of substeps of exactly `dt` when stable allows: PBF's fixed step
     // (docs/PBF.md (P1)), and tests that need a known dt.
     void set_fixed_dt(float dt) { fixed_dt_ = dt; }
+
+    // ---- checkpoints (frame/checkpoint.h): the state a run carries from frame to frame, in the cell
+    // order of the last rebuild_grid(): positions, velocities, densities, accelerations, the StepState
+    // (the clock, the next step's dt), every carried array and the emitter's counter; on the CPU the
+    // substep plan's inputs (the last record seen). The boundary is the scene's and is rebuilt by the
+    // constructor; a fluid whose paddle has moved is refused (InputError). Call after the records
+    // have drained; loading needs a fluid built from the same scene.
+    void persist(StateIo& io);
 
     // ---- tests
     // Replaces the fluid state (count() positions and velocities, any order); the next

@@ -46,4 +46,9 @@ gpu::SimParams sim_params(const scene::Scene& s, std::size_t count) {
     return p;
 }
 
+void Particles::persist(StateIo& io) {
+    io.buffer("ballistic.positions", position_);
+    io.buffer("ballistic.velocities", velocity_);
+}
+
 }  // namespace ranryu::sim

@@ -10,6 +10,7 @@
 #include "profile/gpu_timer.h"
 #include "shader/program.h"
 #include "shared/bindings.h"
+#include "sim/state_io.h"
 
 namespace ranryu::scene { struct Scene; }
 
@@ -30,6 +31,8 @@ public:
     void integrate();
 
     std::size_t count() const { return count_; }
+    // Checkpoints (frame/checkpoint.h, sim/state_io.h): positions and velocities.
+    void persist(StateIo& io);
     const gl::Buffer& positions() const { return position_; }
     const gl::Buffer& velocities() const { return velocity_; }
 

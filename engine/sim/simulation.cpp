@@ -59,4 +59,9 @@ void Simulation::advance(std::uint64_t frame) {
     end_frame();
 }
 
+void Simulation::persist(StateIo& io) {
+    fluid_.persist(io);
+    solver_->persist(io);
+}
+
 }  // namespace ranryu::sim

@@ -53,6 +53,11 @@ public:
     void set_emitter(bool on) { emitting_ = on; }
     bool emitting() const { return emitting_; }
 
+    // Checkpoints (frame/checkpoint.h): the fluid's state and the solver's (sim/state_io.h). The
+    // turbulence keeps nothing of its own from frame to frame (its noise seeds are the fluid's carried
+    // arrays, its tiles come from the scene's seed).
+    void persist(StateIo& io);
+
     Fluid& fluid() { return fluid_; }
     const Fluid& fluid() const { return fluid_; }
     Solver& solver() { return *solver_; }

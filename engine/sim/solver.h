@@ -25,6 +25,7 @@
 namespace ranryu::sim {
 
 class Fluid;
+class StateIo;
 
 // Passes that act on the fluid between a solver's stages.
 class StepHooks {
@@ -41,6 +42,9 @@ public:
     // Once a frame, after fluid.begin_frame(): reads what has come back (iteration caps).
     virtual void begin_frame(Fluid&) {}
     virtual void step(Fluid& fluid, StepHooks& hooks) = 0;
+    // The solver's own state from step to step, and what it planned from the records (sim/state_io.h;
+    // its per-particle warm starts are the fluid's carried arrays, saved with the fluid).
+    virtual void persist(StateIo&) {}
 };
 
 // The scene's solver (scene.sph.solver), its programs built (start-up) and its arrays allocated for `fluid`.

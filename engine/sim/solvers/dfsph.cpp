@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "sim/state_io.h"
 
 namespace ranryu::sim {
 namespace {
@@ -188,6 +189,25 @@ void Dfsph::set_issued_iterations(int density, int divergence) {
 }
 
 void Dfsph::upload_params() { params_ubo_.upload_value(params_); }
+
+void Dfsph::persist(StateIo& io) {
+    // kappa_ holds the rows' kappa_b kept from step to step after the fluid's; the rest is rebuilt by
+    // a step before it is read, and saved so that nothing of a step is left out by mistake.
+    io.buffer("dfsph.kappa", kappa_);
+    io.buffer("dfsph.kappa_previous", kappa_previous_);
+    io.buffer("dfsph.pressure_accelerations", pressure_accel_);
+    io.buffer("dfsph.solve", solve_);
+    io.buffer("dfsph.opened", opened_);
+    io.buffer("dfsph.boundary_list", boundary_list_);
+    io.buffer("dfsph.boundary_row", boundary_row_);
+    io.buffer("dfsph.boundary_rows", rows_state_);
+    // The iteration caps planned from the records (begin_frame).
+    io.value("dfsph.params", params_);
+    io.value("dfsph.recent", recent_);
+    io.value("dfsph.recent_next", recent_next_);
+    io.value("dfsph.seen_frame", seen_frame_);
+    upload_params();
+}
 
 void Dfsph::begin_frame(Fluid& fluid) {
     const auto& r = fluid.last_record();

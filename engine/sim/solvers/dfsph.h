@@ -66,6 +66,7 @@ public:
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
+    void persist(StateIo& io) override;
 
     // A step's stages, public for tests that compare each with the CPU reference; step() runs them
     // with the hooks between compute_density() and solve_divergence().

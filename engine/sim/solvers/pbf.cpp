@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "sim/state_io.h"
 
 namespace ranryu::sim {
 namespace {
@@ -92,6 +93,14 @@ shader::StorageSet Pbf::state(Fluid& fluid) const {
     set.add("Lambda", lambda_).add("PbfVelocity", velocity_);
     if (vorticity_on_) set.add("Vorticity", vorticity_);
     return set;
+}
+
+void Pbf::persist(StateIo& io) {
+    // The step's start and the warm start (P10) are the fluid's carried arrays; these are rewritten
+    // by each step before they are read, and saved so that nothing of a step is left out by mistake.
+    io.buffer("pbf.lambda", lambda_);
+    io.buffer("pbf.velocities", velocity_);
+    io.buffer("pbf.vorticity", vorticity_);
 }
 
 void Pbf::step(Fluid& fluid, StepHooks& hooks) {

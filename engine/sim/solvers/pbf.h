@@ -33,6 +33,7 @@ public:
     static gpu::PbfParams params_for(const scene::Scene& scene);
     scene::Solver kind() const override { return scene::Solver::pbf; }
     void step(Fluid& fluid, StepHooks& hooks) override;
+    void persist(StateIo& io) override;
 
     // A step's stages, public for tests that compare each with the CPU reference; step() runs them in
     // this order, the hooks after the first compute_lambda().

@@ -1,0 +1,55 @@
+#pragma once
+// A run's state on disk, to go on from where it stopped: `record` and `profile` write one with
+// --checkpoint FILE when they end (done, or stopped by SIGINT or SIGTERM: a batch system's time
+// limit) and start from one with --resume FILE. The resumed run is the run that wrote it, continued:
+// the same scene (rebuilt from the JSON text the file holds, at its spacing and with its solver),
+// frame numbers that go on from its last frame, and every buffer and value the simulation carries from
+// frame to frame (frame::Pipeline::persist, sim/state_io.h), so its frames are the ones an
+// uninterrupted run would have made (tests/gl/checkpoint_test.cpp compares them bit for bit).
+//
+// The file: the 8 bytes "RANRYUCP", a little-endian u32 format version (1), a u64 length and a JSON
+// header of that length, then each entry's bytes in the header's order:
+//
+//     {"format": 1, "frame": 300, "time": 5.0, "particles": 1000000,
+//      "scene": {"source": "<the scene's JSON text>", "origin": "bundled", "name": "dam-break",
+//                "spacing": 0.002, "solver": "wcsph"},
+//      "entries": [{"name": "pipeline.frames", "bytes": 8}, {"name": "fluid.positions", "bytes": 16000000}, ...]}
+//
+// It is written to FILE.partial and renamed over FILE once complete, so a failed write loses no
+// earlier FILE.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "frame/pipeline.h"
+#include "scene/scene.h"
+
+namespace ranryu::frame {
+
+struct CheckpointInfo {
+    scene::Scene scene;          // as the run that wrote it had it (spacing and solver applied)
+    std::uint64_t frame = 0;     // the next frame to run
+    double time = 0.0;           // simulated seconds at the end of the last frame
+    std::size_t particles = 0;
+};
+
+// Writes `pipeline`'s state to `file`. Call at the end of a run, after pipeline.drain() (it reads
+// every buffer back and waits for the GPU). Throws InputError, naming `what` ("--checkpoint FILE"),
+// and writes nothing when the run's last frame is not known sound (an instability, or a frame past a
+// guard bound that the next frame has not yet shown to be a spike) or the file cannot be written.
+void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what);
+
+// Before a run: that `file` can be written (FILE.partial is made and removed), so a bad path is
+// refused before any work. Throws InputError naming `what`.
+void check_checkpoint_path(const std::filesystem::path& file, const std::string& what);
+
+// The header of `file`: the scene to build the pipeline from, and where the run stopped. Throws
+// InputError naming `what` ("--resume FILE") on a missing, unreadable, truncated or foreign file.
+CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what);
+
+// Loads `file`'s state into `pipeline`, built from read_checkpoint(file).scene and not yet run.
+// Throws InputError naming `what` when an entry is missing or of another size (a file written by
+// another build, or another view of the scene).
+void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what);
+
+}  // namespace ranryu::frame
