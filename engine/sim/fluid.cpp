@@ -448,7 +448,6 @@ void Fluid::persist(StateIo& io) {
     io.value("fluid.last_record", last);
     last_ = has_last ? std::optional<gpu::StepState>(last) : std::nullopt;
     io.value("fluid.dt_estimate", dt_estimate_);
-    masks_current_ = false;
 }
 
 }  // namespace ranryu::sim
