@@ -432,8 +432,11 @@ TEST_CASE("dfsph: the density solve reaches its bound, the GPU stops iterating o
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     // A block compressed to pitch 0.99 (ρ ≈ 1.03 ρ0) resting on the floor, one step of 2 ms from no
-    // pressure, at most 100 iterations: more than it needs (Jacobi on 8 layers from nothing).
-    Rig rig;
+    // pressure, at most 100 iterations: more than it needs (Jacobi on 8 layers from nothing). The plain
+    // relaxed Jacobi of (D6), whose last update contracts the residual it was stopped on (checked at
+    // the end); (D10)'s extrapolated update need not (seed 4202113250 left 1.006 η with it), and has its
+    // own test below.
+    Rig rig(R"("chebyshev": 0)");
     std::vector<glm::vec4> x, v;
     block_state(rng, rig, glm::vec3(0.0f), 0.99f, 0.05f, 0.0f, x, v);
     const Stages s = run_stages(rig, x, v, std::vector<glm::vec2>(x.size(), glm::vec2(0.0f)), 2e-3f, 100);
