@@ -373,8 +373,8 @@ std::string command_help(const std::string& cmd) {
                       limit), write its state to FILE, to go on from with --resume (replaces FILE;
                       not written after an instability)
   --resume FILE       go on from a checkpoint: its scene, spacing and solver (so no --scene,
-                      --spacing or --solver), frame numbers from its last frame on; --frames N more
-                      (--warmup frames included)
+                      --spacing or --solver), frame numbers from its last frame on: --warmup
+                      frames, then --frames N more timed
   --quiet             no progress line on stderr
 )";
     if (cmd == "scenes")

@@ -29,6 +29,7 @@
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/guard.h"
+#include "version.h"
 #ifdef RANRYU_HAVE_IMGUI
 #include "overlay.h"
 #endif
@@ -137,8 +138,12 @@ std::unique_ptr<gl::HeadlessContext> headless(const Options& o, bool announce) {
 
 scene::Scene load_scene(const Options& o) { return with_options(scene::load(o.scene), o); }
 
+// The build a checkpoint belongs to: the version and the commit (frame/checkpoint.h).
+std::string build_id() { return std::string(RANRYU_VERSION) + " " + app::commit(); }
+
 // --resume FILE: the checkpoint's header (its scene is the run's; frame/checkpoint.h). The scene
-// options would contradict it, so they are refused. And --checkpoint FILE: checked writable first.
+// options would contradict it, and an existing --records file is the earlier run's: refused. And
+// --checkpoint FILE: checked writable first.
 std::optional<frame::CheckpointInfo> resumed_run(const Options& o) {
     if (!o.checkpoint.empty()) frame::check_checkpoint_path(o.checkpoint, "--checkpoint " + o.checkpoint);
     if (o.resume.empty()) return std::nullopt;
@@ -146,14 +151,17 @@ std::optional<frame::CheckpointInfo> resumed_run(const Options& o) {
     if (o.scene_given) throw InputError(what + ": the run goes on with the checkpoint's scene; drop --scene");
     if (o.spacing) throw InputError(what + ": the run goes on at the checkpoint's spacing; drop --spacing");
     if (!o.solver.empty()) throw InputError(what + ": the run goes on with the checkpoint's solver; drop --solver");
-    return frame::read_checkpoint(o.resume, what);
+    std::error_code ec;
+    if (!o.records.empty() && std::filesystem::exists(o.records, ec))
+        throw InputError("--records " + o.records + ": exists (the earlier run's records?); a resumed run writes its own: name another file");
+    return frame::read_checkpoint(o.resume, what, build_id());
 }
 
 // --checkpoint FILE at the end of a run (after the drain): writes it and says so, or returns why not.
 std::string write_checkpoint(const Options& o, frame::Pipeline& pipeline) {
     if (o.checkpoint.empty()) return {};
     try {
-        frame::write_checkpoint(pipeline, o.checkpoint, "--checkpoint " + o.checkpoint);
+        frame::write_checkpoint(pipeline, o.checkpoint, "--checkpoint " + o.checkpoint, build_id());
     } catch (const InputError& e) {
         return e.what();
     }
@@ -219,12 +227,15 @@ int record(const Options& o) {
     if (o.export_mesh) view.extra_bytes += record::MeshExporter::bytes_for(std::size_t(scene.surface.max_vertices));
     auto ctx = headless(o, /*announce=*/false);
     frame::check_memory(scene, view, frame::device_memory());
-    if (video) video->prepare();
-    if (const std::size_t removed = record::prepare_output(out, o.force, first))
-        std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
-    print_device(ctx->info());
+    // The pipeline writes no file: built, and loaded from the checkpoint (which may yet be refused),
+    // before the output is touched.
     frame::Pipeline pipeline(scene, shaders, view);
     if (resumed) frame::load_checkpoint(pipeline, o.resume, "--resume " + o.resume);
+    if (video) video->prepare();
+    const std::optional<std::uint64_t> resumed_at = resumed ? std::optional<std::uint64_t>(first) : std::nullopt;
+    if (const std::size_t removed = record::prepare_output(out, o.force, resumed_at))
+        std::printf("ranryu: --force: removed %zu files of an earlier run in %s\n", removed, out.string().c_str());
+    print_device(ctx->info());
     SimulationLog log(pipeline, 0, o.records);
     if (resumed) log.resume_at(first, resumed->time);
     // SPH frames are written only once the guard's record of them has arrived and is sound.
@@ -279,19 +290,23 @@ int record(const Options& o) {
         ran = frame::run_frames(pipeline, std::uint64_t(frames), hooks);
     } catch (const gl::GpuFault& e) {
         fault = e;
-        ran = pipeline.frames();
+        ran = pipeline.frames() - first;   // this run's frames (the fault's is pipeline.frames())
     }
     const bool interrupted = !fault && ran < std::uint64_t(frames) && frame::stop_requested();   // cut short by a signal
     progress.finish();
-    // Stopped or not, every frame captured is written (or, after an instability, dropped) first.
+    // Stopped or not, every frame captured is written (or, after an instability, dropped) first; the
+    // checkpoint before them, once the records have drained, so that a writer's failure (or ffmpeg
+    // killed with the run by a batch system) cannot lose it.
+    std::string checkpoint_error;
     auto finish = [&] {
         if (fault) {
-            if (recorder) recorder->discard_from(ran);
-            if (meshes) meshes->discard_from(ran);
-            if (particles) particles->discard_from(ran);
+            if (recorder) recorder->discard_from(first + ran);
+            if (meshes) meshes->discard_from(first + ran);
+            if (particles) particles->discard_from(first + ran);
         }
         pipeline.drain();
         validate();
+        if (!fault) checkpoint_error = write_checkpoint(o, pipeline);
         if (recorder) recorder->finish();   // and closes the video: ffmpeg finishes the file
         if (meshes) meshes->finish();
         if (particles) particles->finish();
@@ -307,7 +322,6 @@ int record(const Options& o) {
         }
     }
     log.stop_clock();
-    const std::string checkpoint_error = fault ? std::string() : write_checkpoint(o, pipeline);
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, int(ran), 0), log.summary());
     nlohmann::json run = profile::to_json(report);
@@ -322,7 +336,7 @@ int record(const Options& o) {
     // A run stopped by SIGINT or SIGTERM: the frames before `interrupted_at_frame` ran.
     run["interrupted"] = interrupted;
     run["interrupted_at_frame"] = interrupted ? nlohmann::json(pipeline.frames()) : nlohmann::json(nullptr);
-    run["fault"] = fault ? nlohmann::json({{"frame", ran}, {"message", fault->what()}}) : nlohmann::json(nullptr);
+    run["fault"] = fault ? nlohmann::json({{"frame", first + ran}, {"message", fault->what()}}) : nlohmann::json(nullptr);
     const std::uint64_t pngs = recorder && !o.no_png ? recorder->frames_written() : 0;
     run["frames_written"] = pngs;
     run["frame_pattern"] = o.no_png ? nlohmann::json(nullptr) : nlohmann::json("frame_%05d.png");
@@ -353,7 +367,7 @@ int record(const Options& o) {
         run["instability"] = {{"frame", bad->frame}, {"step", bad->step}, {"time", bad->time},
                               {"criterion", bad->criterion}, {"particle", bad->particle},
                               {"value", bad->value}, {"limit", bad->limit}};
-    const std::string report_name = first > 0 ? record::resumed_report_name(first) : std::string("run.json");
+    const std::string report_name = resumed ? record::resumed_report_name(first) : std::string("run.json");
     profile::write_text_file(out / report_name, run.dump(2) + "\n", report_name + " in --out " + out.string());
     log.write_records(o.records);
     std::printf("wrote %llu frames (%dx%d) and %s to %s\n", static_cast<unsigned long long>(pngs), size.x, size.y,
@@ -425,9 +439,9 @@ int profile_cmd(const Options& o) {
         const auto& bad = pipeline.instability();
         if (!bad && !cut_short) return;
         progress.finish();
+        const std::string why = bad ? std::string() : write_checkpoint(o, pipeline);
         log.write_records(o.records);
         if (bad) throw sim::UnstableError(*bad);
-        const std::string why = write_checkpoint(o, pipeline);
         if (!why.empty()) throw InputError(why);
         throw frame::interrupted(pipeline.frames() - first, std::uint64_t(o.warmup) + std::uint64_t(frames));
     };
@@ -446,8 +460,8 @@ int profile_cmd(const Options& o) {
     log.stop_clock();
     pipeline.poll();
     check_stopped(cut_short);
+    const std::string checkpoint_error = write_checkpoint(o, pipeline);   // first; reported after the report
     log.write_records(o.records);
-    const std::string checkpoint_error = write_checkpoint(o, pipeline);   // reported after the report
 
     const profile::Report report = profile::summarize(pipeline.timer(), run_info(ctx->info(), pipeline, frames, o.warmup), log.summary());
     std::printf("%s", profile::table(report).c_str());

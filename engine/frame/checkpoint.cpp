@@ -31,6 +31,7 @@ public:
     void bytes(const std::string& name, void* data, std::size_t size) override {
         std::memcpy(add(name, size).data(), data, size);
     }
+    bool loading() const override { return false; }
     std::vector<std::pair<std::string, std::vector<char>>> entries;
 
 private:
@@ -107,6 +108,7 @@ public:
         b.upload(bytes.data(), bytes.size());
     }
     void bytes(const std::string& name, void* data, std::size_t size) override { read(find(name, size), data); }
+    bool loading() const override { return true; }
     void finish() const {
         for (const auto& [name, e] : o_.entries)
             if (!e.used) throw InputError(what_ + ": its entry " + name + " belongs to nothing in this run" + kOther);
@@ -134,18 +136,25 @@ private:
 
 }  // namespace
 
-void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what) {
+void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build) {
     if (const auto& bad = pipeline.instability())
         throw InputError(what + ": not written: the simulation went unstable at frame " + std::to_string(bad->frame));
+    // The frames this pipeline ran must be known sound (a resumed one that has run none is as sound
+    // as the checkpoint it was loaded from).
     const std::optional<std::uint64_t> sound = pipeline.poll();
-    if (pipeline.frames() > 0 && (!sound || *sound + 1 != pipeline.frames()))
+    if (pipeline.frames() > pipeline.first_frame() && (!sound || *sound + 1 != pipeline.frames()))
         throw InputError(what + ": not written: the last frame is past a guard bound, and no later frame shows it was a spike");
     Saver saver;
-    pipeline.persist(saver);
+    try {
+        pipeline.persist(saver);
+    } catch (const InputError& e) {
+        throw InputError(what + ": not written: " + e.what());   // e.g. the paddle has moved the boundary
+    }
     const scene::Scene& s = pipeline.scene();
     json entries = json::array();
     for (const auto& [name, bytes] : saver.entries) entries.push_back({{"name", name}, {"bytes", bytes.size()}});
     const json header = {{"format", kFormat},
+                         {"build", build},
                          {"frame", pipeline.frames()},
                          {"time", pipeline.simulated_time()},
                          {"particles", pipeline.particle_count()},
@@ -195,12 +204,16 @@ void check_checkpoint_path(const std::filesystem::path& file, const std::string&
     std::filesystem::remove(partial, ec);
 }
 
-CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what) {
+CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what, const std::string& build) {
     std::ifstream in;
     const Opened o = open_file(in, file, what);
     const json& sj = o.header.at("scene");
     CheckpointInfo info;
     try {
+        const std::string wrote = o.header.at("build").get<std::string>();
+        if (wrote != build)
+            throw InputError(what + ": written by ranryu " + wrote + ", and this is " + build +
+                             "; a checkpoint is read by the build that wrote it (its buffers' layouts are that build's)");
         scene::Scene s = scene::parse(sj.at("source").get<std::string>(), what + "'s scene");
         const float spacing = sj.at("spacing").get<float>();
         if (spacing != s.spacing) s = scene::with_spacing(s, spacing, what + "'s spacing");

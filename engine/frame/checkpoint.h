@@ -4,13 +4,19 @@
 // limit) and start from one with --resume FILE. The resumed run is the run that wrote it, continued:
 // the same scene (rebuilt from the JSON text the file holds, at its spacing and with its solver),
 // frame numbers that go on from its last frame, and every buffer and value the simulation carries from
-// frame to frame (frame::Pipeline::persist, sim/state_io.h), so its frames are the ones an
-// uninterrupted run would have made (tests/gl/checkpoint_test.cpp compares them bit for bit).
+// frame to frame (frame::Pipeline::persist, sim/state_io.h): it goes on from exactly the state the
+// stopped run had (tests/gl/checkpoint_test.cpp runs on both the run that wrote a checkpoint and one
+// loaded from it, and compares them bit for bit). Whether its frames are an unstopped run's depends on
+// one thing more: WCSPH and DFSPH plan each frame's substeps (and DFSPH its iteration caps) from
+// records that come back frames late, and a stopped run has drained them, so on a GPU a resumed run
+// can part from an unstopped one as two unstopped runs can; with PBF's fixed substeps, and on
+// llvmpipe, they are the same frames (tests/cli/checkpoint_test.cpp).
 //
-// The file: the 8 bytes "RANRYUCP", a little-endian u32 format version (1), a u64 length and a JSON
-// header of that length, then each entry's bytes in the header's order:
+// The file: the 8 bytes "RANRYUCP", a u32 format version (1), a u64 length and a JSON header of that
+// length, then each entry's bytes in the header's order (numbers in the machine's byte order: a
+// checkpoint is for the build, and so the machine, that wrote it):
 //
-//     {"format": 1, "frame": 300, "time": 5.0, "particles": 1000000,
+//     {"format": 1, "build": "0.1.0 58d1dd5", "frame": 300, "time": 5.0, "particles": 1000000,
 //      "scene": {"source": "<the scene's JSON text>", "origin": "bundled", "name": "dam-break",
 //                "spacing": 0.002, "solver": "wcsph"},
 //      "entries": [{"name": "pipeline.frames", "bytes": 8}, {"name": "fluid.positions", "bytes": 16000000}, ...]}
@@ -33,19 +39,21 @@ struct CheckpointInfo {
     std::size_t particles = 0;
 };
 
-// Writes `pipeline`'s state to `file`. Call at the end of a run, after pipeline.drain() (it reads
+// Writes `pipeline`'s state to `file`, with `build` naming the build (the app's version and commit:
+// read_checkpoint() refuses another's). Call at the end of a run, after pipeline.drain() (it reads
 // every buffer back and waits for the GPU). Throws InputError, naming `what` ("--checkpoint FILE"),
 // and writes nothing when the run's last frame is not known sound (an instability, or a frame past a
 // guard bound that the next frame has not yet shown to be a spike) or the file cannot be written.
-void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what);
+void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build);
 
 // Before a run: that `file` can be written (FILE.partial is made and removed), so a bad path is
 // refused before any work. Throws InputError naming `what`.
 void check_checkpoint_path(const std::filesystem::path& file, const std::string& what);
 
 // The header of `file`: the scene to build the pipeline from, and where the run stopped. Throws
-// InputError naming `what` ("--resume FILE") on a missing, unreadable, truncated or foreign file.
-CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what);
+// InputError naming `what` ("--resume FILE") on a missing, unreadable, truncated or foreign file, or
+// one that another `build` wrote.
+CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what, const std::string& build);
 
 // Loads `file`'s state into `pipeline`, built from read_checkpoint(file).scene and not yet run.
 // Throws InputError naming `what` when an entry is missing or of another size (a file written by

@@ -245,6 +245,7 @@ void Pipeline::set_camera(const render::Camera& cam) {
 void Pipeline::persist(sim::StateIo& io) {
     io.value("pipeline.frames", frames_);
     io.value("pipeline.simulated_frames", simulated_frames_);
+    if (io.loading()) first_frame_ = frames_;
     if (sph_) sph_->persist(io);
     else ballistic_->persist(io);
 }

@@ -131,6 +131,8 @@ public:
     // Checkpoints (frame/checkpoint.h): the frame count and the simulation's state (sim/state_io.h).
     // What a frame draws or meshes is made again from that state by the next frame.
     void persist(sim::StateIo& io);
+    // The frame this pipeline began at: 0, or the checkpoint's it was loaded from.
+    std::uint64_t first_frame() const { return first_frame_; }
     // Frames that simulated: frames() less those the frame loop held (FrameHooks::advance, run's pause).
     std::uint64_t simulated_frames() const { return simulated_frames_; }
 
@@ -149,6 +151,7 @@ private:
     int substeps_ = 1;
     std::uint64_t frames_ = 0;
     std::uint64_t simulated_frames_ = 0;
+    std::uint64_t first_frame_ = 0;
     // Tests: RANRYU_FAULT_AT_FRAME=N makes frame N raise a GL error in a pass of its own
     // ("fault-injection"), so the fault path (gl/faults.h) runs end to end.
     std::optional<std::uint64_t> inject_fault_at_;

@@ -16,19 +16,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A run's file: its frames' files, run.json, and the reports of runs resumed into its folder.
 bool is_run_file(const fs::path& p) {
     const std::string name = p.filename().string();
     if (name == "run.json") return true;
     if (name.starts_with("frame_")) return name.ends_with(".png") || name.ends_with(".ply");
+    if (name.starts_with("run_from_")) return name.ends_with(".json");
     return name.starts_with("particles_") && (name.ends_with(".ply") || name.ends_with(".vtp"));
 }
 
-// A file a run resumed at frame `first` writes: a frame's file numbered `first` or later, or its report.
+// A file that a run resumed at frame `first` would write or make stale: a frame's file or a resumed
+// run's report numbered `first` or later.
 bool written_from(const fs::path& p, std::uint64_t first) {
     const std::string name = p.filename().string();
-    if (name == resumed_report_name(first)) return true;
     if (!is_run_file(p) || name == "run.json") return false;
-    const std::size_t a = name.find('_'), b = name.find('.');
+    const std::size_t b = name.find('.'), a = name.rfind('_', b);
     if (a == std::string::npos || b == std::string::npos || b <= a + 1) return false;
     std::uint64_t index = 0;
     for (std::size_t i = a + 1; i < b; ++i) {
@@ -46,11 +48,11 @@ std::string frame_name(std::uint64_t index, const char* extension, const char* p
     return buf;
 }
 
-std::size_t prepare_output(const fs::path& dir, bool force) { return prepare_output(dir, force, 0); }
+std::size_t prepare_output(const fs::path& dir, bool force) { return prepare_output(dir, force, std::nullopt); }
 
 std::string resumed_report_name(std::uint64_t first) { return frame_name(first, "json", "run_from"); }
 
-std::size_t prepare_output(const fs::path& dir, bool force, std::uint64_t first) {
+std::size_t prepare_output(const fs::path& dir, bool force, std::optional<std::uint64_t> resumed_at) {
     std::error_code ec;
     const std::string what = "--out " + dir.string();
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError(what + ": exists and is not a folder");
@@ -69,15 +71,15 @@ std::size_t prepare_output(const fs::path& dir, bool force, std::uint64_t first)
 
     std::vector<fs::path> earlier;
     for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.is_regular_file() && (first == 0 ? is_run_file(e.path()) : written_from(e.path(), first)))
+        if (e.is_regular_file() && (resumed_at ? written_from(e.path(), *resumed_at) : is_run_file(e.path())))
             earlier.push_back(e.path());
     if (earlier.empty()) return 0;
-    if (first > 0 && !force)
-        throw InputError(what + ": already holds frames from frame " + std::to_string(first) + " on (" + std::to_string(earlier.size()) +
-                         " files), which the resumed run would write; pass --force to replace them, or choose another folder");
+    if (resumed_at && !force)
+        throw InputError(what + ": already holds frames or reports from frame " + std::to_string(*resumed_at) + " on (" +
+                         std::to_string(earlier.size()) + " files), which the resumed run would write; pass --force to replace them, or choose another folder");
     if (!force)
         throw InputError(what + ": already holds an earlier run (" + std::to_string(earlier.size()) +
-                         " files: frame_*.png/.ply, particles_*.ply/.vtp, run.json); pass --force to replace it, or choose another folder");
+                         " files: frame_*.png/.ply, particles_*.ply/.vtp, run.json, run_from_*.json); pass --force to replace it, or choose another folder");
     for (const fs::path& p : earlier) {
         fs::remove(p, ec);
         if (ec) throw InputError(what + ": cannot remove " + p.filename().string() + " (" + ec.message() + ")");

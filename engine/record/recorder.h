@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,11 +37,12 @@ struct FrameSinks {
 // refuses with ranryu::InputError, unless `force`, which removes that earlier run first. Returns the
 // number of files removed.
 std::size_t prepare_output(const std::filesystem::path& dir, bool force);
-// The same for a run resumed at frame `first` (frame/checkpoint.h) into the folder of the run it goes
-// on from: that run's files are kept (its frames before `first`, its run.json); what the resumed run
-// would write over (frames from `first` on, its own report run_from_FIRST.json) is refused, unless
-// `force`, which removes those.
-std::size_t prepare_output(const std::filesystem::path& dir, bool force, std::uint64_t first);
+// The same for a run resumed at frame `resumed_at` (frame/checkpoint.h; nothing: a new run) into the
+// folder of the run it goes on from: that run's files are kept (its frames before `resumed_at`, its
+// run.json, the reports of earlier resumptions); what the resumed run would write over or leave stale
+// (frames and run_from_*.json reports numbered `resumed_at` or later) is refused, unless `force`,
+// which removes those.
+std::size_t prepare_output(const std::filesystem::path& dir, bool force, std::optional<std::uint64_t> resumed_at);
 // The resumed run's report: "run_from_00300.json" (the first run's is run.json).
 std::string resumed_report_name(std::uint64_t first);
 
@@ -63,7 +65,10 @@ public:
     // Pass "readback": reads `target`'s colour into the ring as frame number frames_captured().
     // Numbers the first capture `frame` (the files' names and the frames validate_through() and
     // discard_from() name): a run resumed from a checkpoint (frame/checkpoint.h). Before any capture.
-    void start_at(std::uint64_t frame) { queue_.start_at(frame); }
+    void start_at(std::uint64_t frame) {
+        queue_.start_at(frame);
+        if (sinks_.video) sinks_.video->start_at(frame);
+    }
     void capture(const gl::RenderTarget& target);
     // Frames up to and including `frame` may be written.
     void validate_through(std::uint64_t frame);

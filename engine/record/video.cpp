@@ -158,6 +158,12 @@ VideoEncoder::~VideoEncoder() {
     if (err_) std::fclose(err_);
 }
 
+void VideoEncoder::start_at(std::uint64_t frame) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (written_ != 0) throw Error("VideoEncoder::start_at after a frame was written");
+    next_ = frame;
+}
+
 void VideoEncoder::write(std::uint64_t frame, const std::uint8_t* rgba) {
     std::unique_lock lock(mutex_);
     turn_.wait(lock, [&] { return next_ == frame || !broken_.empty(); });

@@ -58,8 +58,11 @@ public:
     VideoEncoder(const VideoEncoder&) = delete;
     VideoEncoder& operator=(const VideoEncoder&) = delete;
 
+    // The number of the video's first frame (a run resumed from a checkpoint: frame/checkpoint.h).
+    // Before any write().
+    void start_at(std::uint64_t frame);
     // Frame `frame` (width·height RGBA, top row first) to ffmpeg. Any thread; frames reach ffmpeg in
-    // frame order from 0: a call waits until every earlier frame has been written. After ffmpeg has
+    // frame order from start_at()'s (0 by default): a call waits until every earlier frame has been written. After ffmpeg has
     // stopped reading (or abandon()) it does nothing, and finish() reports why.
     void write(std::uint64_t frame, const std::uint8_t* rgba);
     // A frame that will never come (its readback failed): the video is broken; no write waits for it.

@@ -434,7 +434,7 @@ void Fluid::on_record(const void* bytes) {
 
 void Fluid::persist(StateIo& io) {
     if (boundary_generation_ != 0)
-        throw InputError("checkpoint: the paddle has moved the boundary; a run with the paddle cannot be saved");
+        throw InputError("the paddle has moved the boundary, and a run with the paddle cannot be saved");
     io.buffer("fluid.positions", position_[current_]);
     io.buffer("fluid.velocities", velocity_[current_]);
     io.buffer("fluid.densities", density_);

@@ -22,6 +22,8 @@ public:
     virtual void buffer(const std::string& name, gl::Buffer& buffer) = 0;
     // `size` bytes of a CPU value, the same way.
     virtual void bytes(const std::string& name, void* data, std::size_t size) = 0;
+    // Whether this reads a checkpoint back (a part may note that it was resumed).
+    virtual bool loading() const = 0;
     template <class T>
     void value(const std::string& name, T& v) {
         static_assert(std::is_trivially_copyable_v<T>, "a CPU value is saved as its bytes");

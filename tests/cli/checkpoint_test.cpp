@@ -1,7 +1,9 @@
 // record --checkpoint / --resume (engine/frame/checkpoint.h) end to end: a record stopped by SIGTERM
 // (a batch job's time limit) leaves a checkpoint beside its frames, and the record resumed from it
 // writes the frames an uninterrupted run writes, byte for byte, into the same folder, keeping the
-// earlier frames and run.json; and each misuse gets one line and exit 2 before any work.
+// earlier frames and run.json (with PBF, whose substeps a frame are fixed: WCSPH and DFSPH plan theirs
+// from records that arrive frames late, checkpoint.h); a video of the resumed frames; and each misuse
+// gets one line and exit 2 before any work.
 #include <catch2/catch.hpp>
 
 #include <csignal>
@@ -28,12 +30,14 @@ TEST_CASE("checkpoint: a record stopped by SIGTERM resumes to the frames of an u
     TempDir tmp;
     const fs::path out = tmp / "out", straight = tmp / "straight";
     const std::vector<std::string> common = {"--size", "64x48", "--shading", "particles", "--export-particles", "ply", "--quiet"};
+    const std::vector<std::string> scene = {"--scene", scene_file("jet-at-box.json").string(), "--solver", "pbf"};
     auto with = [&](std::vector<std::string> args) {
         args.insert(args.end(), common.begin(), common.end());
         return args;
     };
-    Child child = start_ranryu(tmp.path(), with({"record", "--scene", scene_file("jet-at-box.json").string(), "--frames", "1000000",
-                                                 "--out", out.string(), "--checkpoint", "c.bin"}));
+    std::vector<std::string> first_run = {"record", "--frames", "1000000", "--out", out.string(), "--checkpoint", "c.bin"};
+    first_run.insert(first_run.end(), scene.begin(), scene.end());
+    Child child = start_ranryu(tmp.path(), with(first_run));
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     while (!fs::exists(out / frame_file("particles", 2, "ply")) && std::chrono::steady_clock::now() < end)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -59,8 +63,9 @@ TEST_CASE("checkpoint: a record stopped by SIGTERM resumes to the frames of an u
     CHECK(second["frames_written"] == 3);
 
     // The same scene run without a stop, as far.
-    const Result whole = run_ranryu(tmp.path(), with({"record", "--scene", scene_file("jet-at-box.json").string(), "--frames",
-                                                      std::to_string(at + 3), "--out", straight.string()}));
+    std::vector<std::string> whole_run = {"record", "--frames", std::to_string(at + 3), "--out", straight.string()};
+    whole_run.insert(whole_run.end(), scene.begin(), scene.end());
+    const Result whole = run_ranryu(tmp.path(), with(whole_run));
     INFO(whole.describe());
     REQUIRE(whole.exit_code == 0);
     for (std::uint64_t f = 0; f < at + 3; ++f) {
@@ -77,8 +82,32 @@ TEST_CASE("checkpoint: a record stopped by SIGTERM resumes to the frames of an u
     const auto before = list_dir(out);
     const Result again = run_ranryu(tmp.path(), with({"record", "--resume", "c.bin", "--frames", "3", "--out", out.string()}));
     CHECK(again.exit_code == 2);
-    CHECK_THAT(again.err, Contains("already holds frames from frame " + std::to_string(at)) && Contains("--force"));
+    CHECK_THAT(again.err, Contains("already holds frames or reports from frame " + std::to_string(at)) && Contains("--force"));
     CHECK(list_dir(out) == before);
+}
+
+TEST_CASE("checkpoint: a resumed record makes a video of its own frames", "[cli][checkpoint][video]") {
+    if (!on_path("ffmpeg")) {
+        if (env_is("RANRYU_REQUIRE_FFMPEG", "1")) FAIL("ffmpeg is not on PATH, and RANRYU_REQUIRE_FFMPEG=1 requires the video tests");
+        WARN("skipped: ffmpeg is not on PATH");
+        return;
+    }
+    TempDir tmp;
+    const std::string scene = scene_file("small.json").string();
+    const Result a = run_ranryu(tmp.path(), {"record", "--scene", scene, "--frames", "3", "--size", "64x48", "--out", "out",
+                                             "--video", "a.mp4", "--checkpoint", "c.bin", "--quiet"});
+    INFO(a.describe());
+    REQUIRE(a.exit_code == 0);
+    // Its frames are numbered from 3: the video's writer must take them from there (it waited for a
+    // frame 0 that never came).
+    const Result b = run_ranryu(tmp.path(), {"record", "--resume", "c.bin", "--frames", "2", "--size", "64x48", "--out", "out",
+                                             "--video", "b.mp4", "--quiet"});
+    INFO(b.describe());
+    REQUIRE(b.exit_code == 0);
+    CHECK_THAT(b.out, Contains("wrote the video b.mp4 (2 frames"));
+    const nlohmann::json run = nlohmann::json::parse(read_file(tmp / "out" / "run_from_00003.json"));
+    CHECK(run["video"]["frames"] == 2);
+    CHECK(fs::exists(tmp / "out" / "frame_00004.png"));
 }
 
 TEST_CASE("checkpoint: misuse is one line and exit 2 before any work", "[cli][checkpoint][bad-input]") {
@@ -108,6 +137,10 @@ TEST_CASE("checkpoint: misuse is one line and exit 2 before any work", "[cli][ch
     refused({"profile", "--resume", "c.bin", "--scene", scene, "--frames", "1"}, "drop --scene");
     refused({"profile", "--resume", "c.bin", "--spacing", "0.05", "--frames", "1"}, "drop --spacing");
     refused({"record", "--resume", "c.bin", "--solver", "pbf", "--frames", "1"}, "drop --solver");
+    // The earlier run's records are not written over.
+    write_file(tmp / "records.csv", "frame,time\n");
+    refused({"profile", "--resume", "c.bin", "--frames", "1", "--records", "records.csv"}, "--records records.csv: exists");
+    CHECK(read_file(tmp / "records.csv") == "frame,time\n");
 }
 
 TEST_CASE("checkpoint: a run that goes unstable writes none, and says so", "[cli][checkpoint][guard]") {

@@ -1,9 +1,11 @@
 // frame/checkpoint.h: a run written out after some frames and read back into a fresh pipeline goes
 // on exactly as the run that wrote it: the same positions and velocities, to the bit, frames later,
-// with every solver, with the turbulence and its sub-particles, and for the ballistic model. A part
-// of the state that persist() left out (a warm start, the step's clock, a carried array) parts the
-// two runs within a frame, so bit equality is what shows the list complete. And the checks: an entry
-// of another size or name, a truncated file.
+// with every solver, with the turbulence force (whose sub-particles keep nothing between frames), and
+// for the ballistic model. Both runs have drained their records at the checkpoint, as a stopped run
+// has, so both plan their frames from the same records. A part of the state that persist() left out
+// (a warm start, the step's clock, a carried array) parts the two runs within a frame, so bit equality
+// is what shows the list complete. And the checks: an entry of another size or name, a truncated file,
+// another build's file.
 #include "support/gl_fixture.h"
 
 #include <unistd.h>
@@ -82,12 +84,12 @@ TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that
 
         frame::Pipeline a = pipeline_of(s);
         run(a, before);
-        frame::write_checkpoint(a, file, "test");
+        frame::write_checkpoint(a, file, "test", "build A");
         const double time_at = a.simulated_time();
         run(a, after);
         const State expect = state_of(a);
 
-        const frame::CheckpointInfo info = frame::read_checkpoint(file, "test");
+        const frame::CheckpointInfo info = frame::read_checkpoint(file, "test", "build A");
         CHECK(info.frame == before);
         CHECK(info.time == time_at);
         CHECK(info.particles == a.particle_count());
@@ -121,7 +123,7 @@ TEST_CASE("checkpoint: a file of another run, a damaged file, a pipeline already
     {
         frame::Pipeline a = pipeline_of(s);
         run(a, 1);
-        frame::write_checkpoint(a, file, "--checkpoint F");
+        frame::write_checkpoint(a, file, "--checkpoint F", "build A");
     }
     // Loaded into a pipeline of another solver: entries it has not (PBF's carried step start) or
     // that belong to nothing there (DFSPH's).
@@ -137,19 +139,33 @@ TEST_CASE("checkpoint: a file of another run, a damaged file, a pipeline already
         frame::Pipeline b = pipeline_of(scene::with_spacing(s, 0.03f, "test"));
         CHECK_THROWS_WITH(frame::load_checkpoint(b, file, "--resume F"), Catch::Contains("bytes where this run has"));
     }
+    // A resumed pipeline that has run no frame yet (a run stopped during its start-up) can write its
+    // checkpoint again: what it loaded was sound.
+    {
+        frame::Pipeline b = pipeline_of(s);
+        frame::load_checkpoint(b, file, "--resume F");
+        CHECK(b.first_frame() == 1);
+        const std::filesystem::path again = temp_file("again.bin");
+        CHECK_NOTHROW(frame::write_checkpoint(b, again, "--checkpoint G", "build A"));
+        CHECK(frame::read_checkpoint(again, "--resume G", "build A").frame == 1);
+        std::filesystem::remove(again);
+    }
     // A pipeline that has run frames.
     {
         frame::Pipeline b = pipeline_of(s);
         run(b, 1);
         CHECK_THROWS(frame::load_checkpoint(b, file, "--resume F"));
     }
+    // Another build's reader refuses it, naming both builds.
+    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F", "build B"),
+                      Catch::Contains("--resume F: written by ranryu build A, and this is build B"));
     // Truncated by a byte, and cut inside its header.
     const auto size = std::filesystem::file_size(file);
     std::filesystem::resize_file(file, size - 1);
-    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F"), Catch::Contains("truncated or damaged"));
+    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F", "build A"), Catch::Contains("truncated or damaged"));
     std::filesystem::resize_file(file, 30);
-    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F"), Catch::Contains("truncated header"));
+    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F", "build A"), Catch::Contains("truncated header"));
     std::filesystem::remove(file);
-    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F"), Catch::Contains("no such file"));
+    CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F", "build A"), Catch::Contains("no such file"));
     test::require_no_gl_errors();
 }

@@ -191,8 +191,9 @@ void Dfsph::set_issued_iterations(int density, int divergence) {
 void Dfsph::upload_params() { params_ubo_.upload_value(params_); }
 
 void Dfsph::persist(StateIo& io) {
-    // kappa_ holds the rows' kappa_b kept from step to step after the fluid's; the rest is rebuilt by
-    // a step before it is read, and saved so that nothing of a step is left out by mistake.
+    // kappa_ holds the rows' kappa_b kept from step to step after the fluid's, and rows_state_ the
+    // rows' epoch and per-boundary marks; the rest is rebuilt by a step before it is read, and saved
+    // so that nothing of a step is left out by mistake.
     io.buffer("dfsph.kappa", kappa_);
     io.buffer("dfsph.kappa_previous", kappa_previous_);
     io.buffer("dfsph.pressure_accelerations", pressure_accel_);
