@@ -1,5 +1,8 @@
 #include "frame/checkpoint.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -134,6 +137,14 @@ private:
     std::string what_;
 };
 
+// fsync(2) of a file or a folder; a failure costs durability, not the run, so it is not reported.
+void sync_path(const std::filesystem::path& p) {
+    const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
 }  // namespace
 
 void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build) {
@@ -184,12 +195,16 @@ void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, con
             throw InputError(what + ": cannot write " + partial.string() + " (disk full?)");
         }
     }
+    // On disk before it replaces FILE, and the rename itself after: a machine that goes down just after
+    // (a batch job's node) keeps the old FILE or the new one, never an empty one.
+    sync_path(partial);
     std::error_code ec;
     std::filesystem::rename(partial, file, ec);
     if (ec) {
         std::filesystem::remove(partial, ec);
         throw InputError(what + ": cannot replace " + file.string());
     }
+    sync_path(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
 }
 
 void check_checkpoint_path(const std::filesystem::path& file, const std::string& what) {

@@ -21,8 +21,8 @@
 //                "spacing": 0.002, "solver": "wcsph"},
 //      "entries": [{"name": "pipeline.frames", "bytes": 8}, {"name": "fluid.positions", "bytes": 16000000}, ...]}
 //
-// It is written to FILE.partial and renamed over FILE once complete, so a failed write loses no
-// earlier FILE.
+// It is written to FILE.partial, synced to disk, and renamed over FILE once complete, so a failed
+// write, or a machine that goes down at the end of a batch job, loses no earlier FILE.
 #include <cstdint>
 #include <filesystem>
 #include <string>
