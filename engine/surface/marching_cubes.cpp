@@ -160,7 +160,8 @@ std::vector<gpu::MeshVertex> polygonise_cpu(const PhiGrid& g) {
                     for (int v = 0; v < 3; ++v) {
                         const int e = kTriangles[index * 16 + 3 * t + v], a = kEdges[2 * e], b = kEdges[2 * e + 1];
                         const glm::ivec3 na = cell + corner(a), nb = cell + corner(b);
-                        const float s = f[a] / (f[a] - f[b]);
+                        const float margin = float(RANRYU_MC_EDGE_MARGIN);   // as mc_emit.comp
+                        const float s = std::clamp(f[a] / (f[a] - f[b]), margin, 1.0f - margin);
                         const glm::vec3 local = glm::vec3(na) + s * glm::vec3(nb - na);
                         p[v] = g.origin + g.spacing * local;
                         const glm::vec3 ga = gradient(g, na), gb = gradient(g, nb);

@@ -304,6 +304,13 @@ RANRYU_STRUCT(SurfaceGrid) {
 }
 RANRYU_STRUCT_END(SurfaceGrid, 80)
 
+// Marching cubes' edge vertices keep this part of a node spacing from the edge's nodes (t of
+// mc_emit.comp clamped to [margin, 1 - margin]): a crossing at a node, where φ is zero or within a
+// float of it, would otherwise put the vertices of every edge at that node on one point, and the mesh
+// would have zero-area triangles and read as non-manifold once its vertices are welded by position
+// (docs/SURFACE.md (S7)). Shared by the GPU pass and the CPU's surface::polygonise_cpu().
+#define RANRYU_MC_EDGE_MARGIN 1e-3
+
 // Marching cubes' GPU-side state (std430 SSBO), written by its own passes; also the indirect
 // argument buffer: cell_dispatch at byte 0, emit_dispatch at 16, draw at 32.
 RANRYU_STRUCT(MeshState) {

@@ -3,7 +3,8 @@
 //   in   active_cells[0, mc.emit_dispatch.w), phi, surface_grid
 //   out  vertices[first .. first + 3 x triangles): MeshVertex (position, outward unit normal)
 // A vertex on edge (a, b), a the edge's lower corner (mc_tables.h), lies where φ is zero on the
-// linear interpolant:  t = φa / (φa - φb),  x = origin + h (node_a + t (node_b - node_a)).
+// linear interpolant:  t = φa / (φa - φb),  x = origin + h (node_a + t (node_b - node_a)), with t kept
+// RANRYU_MC_EDGE_MARGIN from either node (bindings.h: distinct edges, distinct vertices).
 // Every cell that shares the edge computes it from the same numbers in the same order ('precise'
 // forbids the compiler to fuse differently), so shared vertices are bit-identical: no cracks.
 // The normal is -∇φ/|∇φ| (docs/SURFACE.md (S8)), ∇φ by the smoothed difference gradient() at the two
@@ -67,7 +68,7 @@ void corner_gradients(uvec3 cell, uint index, out vec3 g[8]) {
 void edge_vertex(uvec3 cell, int edge, float f[8], vec3 corner_grad[8], out vec3 position, out vec3 grad) {
     int a = mc_edge_corners[2 * edge], b = mc_edge_corners[2 * edge + 1];
     ivec3 na = ivec3(cell) + mc_corner(a), nb = ivec3(cell) + mc_corner(b);
-    precise float t = f[a] / (f[a] - f[b]);
+    precise float t = clamp(f[a] / (f[a] - f[b]), float(RANRYU_MC_EDGE_MARGIN), 1.0 - float(RANRYU_MC_EDGE_MARGIN));
     precise vec3 local = vec3(na) + t * vec3(nb - na);
     precise vec3 x = surface_grid.origin.xyz + surface_grid.origin.w * local;
     position = x;
