@@ -1,8 +1,5 @@
 #include "frame/checkpoint.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -12,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/whole_file.h"
 #include "sim/state_io.h"
 
 namespace ranryu::frame {
@@ -137,14 +135,6 @@ private:
     std::string what_;
 };
 
-// fsync(2) of a file or a folder; a failure costs durability, not the run, so it is not reported.
-void sync_path(const std::filesystem::path& p) {
-    const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return;
-    ::fsync(fd);
-    ::close(fd);
-}
-
 }  // namespace
 
 void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build) {
@@ -177,46 +167,28 @@ void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, con
                            {"solver", scene::solver_name(s.sph.solver)}}},
                          {"entries", entries}};
     const std::string text = header.dump();
-    std::filesystem::path partial = file;
-    partial += ".partial";
-    {
-        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(what + ": cannot write " + partial.string());
-        const std::uint64_t length = text.size();
-        out.write(kMagic, sizeof kMagic);
-        out.write(reinterpret_cast<const char*>(&kFormat), sizeof kFormat);
-        out.write(reinterpret_cast<const char*>(&length), sizeof length);
-        out.write(text.data(), std::streamsize(text.size()));
-        for (const auto& e : saver.entries) out.write(e.second.data(), std::streamsize(e.second.size()));
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(partial, ec);
-            throw InputError(what + ": cannot write " + partial.string() + " (disk full?)");
-        }
+    const std::uint64_t length = text.size();
+    std::vector<std::string_view> parts = {std::string_view(kMagic, sizeof kMagic),
+                                           std::string_view(reinterpret_cast<const char*>(&kFormat), sizeof kFormat),
+                                           std::string_view(reinterpret_cast<const char*>(&length), sizeof length), text};
+    for (const auto& e : saver.entries) parts.emplace_back(e.second.data(), e.second.size());
+    try {
+        write_whole_file(file, parts, "", /*sync=*/true);
+    } catch (const Error& e) {
+        throw InputError(what + ": cannot write " + file.string() + ": " + e.what());
     }
-    // On disk before it replaces FILE, and the rename itself after: a machine that goes down just after
-    // (a batch job's node) keeps the old FILE or the new one, never an empty one.
-    sync_path(partial);
-    std::error_code ec;
-    std::filesystem::rename(partial, file, ec);
-    if (ec) {
-        std::filesystem::remove(partial, ec);
-        throw InputError(what + ": cannot replace " + file.string());
-    }
-    sync_path(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
 }
 
 void check_checkpoint_path(const std::filesystem::path& file, const std::string& what) {
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec)) throw InputError(what + ": is a folder; name the file to write");
-    std::filesystem::path partial = file;
-    partial += ".partial";
+    std::filesystem::path tmp = file;
+    tmp += ".tmp";   // where write_whole_file() writes it first
     {
-        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(what + ": cannot write " + partial.string() + " (is its folder there, and writable?)");
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw InputError(what + ": cannot write " + tmp.string() + " (is its folder there, and writable?)");
     }
-    std::filesystem::remove(partial, ec);
+    std::filesystem::remove(tmp, ec);
 }
 
 CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what, const std::string& build) {

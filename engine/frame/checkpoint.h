@@ -23,8 +23,8 @@
 //                "spacing": 0.002, "solver": "wcsph"},
 //      "entries": [{"name": "pipeline.frames", "bytes": 8}, {"name": "fluid.positions", "bytes": 16000000}, ...]}
 //
-// It is written to FILE.partial, synced to disk, and renamed over FILE once complete, so a failed
-// write, or a machine that goes down at the end of a batch job, loses no earlier FILE.
+// It is written whole or not at all (core/whole_file.h: FILE.tmp, synced to disk, renamed over FILE),
+// so a failed write, or a machine that goes down at the end of a batch job, loses no earlier FILE.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -48,7 +48,7 @@ struct CheckpointInfo {
 // guard bound that the next frame has not yet shown to be a spike) or the file cannot be written.
 void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build);
 
-// Before a run: that `file` can be written (FILE.partial is made and removed), so a bad path is
+// Before a run: that `file` can be written (FILE.tmp is made and removed), so a bad path is
 // refused before any work. Throws InputError naming `what`.
 void check_checkpoint_path(const std::filesystem::path& file, const std::string& what);
 

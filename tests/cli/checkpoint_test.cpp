@@ -150,7 +150,7 @@ TEST_CASE("checkpoint: a run that goes unstable writes none, and says so", "[cli
     INFO(r.describe());
     CHECK(r.exit_code == 3);
     CHECK_FALSE(fs::exists(tmp / "c.bin"));
-    CHECK_FALSE(fs::exists(tmp / "c.bin.partial"));
+    CHECK_FALSE(fs::exists(tmp / "c.bin.tmp"));
     const nlohmann::json run = nlohmann::json::parse(read_file(tmp / "out" / "run.json"));
     CHECK(run["checkpoint"]["file"].is_null());
     CHECK_THAT(run["checkpoint"]["not_written"].get<std::string>(), Contains("unstable"));
