@@ -25,7 +25,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
                  "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint", "--resume"}},
     {"scenes", {"--schema", "--markdown"}},
-    {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug", "--relax"}},
+    {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug", "--relax", "--settle", "--average"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--seconds", "--shard", "--list", "--quiet",
                "--shader-dir", "--gl-debug"}},
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
@@ -181,6 +181,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (opt == "--quiet") o.quiet = true;
         else if (opt == "--quick") o.quick = true;
         else if (opt == "--relax") o.relax = true;
+        else if (opt == "--settle") o.settle = parse_float(opt, value, 0.0f, 60.0f, "simulated seconds in [0, 60]");
+        else if (opt == "--average") o.average = parse_float(opt, value, 0.05f, 60.0f, "simulated seconds in [0.05, 60]");
         else if (opt == "--list") o.list = true;
         else if (opt == "--cases") {
             // The validation cases, and the scene cases: "scene:NAME" of a bundled SPH scene, or
@@ -238,6 +240,8 @@ Options parse(const std::vector<std::string>& args) {
     if (o.command == "validate" && o.case_name.empty() && !o.help)
         throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave)");
     if (o.relax && o.case_name != "hydrostatic") throw InputError("--relax: only the hydrostatic case relaxes its start");
+    if ((o.settle || o.average) && o.case_name != "hydrostatic")
+        throw InputError(std::string(o.settle ? "--settle" : "--average") + ": only the hydrostatic case settles and averages");
     if (o.command == "sweep" && o.out.empty() && !o.help && !o.list) throw InputError("--out: sweep needs --out DIR for its rows");
     if (o.seconds && std::none_of(o.cases.begin(), o.cases.end(), validation::is_scene_case))
         throw InputError("--seconds: only the scene cases (--cases scene:NAME or scenes) run for a given time; the validation cases "
@@ -401,6 +405,9 @@ Run a case headless and print the simulation next to its reference, with the err
   --json FILE         also write the series and errors as JSON
   --relax             hydrostatic: first relax the block at rest (velocities zeroed after each frame,
                       up to 2 s) and start the clock from there (docs/VALIDATION.md "The relaxed start")
+  --settle S          hydrostatic: simulated seconds run before the pressure is measured (default 1)
+  --average S         hydrostatic: simulated seconds the pressure is averaged over (default 0.5); each
+                      half second's errors are printed on their own as well
   --quiet             no progress line on stderr
   --shader-dir DIR    read shaders from DIR instead of the copies built into the binary
   --gl-debug          debug context; print the driver's KHR_debug messages

@@ -52,6 +52,7 @@ struct Options {
     // sweep (app/sweep.cpp): the grid of runs, empty for the defaults; --out is its folder.
     bool quick = false;                    // --quick: the small preset
     bool relax = false;                    // validate hydrostatic --relax: the relaxed start
+    std::optional<float> settle, average;  // validate hydrostatic --settle S, --average S (simulated seconds)
     std::vector<std::string> cases, solvers;   // cases: validation case names, "scene:NAME", "scenes" expanded
     std::optional<float> seconds;          // --seconds S: the scene cases' simulated time (default 10)
     std::vector<float> spacings, factors;

@@ -265,7 +265,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
 }
 
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
-                              const Relaxation& relaxation, frame::Progress* progress) {
+                              const Relaxation& relaxation, frame::Progress* progress, double average_s) {
     if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("hydrostatic: the scene must be SPH with one block");
     HydrostaticResult r;
     // H is the depth of the lattice that fills the block, whole layers of dx (the top layer's centre
@@ -305,25 +305,60 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     StatsTally tally(scene, pipeline);
     tally.listen(fluid, r.steps);
     const int settle_frames = int(std::ceil(settle_s / scene.frame_dt));
-    const int average_frames = int(std::ceil(0.5 / scene.frame_dt));
+    const int average_frames = std::max(int(std::ceil(average_s / scene.frame_dt)), 1);
+    const int window_frames = int(std::ceil(0.5 / scene.frame_dt));
+    r.average_seconds = average_frames * scene.frame_dt;
     if (progress) progress->expect(std::uint64_t(settle_frames + average_frames));
     const auto start = std::chrono::steady_clock::now();
     run(pipeline, settle_frames, progress);
 
     // The column starts uncompressed and rings acoustically (period 4 H / c); a snapshot lands at
-    // some phase of that. So the pressure profile is averaged over the next half second, each frame's
-    // state read back asynchronously (ParticleSnapshots): the frames run without a wait.
+    // some phase of that. So the pressure profile is averaged over the frames that follow, each
+    // frame's state read back asynchronously (ParticleSnapshots): the frames run without a wait.
     const double rho0 = scene.sph.rest_density, g = glm::length(scene.gravity), dx = scene.spacing;
     r.reference_scale = rho0 * g * r.height;
     const int layers = int(std::ceil(r.height / dx)) + 2;
-    std::vector<double> sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0);
-    std::vector<long> n(std::size_t(layers), 0), core_n(std::size_t(layers), 0);
+    // A profile's sums: pressure and particles per layer, over all particles and over the core.
+    struct Sums {
+        std::vector<double> sum, core_sum;
+        std::vector<long> n, core_n;
+        explicit Sums(int layers)
+            : sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0), n(std::size_t(layers), 0), core_n(std::size_t(layers), 0) {}
+    };
+    Sums all(layers), window(layers);
     const double support = sim::kernel_support(scene.spacing);
     auto in_core = [&](const glm::vec4& p) {
         return p.x - scene.tank_min.x > support && scene.tank_max.x - p.x > support && p.z - scene.tank_min.z > support &&
                scene.tank_max.z - p.z > support;
     };
+    // The errors of a profile's sums over `frames` frames, its layers into `out` when given.
+    auto measure = [&](const Sums& s, int frames, HydrostaticResult& into, std::vector<HydrostaticResult::Layer>* out) {
+        for (int k = 0; k < layers; ++k) {
+            if (!s.n[std::size_t(k)]) continue;
+            HydrostaticResult::Layer l;
+            l.z = scene.tank_min.y + (k + 0.5) * dx;
+            l.pressure = s.sum[std::size_t(k)] / double(s.n[std::size_t(k)]);
+            l.reference = rho0 * g * std::max(r.height - (l.z - scene.tank_min.y), 0.0);
+            l.particles = int(s.n[std::size_t(k)] / frames);
+            if (out) out->push_back(l);
+            // The hydrostatic law is compared in the interior: from one kernel support above the floor
+            // (whose boundary term carries the bottom layer at about twice the pressure, docs/SPH.md
+            // eq. (4)) to one below the free surface (where the summation density lacks neighbours
+            // above and reads low). The layers outside are printed, not compared.
+            const double from_floor = l.z - scene.tank_min.y;
+            const double core = s.core_n[std::size_t(k)] ? s.core_sum[std::size_t(k)] / double(s.core_n[std::size_t(k)]) : l.reference;
+            if (from_floor > support && from_floor < r.height - support) {
+                into.max_error = std::max(into.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
+                into.core_error = std::max(into.core_error, std::abs(core - l.reference) / r.reference_scale);
+            }
+            if (k == 0) {
+                into.floor_error = std::abs(l.pressure - l.reference) / r.reference_scale;
+                into.core_floor_error = std::abs(core - l.reference) / r.reference_scale;
+            }
+        }
+    };
     Speeds end;   // of the last frame
+    int seen = 0, in_window = 0;
     ParticleSnapshots state(fluid, ParticleSnapshots::kPositions | ParticleSnapshots::kDensities | ParticleSnapshots::kVelocities,
                             [&](const ParticleSnapshots::View& s) {
                                 end = speeds(s.velocities);
@@ -332,8 +367,19 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
                                     const glm::vec4& x = s.positions[i];
                                     const int k = int(std::floor((double(x.y) - scene.tank_min.y) / dx));
                                     if (k < 0 || k >= layers) continue;
-                                    sum[std::size_t(k)] += s.densities[i].y, ++n[std::size_t(k)];
-                                    if (in_core(x)) core_sum[std::size_t(k)] += s.densities[i].y, ++core_n[std::size_t(k)];
+                                    const bool core = in_core(x);
+                                    for (Sums* t : {&all, &window}) {
+                                        t->sum[std::size_t(k)] += s.densities[i].y, ++t->n[std::size_t(k)];
+                                        if (core) t->core_sum[std::size_t(k)] += s.densities[i].y, ++t->core_n[std::size_t(k)];
+                                    }
+                                }
+                                ++seen, ++in_window;
+                                if (in_window == window_frames || seen == average_frames) {
+                                    HydrostaticResult w;
+                                    measure(window, in_window, w, nullptr);
+                                    r.windows.push_back({(seen - in_window) * scene.frame_dt, w.max_error, w.floor_error});
+                                    window = Sums(layers);
+                                    in_window = 0;
                                 }
                             });
     run_observed(pipeline, average_frames, progress, state);
@@ -341,30 +387,7 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     r.stats = tally.end();
     r.max_speed = end.max;
     r.rms_speed = end.rms;
-    const double h = sim::kernel_support(scene.spacing);
-    for (int k = 0; k < layers; ++k) {
-        if (!n[std::size_t(k)]) continue;
-        HydrostaticResult::Layer l;
-        l.z = scene.tank_min.y + (k + 0.5) * dx;
-        l.pressure = sum[std::size_t(k)] / double(n[std::size_t(k)]);
-        l.reference = rho0 * g * std::max(r.height - (l.z - scene.tank_min.y), 0.0);
-        l.particles = int(n[std::size_t(k)] / average_frames);
-        r.layers.push_back(l);
-        // The hydrostatic law is compared in the interior: from one kernel support above the floor
-        // (whose boundary term carries the bottom layer at about twice the pressure, docs/SPH.md
-        // eq. (4)) to one below the free surface (where the summation density lacks neighbours
-        // above and reads low). The layers outside are printed, not compared.
-        const double from_floor = l.z - scene.tank_min.y;
-        const double core = core_n[std::size_t(k)] ? core_sum[std::size_t(k)] / double(core_n[std::size_t(k)]) : l.reference;
-        if (from_floor > h && from_floor < r.height - h) {
-            r.max_error = std::max(r.max_error, std::abs(l.pressure - l.reference) / r.reference_scale);
-            r.core_error = std::max(r.core_error, std::abs(core - l.reference) / r.reference_scale);
-        }
-        if (k == 0) {
-            r.floor_error = std::abs(l.pressure - l.reference) / r.reference_scale;
-            r.core_floor_error = std::abs(core - l.reference) / r.reference_scale;
-        }
-    }
+    measure(all, average_frames, r, &r.layers);
     return r;
 }
 

@@ -70,8 +70,10 @@ struct Relaxation {
 Relaxation hydrostatic_relaxation(const scene::Scene& scene);
 
 // A tank at rest after `settle_s` seconds from its (relaxed) start: pressure in layers one spacing
-// thick, averaged over the next half second, against rho0 g (H - z); and the spurious velocity at
-// the end.
+// thick, averaged over the next `average_s` seconds (half a second unless given), against
+// rho0 g (H - z); and the spurious velocity at the end. The same errors of each half second of the
+// average alone (windows) tell a column at rest, whose profile holds from window to window, from one
+// still moving.
 struct HydrostaticResult {
     double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H (the lattice's depth, whole layers), dx, rho0 g H
     std::size_t particles = 0;
@@ -83,7 +85,12 @@ struct HydrostaticResult {
     // layers' core), and the floor layer's core: what the walls' boundary term does not reach.
     double core_error = 0.0, core_floor_error = 0.0;
     double max_speed = 0.0, rms_speed = 0.0;            // at the end of the run (m/s)
-    double mean_rms_speed = 0.0;                        // the rms speed averaged over the half second's frames
+    double mean_rms_speed = 0.0;                        // the rms speed averaged over the average's frames
+    double average_seconds = 0.0;                       // the simulated time averaged over
+    // Each half second of the average on its own (the last may be shorter): its start (s after the
+    // settling) and its max_error and floor_error.
+    struct Window { double start, max_error, floor_error; };
+    std::vector<Window> windows;
     std::uint64_t steps = 0;                            // the solver's steps over the run
     double seconds = 0.0;                               // the run on the wall clock
     RunStats stats;
@@ -102,7 +109,7 @@ struct HydrostaticResult {
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
                               frame::Progress* progress = nullptr);
 HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSource& shaders, double settle_s,
-                              const Relaxation& relaxation, frame::Progress* progress = nullptr);
+                              const Relaxation& relaxation, frame::Progress* progress = nullptr, double average_s = 0.5);
 
 // A standing wave (docs/VALIDATION.md "Standing wave"): water of depth H in a tank of length L, its
 // surface raised to H + A cos(k x), k = pi/L, released at rest. Linear theory: the first mode's period
