@@ -79,6 +79,7 @@ struct SphSettings {
     float relaxation = 0.5f;              // omega of (D6)
     float chebyshev = 0.98f;              // rho of (D10)'s Chebyshev acceleration; 0: plain relaxed Jacobi
     bool complementarity_error = false;   // (D6): the density solve's error counts |r_i| where kappa_i > 0
+    bool gradient_correction = false;     // (D11): pressure accelerations times the kernel-gradient correction L_i
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
     float boundary_relaxation = 1.0f;     // omega_b of (D9)

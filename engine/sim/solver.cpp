@@ -23,7 +23,8 @@ std::size_t solver_bytes(const scene::Scene& scene, std::size_t count) {
         case scene::Solver::pbf: return Pbf::bytes_for(scene, count);
         case scene::Solver::dfsph: break;
     }
-    return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f);
+    return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f,
+                           scene.sph.gradient_correction);
 }
 
 }  // namespace ranryu::sim

@@ -311,6 +311,12 @@ RANRYU_STRUCT_END(SurfaceGrid, 80)
 // (docs/SURFACE.md (S7)). Shared by the GPU pass and the CPU's surface::polygonise_cpu().
 #define RANRYU_MC_EDGE_MARGIN 1e-3
 
+// DFSPH's kernel-gradient correction (docs/DFSPH.md (D11)): L_i = I where det M_i is at most
+// RANRYU_CORRECTION_NONE, M_i^-1 from RANRYU_CORRECTION_FULL, linear between. Shared by the density
+// pass (glsl/sim/dfsph/compute_density.comp) and the CPU reference (tests/reference/dfsph_reference.h).
+#define RANRYU_CORRECTION_NONE 0.4
+#define RANRYU_CORRECTION_FULL 0.7
+
 // Marching cubes' GPU-side state (std430 SSBO), written by its own passes; also the indirect
 // argument buffer: cell_dispatch at byte 0, emit_dispatch at 16, draw at 32.
 RANRYU_STRUCT(MeshState) {

@@ -184,6 +184,10 @@ struct Stages {
     std::vector<glm::vec4> x, v, density, accel, kappa_v0_accel, v_after_divergence, predict, last_accel, x_end, v_end, density_end;
     std::vector<float> kappa_v0, kappa_v, kappa0, kappa;
     std::vector<glm::vec2> warm;   // sorted, as the density pass read it
+    std::vector<glm::vec4> correction;   // (D11)'s L_i, two vec4 a particle, with sph.gradient_correction
+    // With the boundary rows of (D9): kappa_b of each boundary particle after the divergence solve (its
+    // kappa_v,b), after the density solve's start and after the density solve; empty without rows.
+    std::vector<double> kappa_b_divergence, kappa_b0, kappa_b;
     float dt = 0.0f;
 };
 
@@ -208,14 +212,27 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     s.accel = rig.read(rig.fluid.accelerations());
     s.kappa_v0 = rig.read_floats(d.kappa());
     s.kappa_v0_accel = rig.read(d.pressure_accelerations());
+    const std::size_t n = rig.fluid.count();
+    if (d.pressure_accelerations().size() >= 3 * n * sizeof(glm::vec4))
+        s.correction = d.pressure_accelerations().read<glm::vec4>(2 * n, n * sizeof(glm::vec4));
+    const std::size_t nb = d.kappa().size() / sizeof(float) > n ? rig.fluid.boundary_count() : 0;
+    auto kappa_b = [&](std::size_t solve) {   // kappa[n + 2b + solve], the rows' (dfsph.glsl)
+        std::vector<double> out(nb);
+        const std::vector<float> all = d.kappa().read<float>(n + 2 * nb);
+        for (std::size_t b = 0; b < nb; ++b) out[b] = double(all[n + 2 * b + solve]);
+        return out;
+    };
     d.solve_divergence(rig.fluid);
     s.kappa_v = rig.read_floats(d.kappa());
+    s.kappa_b_divergence = kappa_b(1);
     s.v_after_divergence = rig.read(rig.fluid.velocities());
     d.predict_density(rig.fluid);
     s.kappa0 = rig.read_floats(d.kappa());
+    s.kappa_b0 = kappa_b(0);
     s.predict = rig.read(d.pressure_accelerations());
     d.solve_density(rig.fluid);
     s.kappa = rig.read_floats(d.kappa());
+    s.kappa_b = kappa_b(0);
     s.last_accel = rig.read(d.pressure_accelerations());   // a(kappa) the last iteration read
     d.integrate(rig.fluid);
     s.x_end = rig.read(rig.fluid.positions());
@@ -353,6 +370,164 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
     // the compressed blocks full of neighbours but some at their faces.
     if (corner == glm::vec3(0.0f)) CHECK(walls > 100);
     CHECK(deficient < int(xs.size()));
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: the gradient correction (D11): the density pass's L_i, and each pass's pressure accelerations L_i times (D3)'s, "
+          "match the reference",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A compressed block against the floor and two walls, another in mid-tank: particles inside (M_i
+    // near 1.02 I: V_j = m/rho_i makes it independent of the compression), at the faces and corners
+    // (det M_i between and below the blend's ends).
+    const glm::vec3 corner = GENERATE(glm::vec3(0.0f), glm::vec3(0.02f, 0.03f, 0.025f));
+    INFO("block at " << corner.x << " " << corner.y << " " << corner.z);
+    // Akinci's boundary term and the boundary rows of (D9) (as the tank at rest ships it), whose kappa_b
+    // the corrected accelerations carry too.
+    const bool rows = GENERATE(false, true);
+    INFO((rows ? "with" : "without") << " the boundary rows");
+    Rig rig(rows ? R"("boundary_rows": true, "gradient_correction": true)" : R"("boundary_rows": false, "gradient_correction": true)");
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, corner, 0.95f, 0.15f, 0.3f, x, v);
+    std::vector<glm::vec2> warm(x.size());
+    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    // Two iterations of the density solve: the second's accelerations come from accelerate.comp.
+    const Stages s = run_stages(rig, x, v, warm, 4e-4f, 2, 1);
+    const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
+    REQUIRE(s.correction.size() == 2 * n);
+    REQUIRE(s.kappa_b.size() == (rows ? xb.size() : 0));
+
+    // L_i against the reference from the GPU's positions and densities. Bounds, first order: M_i's
+    // entries are sums of the terms w_k (x_k − x_i)_a (∇W_ik)_b / ρ_i, each off by (terms + c) u times
+    // S_i = Σ_k w_k |x_k − x_i||∇W_ik| / ρ_i, so ‖δM‖_F ≤ e = 3 (terms + c) u S_i; then
+    // ‖δ(M⁻¹)‖_F ≤ ‖M⁻¹‖_F² e + c u ‖M⁻¹‖_F cond_F(M) (the inversion's own rounding), |δ det| ≤
+    // ‖adj M‖_F e + c u ‖M‖_F³, δs = |δ det| / 0.3, and δL ≤ s ‖δ(M⁻¹)‖_F + δs ‖M⁻¹ − I‖_F + c u ‖L‖_F.
+    std::vector<double> rho(n);
+    for (std::size_t i = 0; i < n; ++i) rho[i] = double(s.density[i].x);
+    const std::vector<df::GradientCorrection> c = df::gradient_corrections(xs, xb, psi, rho, p);
+    const ref::CubicKernel k{p.h};
+    auto frobenius = [](const glm::dmat3& a) {
+        double sum = 0.0;
+        for (int col = 0; col < 3; ++col) sum += glm::dot(a[col], a[col]);
+        return std::sqrt(sum);
+    };
+    std::vector<double> l_bound(n), l_norm(n);
+    int none = 0, between = 0, full = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double moment = 0.0;
+        for (std::size_t j = 0; j < n; ++j) moment += p.mass * glm::length(xs[j] - xs[i]) * glm::length(k.gradW(xs[i] - xs[j]));
+        for (std::size_t b = 0; b < xb.size(); ++b) moment += psi[b] * glm::length(xb[b] - xs[i]) * glm::length(k.gradW(xs[i] - xb[b]));
+        moment /= rho[i];
+        const double e = 3.0 * (double(m.terms[i]) + 1.0 + kC) * kU * moment + kU * frobenius(c[i].m);
+        const glm::dmat3 inv = std::abs(c[i].det) > 1e-9 ? glm::inverse(c[i].m) : glm::dmat3(0.0);
+        const double inv_f = frobenius(inv), m_f = frobenius(c[i].m);
+        const double d_inv = inv_f * inv_f * e + kC * kU * inv_f * m_f * inv_f;
+        const double d_det = frobenius(std::abs(c[i].det) * inv) * e + kC * kU * m_f * m_f * m_f;
+        const double d_s = d_det / 0.3;
+        l_norm[i] = frobenius(c[i].l);
+        l_bound[i] = c[i].blend * d_inv + d_s * frobenius(inv - glm::dmat3(1.0)) + kC * kU * l_norm[i];
+        const glm::vec4 a = s.correction[2 * i], b = s.correction[2 * i + 1];
+        INFO("particle " << i << ": det " << b.z << " want " << c[i].det << ", blend " << b.w << " want " << c[i].blend << ", bound "
+                         << l_bound[i]);
+        const double got[6] = {a.x, a.y, a.z, a.w, b.x, b.y};
+        const double want[6] = {c[i].l[0][0], c[i].l[1][1], c[i].l[2][2], c[i].l[0][1], c[i].l[0][2], c[i].l[1][2]};
+        for (int e6 = 0; e6 < 6; ++e6) CHECK(std::abs(got[e6] - want[e6]) <= l_bound[i]);
+        CHECK(std::abs(double(b.z) - c[i].det) <= d_det);
+        CHECK(std::abs(double(b.w) - c[i].blend) <= d_s + kU);
+        none += c[i].blend == 0.0;
+        between += c[i].blend > 0.0 && c[i].blend < 1.0;
+        full += c[i].blend == 1.0;
+    }
+    INFO("blend 0: " << none << ", between: " << between << ", 1: " << full);
+    CHECK(full > int(n) / 4);
+    CHECK(between + none > 0);
+
+    // Each pass's pressure accelerations: L_i a_i against the reference's L_i a_i of the GPU's κ, bound
+    // ‖L_i‖_F times (D3)'s bound, plus δL_i |a_i| and the product's rounding.
+    const JacobiUpdate iterate{xs, xb, psi, p, set, f, m, dt};
+    // (D3)'s bound, Σ_j m(κ_i + κ_j)|∇W| + Σ_b ψ_b(κ_i + κ_b)|∇W| with κ at most its largest, κ_b's included.
+    auto corrected_bound = [&](const std::vector<float>& kappa, const std::vector<double>& kappa_b, const std::vector<dvec3>& a) {
+        std::vector<double> e = iterate.accel_bound(kappa);
+        double kmax = 0.0;
+        for (float q : kappa) kmax = std::max(kmax, double(q));
+        for (double q : kappa_b) kmax = std::max(kmax, q);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!kappa_b.empty()) e[i] = (double(m.terms[i]) + kC) * kU * 2.0 * kmax * (m.fluid[i] + m.wall[i]);
+            e[i] = l_norm[i] * e[i] + l_bound[i] * glm::length(a[i]) + kC * kU * l_norm[i] * glm::length(a[i]);
+        }
+        return e;
+    };
+    auto as_double = [](const std::vector<float>& q) { return std::vector<double>(q.begin(), q.end()); };
+    // (D3), with the rows' kappa_b (D9) when they are on.
+    auto accelerations = [&](const std::vector<double>& kappa, const std::vector<double>& kappa_b) {
+        return rows ? df::pressure_accelerations(xs, kappa, xb, psi, kappa_b, p) : df::pressure_accelerations(xs, kappa, xb, psi, p, set);
+    };
+    // How often the correction moved an acceleration by more than the bound it is checked to.
+    int moved = 0;
+    auto count_moved = [&](const std::vector<dvec3>& raw, const std::vector<dvec3>& want, const std::vector<double>& e) {
+        for (std::size_t i = 0; i < n; ++i) moved += glm::length(want[i] - raw[i]) > e[i];
+    };
+    // compute_density.comp: the divergence solve's start, from κ_v^0 = w κ_v (the rows' κ_v,b start at 0).
+    std::vector<double> kv0(n);
+    for (std::size_t i = 0; i < n; ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y);
+    const std::vector<dvec3> a_v0 = df::pressure_accelerations(xs, kv0, xb, psi, p, set);
+    const std::vector<double> e_v0 = corrected_bound(s.kappa_v0, {}, a_v0);
+    const std::vector<dvec3> want_v0 = df::corrected(c, a_v0);
+    // finish_divergence.comp: v += dt (L a(κ_v) + a_np), with the GPU's κ_v (and κ_v,b).
+    const std::vector<dvec3> a_v = accelerations(as_double(s.kappa_v), s.kappa_b_divergence);
+    const std::vector<double> e_v = corrected_bound(s.kappa_v, s.kappa_b_divergence, a_v);
+    const std::vector<dvec3> want_v = df::corrected(c, a_v);
+    // predict_density.comp: L a(w κ) of the density solve's warm start (and the rows' κ_b).
+    const std::vector<dvec3> a_0 = accelerations(as_double(s.kappa0), s.kappa_b0);
+    const std::vector<double> e_0 = corrected_bound(s.kappa0, s.kappa_b0, a_0);
+    const std::vector<dvec3> want_0 = df::corrected(c, a_0);
+    // accelerate.comp (without the rows, whose first update the (D9) test checks): L a(κ¹) of the first
+    // iteration's κ¹, recomputed from the GPU's start (its bound carried through the accelerations:
+    // Σ_j m (δκ_i + δκ_j)|∇W_ij| + δκ_i Σ_b ψ_b |∇W_ib|).
+    std::vector<dvec3> want_1;
+    std::vector<double> e_1;
+    if (!rows) {
+        std::vector<double> k1_bound;
+        const std::vector<double> k1 = iterate(s.kappa0, s.predict, e_0, true, k1_bound);
+        const std::vector<dvec3> a_1 = accelerations(k1, {});
+        want_1 = df::corrected(c, a_1);
+        e_1 = corrected_bound(std::vector<float>(k1.begin(), k1.end()), {}, a_1);
+        for (std::size_t i = 0; i < n; ++i) {
+            double carried = 0.0;
+            for (std::size_t j = 0; j < n; ++j)
+                if (j != i) carried += p.mass * (k1_bound[i] + k1_bound[j]) * glm::length(k.gradW(xs[i] - xs[j]));
+            for (std::size_t b = 0; b < xb.size(); ++b) carried += k1_bound[i] * psi[b] * glm::length(k.gradW(xs[i] - xb[b]));
+            e_1[i] += l_norm[i] * carried;
+        }
+        count_moved(a_1, want_1, e_1);
+    }
+    // integrate_pressure.comp: v_end = v* + dt L a(κ), κ (and κ_b) the GPU's after both iterations.
+    const std::vector<dvec3> a_k = accelerations(as_double(s.kappa), s.kappa_b);
+    const std::vector<double> e_k = corrected_bound(s.kappa, s.kappa_b, a_k);
+    const std::vector<dvec3> want_k = df::corrected(c, a_k);
+    count_moved(a_v0, want_v0, e_v0);
+    count_moved(a_v, want_v, e_v);
+    count_moved(a_0, want_0, e_0);
+    count_moved(a_k, want_k, e_k);
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        INFO("particle " << i << " at " << xs[i].x << " " << xs[i].y << " " << xs[i].z);
+        CHECK(vec_error(s.kappa_v0_accel[i], want_v0[i]) <= e_v0[i]);
+        const dvec3 v_div = d3(s.v[i]) + dt * (want_v[i] + d3(s.accel[i]));
+        CHECK(vec_error(s.v_after_divergence[i], v_div) <= dt * e_v[i] + 4.0 * kU * (glm::length(v_div) + dt * glm::length(want_v[i])));
+        CHECK(vec_error(s.predict[i], want_0[i]) <= e_0[i]);
+        if (!rows) CHECK(vec_error(s.last_accel[i], want_1[i]) <= e_1[i]);
+        const dvec3 v_end = d3(s.v_after_divergence[i]) + dt * want_k[i], x_end = xs[i] + dt * v_end;
+        if (x_end.x < 0.0 || x_end.y < 0.0 || x_end.z < 0.0) continue;   // the last-resort projection's
+        ++checked;
+        CHECK(vec_error(s.v_end[i], v_end) <= dt * e_k[i] + 4.0 * kU * (glm::length(v_end) + dt * glm::length(want_k[i])));
+    }
+    CHECK(checked > n / 2);
+    // The correction is not the identity here: it moves accelerations by more than the bounds they are
+    // checked to, so a pass that left L_i out would fail above.
+    INFO("accelerations the correction moved beyond their bound: " << moved);
+    CHECK(moved > int(n));
     ranryu::test::require_no_gl_errors();
 }
 

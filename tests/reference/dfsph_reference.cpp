@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shared/bindings.h"
+
 namespace ranryu::reference::dfsph {
 
 using glm::dvec3;
@@ -48,6 +50,32 @@ std::vector<dvec3> pressure_accelerations(const std::vector<dvec3>& x, const std
             a[i] -= s.boundary_factor * kappa[i] * psi[b] * kernel.gradW(x[i] - boundary[b]);
     }
     return a;
+}
+
+std::vector<GradientCorrection> gradient_corrections(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary,
+                                                     const std::vector<double>& psi, const std::vector<double>& density,
+                                                     const Params& params) {
+    const CubicKernel kernel{params.h};
+    constexpr double none = RANRYU_CORRECTION_NONE, full = RANRYU_CORRECTION_FULL;   // as the density pass
+    std::vector<GradientCorrection> out(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+        glm::dmat3 m(0.0);
+        for (size_t j = 0; j < x.size(); ++j) m += params.mass * glm::outerProduct(kernel.gradW(x[i] - x[j]), x[j] - x[i]);
+        for (size_t b = 0; b < boundary.size(); ++b)
+            m += psi[b] * glm::outerProduct(kernel.gradW(x[i] - boundary[b]), boundary[b] - x[i]);
+        GradientCorrection& c = out[i];
+        c.m = m / density[i];
+        c.det = glm::determinant(c.m);
+        c.blend = std::clamp((c.det - none) / (full - none), 0.0, 1.0);
+        c.l = c.blend > 0.0 ? c.blend * glm::inverse(c.m) + (1.0 - c.blend) * glm::dmat3(1.0) : glm::dmat3(1.0);
+    }
+    return out;
+}
+
+std::vector<dvec3> corrected(const std::vector<GradientCorrection>& c, const std::vector<dvec3>& a) {
+    std::vector<dvec3> out(a.size());
+    for (size_t i = 0; i < a.size(); ++i) out[i] = c[i].l * a[i];
+    return out;
 }
 
 std::vector<double> density_rates(const std::vector<dvec3>& x, const std::vector<dvec3>& v,

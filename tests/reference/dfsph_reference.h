@@ -50,6 +50,21 @@ std::vector<glm::dvec3> pressure_accelerations(const std::vector<glm::dvec3>& x,
                                                const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,
                                                const Params& params, const Settings& s);
 
+// (D11), the kernel-gradient correction: M_i = (1/ρ_i)[Σ_j m (x_j − x_i) ⊗ ∇W_ij + Σ_b ψ_b (x_b − x_i) ⊗ ∇W_ib]
+// (ρ_i the summation density of (2)), which is I for every linear field's exact gradient, and
+// L_i = s_i M_i⁻¹ + (1 − s_i) I, s_i = clamp((det M_i − 0.4)/(0.7 − 0.4), 0, 1) (RANRYU_CORRECTION_NONE
+// and _FULL of shared/bindings.h). The corrected pressure
+// acceleration is L_i a_i, a_i of (D3).
+struct GradientCorrection {
+    glm::dmat3 m{1.0}, l{1.0};
+    double det = 1.0, blend = 0.0;
+};
+std::vector<GradientCorrection> gradient_corrections(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary,
+                                                     const std::vector<double>& psi, const std::vector<double>& density,
+                                                     const Params& params);
+// L_i a_i for each particle.
+std::vector<glm::dvec3> corrected(const std::vector<GradientCorrection>& c, const std::vector<glm::dvec3>& a);
+
 // (D1): Dρ_i/Dt = Σ_j m(v_i − v_j)·∇W_ij + γ·Σ_b ψ_b v_i·∇W_ib, the boundary seen as a mirror (γ = 2:
 // the image of v_i's normal part approaches as fast as i does) or at rest (γ = 1).
 std::vector<double> density_rates(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,

@@ -13,6 +13,7 @@ namespace ranryu::sim {
 namespace {
 
 constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
+constexpr std::size_t kCorrectionBytes = 2 * sizeof(glm::vec4);   // (D11)'s L_i, glsl/sim/dfsph/dfsph.glsl
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
 constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
@@ -51,13 +52,13 @@ std::vector<float> initial_boundary_kappa(const scene::Scene& scene, const std::
     return kappa;
 }
 
-std::string defines(const Fluid& fluid, bool divergence, bool rows) {
+std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correction) {
     return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "") +
-           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "");
+           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
 
 shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows) {
-    return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true)) : shader::Program{};
+    return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true, false)) : shader::Program{};
 }
 
 }  // namespace
@@ -85,12 +86,13 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       wall_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.wall") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
-      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_))),
-      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_))),
-      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_))),
-      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_))),
-      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_))),
+      correction_(scene.sph.gradient_correction),
+      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_, correction_))),
+      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false))),
+      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
+      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
+      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
@@ -146,7 +148,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         start.insert(start.end(), kb.begin(), kb.end());
     }
     kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
-    pressure_accel_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+    // (D11)'s L_i after the accelerations, two vec4 a particle, when on (glsl/sim/dfsph/dfsph.glsl).
+    pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
     // (D10)'s previous iterates; one float, bound but never read, when it is off.
     kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
@@ -164,10 +167,11 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev) {
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
-                             (chebyshev ? n : 1) * sizeof(float) + Fluid::carried_bytes(count, kWarmWords);
+                             (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
+                             Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_; rows_state_ and its marks
     return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +

@@ -14,6 +14,9 @@
 //     "dfsph.pressure.solve"         (D6) iterations, likewise
 //     "dfsph.integrate"              v += dt a^p(kappa), x += dt v, docs/SPH.md (8), the guard
 //
+// With sph.gradient_correction the density pass also computes each particle's kernel-gradient
+// correction L_i, and every pressure acceleration is L_i times (D3)'s (docs/DFSPH.md (D11)).
+//
 // With the boundary rows of (D9) (sph.boundary_rows), the wall's own density of each boundary particle
 // is computed when the boundary is built ("dfsph.boundary.wall": at the first step, and after the
 // paddle moves), the density pass's walk also lists the boundary particles near the fluid as the
@@ -60,9 +63,9 @@ class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
     // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
-    // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`), its carried warm
-    // start included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev);
+    // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
+    // `correction`), its carried warm start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -85,7 +88,9 @@ public:
     // float: the solve's current kappa_i, count() of them; then, with the boundary rows of (D9),
     // (kappa_b, kappa_v,b) per boundary particle, kept from step to step.
     const gl::Buffer& kappa() const { return kappa_; }
-    const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }   // vec4: xyz a^p, w the source s_i
+    // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
+    // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
+    const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }
     const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
     // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
     // rebuild_grid() moves them with the particles).
@@ -110,7 +115,7 @@ private:
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
         prepare_pass_, wall_pass_;
-    bool divergence_, rows_;
+    bool divergence_, rows_, correction_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
     gpu::DfsphParams params_{};

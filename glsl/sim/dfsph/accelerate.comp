@@ -1,7 +1,8 @@
 #version 430
 // A Jacobi iteration's first half (docs/DFSPH.md (D3), (D6)): the pressure accelerations of the kappa
 // the last residual pass left,
-//     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − Σ_b psi_b (kappa_i + kappa_b) gradW_ib   (kappa_b: (D9)).
+//     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − Σ_b psi_b (kappa_i + kappa_b) gradW_ib   (kappa_b: (D9)),
+// times L_i with the gradient correction (D11).
 // Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
 #include "dfsph.glsl"
 
@@ -25,5 +26,5 @@ void main() {
     kappa_i_ = kappa[i];
     a_ = vec3(0.0);
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
-    pressure_accel[i].xyz = a_;
+    pressure_accel[i].xyz = CORRECTED(i, a_);   // (D11)
 }

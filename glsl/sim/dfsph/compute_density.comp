@@ -11,6 +11,9 @@
 // step's solves (docs/DFSPH.md (D9)): listed once in BoundaryList (its mark after the BoundaryRowsState
 // takes the step's epoch; the first to mark it appends it), with kFreshRow where it was not a row the
 // step before; size_boundary_rows.comp then closes the list.
+// With RANRYU_GRADIENT_CORRECTION, the step's kernel-gradient correction L_i of (D11) into
+// PressureAccel's tail, from M_i = (1/rho_i)[Σ_j m (x_j − x_i) ⊗ gradW_ij + Σ_b psi_b (x_b − x_i) ⊗ gradW_ib]
+// of the same walk; the divergence solve's first pressure accelerations already carry it.
 // Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
@@ -22,7 +25,9 @@ layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
 #ifdef RANRYU_DIVERGENCE_SOLVE
 layout(std430) readonly buffer Warm { vec2 warm[]; };
 layout(std430) writeonly buffer Kappa { float kappa[]; };
-layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };
+#endif
+#if defined(RANRYU_DIVERGENCE_SOLVE) || defined(RANRYU_GRADIENT_CORRECTION)
+layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };
 #endif
 
 #ifdef RANRYU_BOUNDARY_ROWS
@@ -35,6 +40,31 @@ uint epoch_;
 
 vec3 xi_, vi_, grad_fluid_, grad_wall_, viscous_, viscous_wall_, pressure_;
 float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_, spread_;
+vec3 moment_diagonal_, moment_off_;   // (D11): m_k (x_k − x_i) ⊗ gradW_ik summed, (xx, yy, zz), (xy, xz, yz)
+
+// (D11): (x_k − x_i) ⊗ gradW_ik = −d ⊗ g for d = x_i − x_k, g = gradW_ik (symmetric: g ∥ d), weighted w.
+void add_moment(float w, vec3 d, vec3 g) {
+#ifdef RANRYU_GRADIENT_CORRECTION
+    moment_diagonal_ -= w * d * g;
+    moment_off_ -= w * vec3(d.x * g.y, d.x * g.z, d.y * g.z);
+#endif
+}
+
+// (D11): L_i from M_i, the moments over rho_i; I where det M_i <= RANRYU_CORRECTION_NONE (an edge or
+// corner of the fluid, a particle alone: its inverse large and meaningless), M_i^-1 from
+// RANRYU_CORRECTION_FULL (shared/bindings.h), linear between.
+void store_correction(uint i, float rho) {
+#ifdef RANRYU_GRADIENT_CORRECTION
+    vec3 a = moment_diagonal_ / rho, b = moment_off_ / rho;
+    mat3 m = mat3(a.x, b.x, b.y, b.x, a.y, b.z, b.y, b.z, a.z);
+    float det = determinant(m);
+    const float none = float(RANRYU_CORRECTION_NONE), full = float(RANRYU_CORRECTION_FULL);
+    float s = clamp((det - none) / (full - none), 0.0, 1.0);
+    mat3 l = s > 0.0 ? s * inverse(m) + (1.0 - s) * mat3(1.0) : mat3(1.0);
+    CORRECTION(i, 0u) = vec4(l[0][0], l[1][1], l[2][2], l[0][1]);
+    CORRECTION(i, 1u) = vec4(l[0][2], l[1][2], det, s);
+#endif
+}
 
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
@@ -46,6 +76,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
     spread_ += sph.mass * length(g);
     rate_ += sph.mass * dot(vi_ - vj, g);
     viscous_ += (sph.mass / sph.rest_density) * dot(vi_ - vj, d) / (r2 + 0.01 * sph.h * sph.h) * g;
+    add_moment(sph.mass, d, g);
 #ifdef RANRYU_DIVERGENCE_SOLVE
     pressure_ -= sph.mass * (kappa_i_ + dfsph.warm_start_divergence * warm[j].y) * g;
 #endif
@@ -59,6 +90,7 @@ void visit_boundary(uint b, vec3 d, float r2) {
     rate_ += psi * dot(vi_, g);
     viscous_wall_ += (psi / sph.rest_density) * dot(vi_, d) / (r2 + 0.01 * sph.h * sph.h) * g;
     spread_ += sph.mass * length(g);
+    add_moment(psi, d, g);
 #ifdef RANRYU_DIVERGENCE_SOLVE
     pressure_ -= kappa_i_ * psi * g;   // (D9): the boundary rows' divergence solve starts from kappa_v,b = 0
 #endif
@@ -77,6 +109,7 @@ void main() {
         vi_ = velocity[i].xyz;
         grad_fluid_ = grad_wall_ = viscous_ = viscous_wall_ = pressure_ = vec3(0.0);
         fluid_sum_ = wall_sum_ = squares_ = rate_ = spread_ = 0.0;
+        moment_diagonal_ = moment_off_ = vec3(0.0);
         kappa_i_ = 0.0;
 #ifdef RANRYU_BOUNDARY_ROWS
         epoch_ = rows.epoch;
@@ -91,12 +124,13 @@ void main() {
         vec3 sum = grad_fluid_ + grad_wall_;
         float diagonal = dot(sum, sum) + squares_;   // (D2)
         density[i] = vec4(rho, 0.0, diagonal > 0.0 ? 1.0 / diagonal : 0.0, uintBitsToFloat(flags));
+        store_correction(i, rho);
         vec3 a = sph.gravity.xyz + kViscosityFactor * (sph.viscosity * viscous_ + dfsph.boundary_viscosity * viscous_wall_);
         accel[i] = vec4(a, length(sum) + spread_);   // w: u_i of (D9)
 #ifdef RANRYU_DIVERGENCE_SOLVE
         kappa[i] = kappa_i_;
         // (D5): s_i (a deficient particle: rho0, so no correction); a positive w drops the warm start.
-        pressure_accel[i] = vec4(pressure_, (flags & kDeficient) != 0u ? sph.rest_density : -step.dt * rate_);
+        pressure_accel[i] = vec4(CORRECTED(i, pressure_), (flags & kDeficient) != 0u ? sph.rest_density : -step.dt * rate_);
 #endif
         ratio = rho / sph.rest_density;
         magnitude = length(a);

@@ -4,7 +4,8 @@
 //     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
 //     KappaPrevious   float: the kappa_i the density solve's previous iteration started from (D10)
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
-//                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start
+//                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start; then,
+//                     with RANRYU_GRADIENT_CORRECTION, two vec4 per particle: L_i of (D11)
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
 //                     density solve, kappa_v of the last divergence solve), the warm starts of (D6)
 //     Solve           SolveState of the solve under way (shared/bindings.h); the Dfsph opens it (a copy
@@ -54,3 +55,19 @@ float warm_start_drop() { return 0.01 * sph.rest_density; }
 // A listed row's entry in BoundaryList: the boundary particle's index, and this bit when it was not a
 // row the step before (its kept kappa_b is stale, and its solve starts from none).
 const uint kFreshRow = 0x80000000u;
+
+// (D11), with RANRYU_GRADIENT_CORRECTION: the kernel-gradient correction L_i, symmetric, written by the
+// density pass after the particles' accelerations in PressureAccel (a compute shader may have 16
+// storage blocks on llvmpipe, and the density pass has them all): PressureAccel[n + 2i] = (L_xx, L_yy, L_zz, L_xy),
+// PressureAccel[n + 2i + 1] = (L_xz, L_yz, det M_i, its blend s_i), n = sph.particle_count. Every pass
+// that ends a pressure acceleration (D3) applies it once, a^p_i ← L_i a^p_i: L_i is particle i's own,
+// so it multiplies the whole sum, fluid and boundary terms alike. CORRECTED reads the pass's PressureAccel.
+vec3 corrected_by(vec4 p, vec4 q, vec3 a) {
+    return vec3(p.x * a.x + p.w * a.y + q.x * a.z, p.w * a.x + p.y * a.y + q.y * a.z, q.x * a.x + q.y * a.y + p.z * a.z);
+}
+#ifdef RANRYU_GRADIENT_CORRECTION
+#define CORRECTION(i, k) pressure_accel[sph.particle_count + 2u * (i) + (k)]
+#define CORRECTED(i, a) corrected_by(CORRECTION(i, 0u), CORRECTION(i, 1u), a)
+#else
+#define CORRECTED(i, a) (a)
+#endif

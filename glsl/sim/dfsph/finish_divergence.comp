@@ -12,6 +12,9 @@ layout(std430) buffer Velocities { vec4 velocity[]; };
 layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Accelerations { vec4 accel[]; };
 layout(std430) buffer Warm { vec2 warm[]; };
+#ifdef RANRYU_GRADIENT_CORRECTION
+layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
+#endif
 #ifdef RANRYU_DIVERGENCE_SOLVE
 layout(std430) readonly buffer Kappa { float kappa[]; };
 
@@ -32,7 +35,7 @@ void main() {
     kappa_i_ = kappa_v = kappa[i];
     a_ = vec3(0.0);
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
-    a += a_;
+    a += CORRECTED(i, a_);   // (D11)
 #endif
     velocity[i].xyz += step.dt * a;
     warm[i].y = kappa_v;

@@ -15,6 +15,9 @@ layout(std430) writeonly buffer NextVelocities { vec4 next_velocity[]; };
 layout(std430) buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer Warm { vec2 warm[]; };
+#ifdef RANRYU_GRADIENT_CORRECTION
+layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
+#endif
 
 #include "../fluid/neighbours.glsl"
 #include "../fluid/motion.glsl"
@@ -37,7 +40,7 @@ void main() {
         kappa_i_ = kappa[i];
         a_ = vec3(0.0);
         for_each_neighbour(i, x0, floatBitsToUint(d.w));
-        vec3 v = velocity[i].xyz + step.dt * a_;
+        vec3 v = velocity[i].xyz + step.dt * CORRECTED(i, a_);   // (D11)
         vec3 x = x0 + step.dt * v;
         keep_out_of_obstacles(x0, x, v);
         keep_in_tank(x0, x, v);

@@ -13,7 +13,7 @@ layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Warm { vec2 warm[]; };
 layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
-layout(std430) writeonly buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source
+layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source; (D11)'s L_i after
 
 #include "../fluid/neighbours.glsl"
 
@@ -40,5 +40,5 @@ void main() {
     a_ = vec3(0.0);
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
     kappa[i] = kappa_i_;
-    pressure_accel[i] = vec4(a_, sph.rest_density - (d.x + step.dt * rate_));
+    pressure_accel[i] = vec4(CORRECTED(i, a_), sph.rest_density - (d.x + step.dt * rate_));
 }
