@@ -356,6 +356,17 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
                 into.core_floor_error = std::abs(core - l.reference) / r.reference_scale;
             }
         }
+        // Pairs of layers (k, k + 1) both in the interior, pooled: their pressure against the reference at
+        // their particles' mean height, for k even and for k odd.
+        auto inside = [&](int k) { const double z = (k + 0.5) * dx; return z > support && z < r.height - support; };
+        for (int k = 0; k + 1 < layers; ++k) {
+            const auto a = std::size_t(k), b = a + 1;
+            if (!s.n[a] || !s.n[b] || !inside(k) || !inside(k + 1)) continue;
+            const double n = double(s.n[a] + s.n[b]);
+            const double z = (double(s.n[a]) * (k + 0.5) + double(s.n[b]) * (k + 1.5)) * dx / n;
+            const double p = (s.sum[a] + s.sum[b]) / n;
+            into.pair_error = std::max(into.pair_error, std::abs(p - rho0 * g * (r.height - z)) / r.reference_scale);
+        }
     };
     Speeds end;   // of the last frame
     int seen = 0, in_window = 0;

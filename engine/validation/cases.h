@@ -80,6 +80,10 @@ struct HydrostaticResult {
     struct Layer { double z, pressure, reference; int particles; };
     std::vector<Layer> layers;
     double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) in the interior: a kernel support from floor and surface
+    // The same over pairs of neighbouring layers pooled (both ways of pairing), two spacings thick: a
+    // pressure alternating layer to layer (a mode that puts no net force on a lattice particle) cancels
+    // there. Each pair's error is a weighted mean of its layers', so it is at most max_error.
+    double pair_error = 0.0;
     double floor_error = 0.0;   // |p - p_ref| / (rho0 g H) of the layer on the floor
     // The same as max_error over the particles more than a kernel support from the side walls too (the
     // layers' core), and the floor layer's core: what the walls' boundary term does not reach.

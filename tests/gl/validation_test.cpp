@@ -243,6 +243,10 @@ TEST_CASE("validate: the tank's average in half-second windows: each window's pr
     INFO("whole: interior " << r.max_error << ", floor layer " << r.floor_error);
     CHECK(r.max_error <= worst * (1.0 + 1e-12));
     CHECK(r.floor_error <= worst_floor * (1.0 + 1e-12));
+    // Pairs of layers pooled: each pair's error a weighted mean of its two layers' (the reference is
+    // linear in z, taken at the pair's mean height), so at most the largest layer's.
+    CHECK(r.pair_error > 0.0);
+    CHECK(r.pair_error <= r.max_error * (1.0 + 1e-12));
     // The windows are not one profile repeated: the column moves (docs/VALIDATION.md).
     CHECK(r.windows[0].max_error != r.windows[1].max_error);
     test::require_no_gl_errors();
