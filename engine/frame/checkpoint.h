@@ -5,14 +5,11 @@
 // the same scene (rebuilt from the JSON text the file holds, at its spacing and with its solver),
 // frame numbers that go on from its last frame, and every buffer and value the simulation carries from
 // frame to frame (frame::Pipeline::persist, sim/state_io.h): it goes on from exactly the state the
-// stopped run had (tests/gl/checkpoint_test.cpp runs on both the run that wrote a checkpoint and one
-// loaded from it, and compares them bit for bit). Whether its frames are an unstopped run's depends on
-// one thing more: WCSPH and DFSPH plan each frame's substeps (and DFSPH its iteration caps) from
-// records that come back frames late, and a stopped run has drained them, so a resumed run plans its
-// first frame from a later record than the unstopped run did and goes on as another, equally valid
-// run (on the H100 two unstopped runs are the same run, and a resumed DFSPH or WCSPH one parts from
-// them at its first frame: docs/perf/2026-11-26-h100-resume-vs-straight/). With PBF's fixed substeps
-// its frames are the unstopped run's (tests/cli/checkpoint_test.cpp, and the same measurement).
+// stopped run had, and its frames are an unstopped run's: WCSPH and DFSPH plan each frame's substeps
+// (and DFSPH its iteration caps) from the record of the frame sim::Fluid::plan_lag frames back, never
+// from whatever newer one a stopped run drained, and the checkpoint carries those records
+// (tests/gl/checkpoint_test.cpp compares the run that wrote a checkpoint, one loaded from it and one
+// never stopped, bit for bit; tests/cli/checkpoint_test.cpp a record's frames, byte for byte).
 //
 // The file: the 8 bytes "RANRYUCP", a u32 format version (1), a u64 length and a JSON header of that
 // length, then each entry's bytes in the header's order (numbers in the machine's byte order: a

@@ -175,8 +175,9 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
             sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),
-      readback_(sizeof(gpu::StepState), 4, "StepState.readback",
-                [this](std::uint64_t, const void* bytes) { on_record(bytes); }) {
+      readback_(sizeof(gpu::StepState), record_depth, "StepState.readback",
+                [this](std::uint64_t opened, const void* bytes) { on_record(opened, bytes); }) {
+    history_opened_.fill(~std::uint64_t(0));
     std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
     scene_count_ = x.size();
     if (scene.particle_budget > x.size()) {   // the emitter's parked particles, at rest
@@ -349,13 +350,23 @@ shader::StorageSet Fluid::bind_state() {
 
 void Fluid::begin_frame(std::uint64_t frame_index) {
     readback_.poll();
-    // Enough substeps to cover the frame, and what the last seen frame left over, at the smallest
-    // stable dt of the last record (records are frames late; the 0.9 absorbs growth in between), or
-    // at the scene's estimate until one has come back.
+    const std::uint64_t n = opened_++;
+    plan_.reset();
+    if (n >= std::uint64_t(plan_lag)) {
+        const std::size_t slot = std::size_t((n - plan_lag) % plan_lag);
+        // Always there (planning_record()): a missing one would make the plan depend on timing.
+        if (history_opened_[slot] != n - plan_lag)
+            throw Error("Fluid::begin_frame: the record of frame " + std::to_string(n - plan_lag) + " has not come back by frame " +
+                        std::to_string(n) + " (one end_frame() a begin_frame())");
+        plan_ = history_[slot];
+    }
+    // Enough substeps to cover the frame, and what the planning record's frame left over, at its
+    // smallest stable dt (the 0.9 absorbs growth since), or at the scene's estimate for the first
+    // plan_lag frames.
     float need = frame_dt_, dt = dt_estimate_;
-    if (last_ && last_->frame_substeps > 0) {
-        dt = last_->frame_min_dt;
-        need += std::max(last_->frame_left, 0.0f);
+    if (plan_ && plan_->frame_substeps > 0) {
+        dt = plan_->frame_min_dt;
+        need += std::max(plan_->frame_left, 0.0f);
     }
     substeps_ = fixed_dt_ ? std::max(1, int(std::lround(frame_dt_ / *fixed_dt_)))
                           : std::clamp(int(std::ceil(need / (0.9f * std::max(dt, 1e-9f)))), 1, max_substeps_);
@@ -419,14 +430,17 @@ void Fluid::set_viscosity_and_cfl(float viscosity, float cfl) {
 }
 
 void Fluid::end_frame() {
+    if (opened_ == 0) throw Error("Fluid::end_frame: no frame was opened (begin_frame)");
     auto pass = timer_.scope(diag_pass_);
-    readback_.copy(step_, 0, 0);
+    readback_.copy(step_, 0, opened_ - 1);
 }
 
-void Fluid::on_record(const void* bytes) {
+void Fluid::on_record(std::uint64_t opened, const void* bytes) {
     gpu::StepState r;
     std::memcpy(&r, bytes, sizeof r);
     last_ = r;
+    history_[std::size_t(opened % plan_lag)] = r;
+    history_opened_[std::size_t(opened % plan_lag)] = opened;
     if (sink_) sink_(r);
     if (!instability_)
         if (auto finding = guard_.observe(r)) instability_ = finding;
@@ -447,6 +461,11 @@ void Fluid::persist(StateIo& io) {
     io.value("fluid.has_last_record", has_last);
     io.value("fluid.last_record", last);
     last_ = has_last ? std::optional<gpu::StepState>(last) : std::nullopt;
+    // The records the next plan_lag frames are planned from (the run has drained them), so that a
+    // resumed run plans its frames as the unstopped run did.
+    io.value("fluid.frames_opened", opened_);
+    io.value("fluid.planning_records", history_);
+    io.value("fluid.planning_records_opened", history_opened_);
     io.value("fluid.dt_estimate", dt_estimate_);
 }
 

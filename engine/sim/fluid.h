@@ -24,9 +24,10 @@
 //                         boundary re-sorted about the paddle, docs/SPH.md (9) (run)
 //     end_frame()         "diagnostics"        queues the record's readback
 //
-// The CPU never waits: the substeps a frame are planned from records that arrive frames late (enough
-// at the smallest stable dt seen), and the dt each step uses is chosen on the GPU. A record that
-// breaks a guard criterion is kept as instability(); the caller stops the run.
+// The CPU never waits: the substeps a frame are planned from the record of the frame plan_lag frames
+// before it (enough at the smallest stable dt it saw), and the dt each step uses is chosen on the GPU.
+// A record that breaks a guard criterion is kept as instability(); the caller stops the run.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -85,7 +86,7 @@ public:
     static std::size_t carried_bytes(std::size_t count, std::uint32_t words);
 
     // ---- the frame
-    void begin_frame(std::uint64_t frame_index);   // plans substeps_this_frame() from the records seen
+    void begin_frame(std::uint64_t frame_index);   // plans substeps_this_frame() from planning_record()
     int substeps_this_frame() const { return substeps_; }
     void end_frame();
     void choose_time_step();
@@ -168,6 +169,17 @@ public:
 
     // ---- records: the latest StepState read back (frames late), and the first instability seen
     const std::optional<gpu::StepState>& last_record() const { return last_; }
+    // What a frame is planned from (its substeps here, a solver's iteration caps): the record of the
+    // frame opened plan_lag frames before it, none for the first plan_lag frames. The readback ring
+    // holds record_depth records in flight and, to reuse a slot, waits for the record in it
+    // (back-pressure, gl/fence_ring.h), so when frame n opens the record of frame n - plan_lag has always
+    // been handed over. A plan that reads that one, and never a newer one that happened to arrive
+    // already, is the same however fast the GPU and the CPU run: a run is determined by its scene (a
+    // resumed one by its checkpoint), not by the timing of its readbacks. Newer records still feed the
+    // guard, the sink and last_record() as they arrive.
+    static constexpr int record_depth = 4;
+    static constexpr int plan_lag = record_depth + 1;
+    const std::optional<gpu::StepState>& planning_record() const { return plan_; }
     const std::optional<Instability>& instability() const { return instability_; }
     // The guard's spikes that passed (guard.h): frames past the density or speed bound, and the largest.
     const Guard& guard() const { return guard_; }
@@ -183,7 +195,8 @@ public:
     // ---- checkpoints (frame/checkpoint.h): the state a run carries from frame to frame, in the cell
     // order of the last rebuild_grid(): positions, velocities, densities, accelerations, the StepState
     // (the clock, the next step's dt), every carried array and the emitter's counter; on the CPU the
-    // substep plan's inputs (the last record seen). The boundary is the scene's and is rebuilt by the
+    // substep plan's inputs (the records of the last plan_lag frames, the frames opened) and the last
+    // record seen. The boundary is the scene's and is rebuilt by the
     // constructor; a fluid whose paddle has moved is refused (InputError). Call after the records
     // have drained; loading needs a fluid built from the same scene.
     void persist(StateIo& io);
@@ -197,7 +210,7 @@ public:
     void stop_particles();
 
 private:
-    void on_record(const void* bytes);
+    void on_record(std::uint64_t opened, const void* bytes);
     void compute_boundary(const std::vector<glm::vec4>& wall);
     void rebuild_boundary();   // raw_ into boundary_: the sort, psi_b, the near-boundary cells
 
@@ -240,6 +253,12 @@ private:
     int carried_current_ = 0;
     gl::AsyncReadback readback_;
     std::optional<gpu::StepState> last_;
+    // The records of the last plan_lag frames, each in slot (its frame's opening count) % plan_lag
+    // beside that count (~0: none), and the one this frame was planned from.
+    std::uint64_t opened_ = 0;   // frames opened: the readback's tags
+    std::array<gpu::StepState, plan_lag> history_{};
+    std::array<std::uint64_t, plan_lag> history_opened_;
+    std::optional<gpu::StepState> plan_;
     std::optional<Instability> instability_;
     std::function<void(const gpu::StepState&)> sink_;
     int substeps_ = 1;

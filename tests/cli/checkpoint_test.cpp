@@ -1,9 +1,9 @@
 // record --checkpoint / --resume (engine/frame/checkpoint.h) end to end: a record stopped by SIGTERM
 // (a batch job's time limit) leaves a checkpoint beside its frames, and the record resumed from it
 // writes the frames an uninterrupted run writes, byte for byte, into the same folder, keeping the
-// earlier frames and run.json (with PBF, whose substeps a frame are fixed: WCSPH and DFSPH plan theirs
-// from records that arrive frames late, checkpoint.h); a video of the resumed frames; and each misuse
-// gets one line and exit 2 before any work.
+// earlier frames and run.json (with PBF, whose substeps a frame are fixed, and with DFSPH, which plans
+// its substeps and iteration caps from the record of the frame plan_lag frames back: sim/fluid.h); a
+// video of the resumed frames; and each misuse gets one line and exit 2 before any work.
 #include <catch2/catch.hpp>
 
 #include <csignal>
@@ -30,7 +30,9 @@ TEST_CASE("checkpoint: a record stopped by SIGTERM resumes to the frames of an u
     TempDir tmp;
     const fs::path out = tmp / "out", straight = tmp / "straight";
     const std::vector<std::string> common = {"--size", "64x48", "--shading", "particles", "--export-particles", "ply", "--quiet"};
-    const std::vector<std::string> scene = {"--scene", scene_file("jet-at-box.json").string(), "--solver", "pbf"};
+    const std::string solver = GENERATE(as<std::string>{}, "pbf", "dfsph");
+    INFO("--solver " << solver);
+    const std::vector<std::string> scene = {"--scene", scene_file("jet-at-box.json").string(), "--solver", solver};
     auto with = [&](std::vector<std::string> args) {
         args.insert(args.end(), common.begin(), common.end());
         return args;

@@ -1,11 +1,12 @@
 // frame/checkpoint.h: a run written out after some frames and read back into a fresh pipeline goes
-// on exactly as the run that wrote it: the same positions and velocities, to the bit, frames later,
-// with every solver, with the turbulence force (whose sub-particles keep nothing between frames), and
-// for the ballistic model. Both runs have drained their records at the checkpoint, as a stopped run
-// has, so both plan their frames from the same records. A part of the state that persist() left out
-// (a warm start, the step's clock, a carried array) parts the two runs within a frame, so bit equality
-// is what shows the list complete. And the checks: an entry of another size or name, a truncated file,
-// another build's file.
+// on exactly as the run that wrote it, and as a run never stopped: the same positions and velocities,
+// to the bit, frames later, with every solver, with the turbulence force (whose sub-particles keep
+// nothing between frames), and for the ballistic model. The run that wrote the checkpoint drained its
+// records there, the unstopped one did not: each frame is planned from the record plan_lag frames back
+// (sim/fluid.h planning_record()), which the checkpoint carries. A part of the state that persist()
+// left out (a warm start, the step's clock, a carried array, a planning record) parts the runs within a
+// frame, so bit equality is what shows the list complete. And the checks: an entry of another size or
+// name, a truncated file, another build's file.
 #include "support/gl_fixture.h"
 
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include "frame/pipeline.h"
 #include "scene/scene.h"
 #include "shader/source.h"
+#include "sim/fluid.h"
 
 using namespace ranryu;
 
@@ -60,7 +62,8 @@ std::filesystem::path temp_file(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that wrote it, to the bit", "[checkpoint]") {
+TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that wrote it and as one never stopped, to the bit",
+          "[checkpoint]") {
     test::context();
     test::Random rng;
     INFO("seed " << rng.seed());
@@ -78,7 +81,9 @@ TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that
             s = scene::with_spacing(s, s.spacing * rng.uniform(1.6f, 2.2f), "test");
             s.sph.solver = c.solver;
         }
-        const std::uint64_t before = 1 + rng.below(3), after = 2 + rng.below(2);
+        // More frames after the checkpoint than the plan's lag, so that the resumed run plans frames from
+        // records of the stopped run's (which the checkpoint carries) and then from its own.
+        const std::uint64_t before = 2 + rng.below(3), after = sim::Fluid::plan_lag + 1 + rng.below(2);
         INFO(c.scene << " with " << scene::solver_name(c.solver) << " at " << s.spacing << " m: " << before << " frames, then " << after);
         const std::filesystem::path file = temp_file(std::string(c.scene) + ".bin");
 
@@ -104,6 +109,14 @@ TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that
         CHECK(same_bits(got.x, expect.x));
         CHECK(same_bits(got.v, expect.v));
         CHECK(b.simulated_time() == a.simulated_time());
+
+        // A run never stopped nor drained, as far: the same run.
+        frame::Pipeline straight = pipeline_of(s);
+        frame::run_frames(straight, before + after);
+        straight.drain();
+        const State unstopped = state_of(straight);
+        CHECK(same_bits(unstopped.x, expect.x));
+        CHECK(same_bits(unstopped.v, expect.v));
 
         // Against a control: the same scene from its start, run as far, is elsewhere (the test sees
         // the state it compares move).

@@ -215,7 +215,7 @@ void Dfsph::persist(StateIo& io) {
 }
 
 void Dfsph::begin_frame(Fluid& fluid) {
-    const auto& r = fluid.last_record();
+    const auto& r = fluid.planning_record();   // one a frame, plan_lag frames back: the caps follow no timing
     if (fixed_caps_ || !r || r->frame == seen_frame_ || r->frame_substeps == 0) return;
     seen_frame_ = r->frame;
     recent_[recent_next_] = glm::uvec2(r->iterations.z, r->iterations.w);

@@ -27,8 +27,9 @@
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
 // CPU issues a cap of iterations a solve each step (next_iteration_cap()), learnt from the records that
-// come back frames late: the scene's maximum until the first record and after any step stopped at the
-// cap, otherwise 1.5 times the most one step needed over the last records, plus two. Iterations run
+// come back frames late, one a frame (Fluid::planning_record()): the scene's maximum until the first
+// and after any step stopped at the cap, otherwise 1.5 times the most one step needed over the last
+// records, plus two. Iterations run
 // and the errors reached come back in StepState; a step that stops at its cap is counted there, and
 // profile reports it.
 #include <array>
