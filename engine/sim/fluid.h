@@ -177,7 +177,12 @@ public:
     // already, is the same however fast the GPU and the CPU run: a run is determined by its scene (a
     // resumed one by its checkpoint), not by the timing of its readbacks. Newer records still feed the
     // guard, the sink and last_record() as they arrive.
-    static constexpr int record_depth = 4;
+    // One record in flight: the CPU builds frame n while the GPU runs frame n - 1, and waits, if at
+    // all, for frame n - 2 to finish (double buffering). That is where GPU-bound runs stood before the
+    // plan was pinned (the H100's records of 2026-11-26 show frames planned from the record two back);
+    // with four in flight (a plan five frames back) the dam break at 246k took 13 % more substeps over
+    // ten seconds (H200; docs/PERFORMANCE.md "The plan pinned to one record").
+    static constexpr int record_depth = 1;
     static constexpr int plan_lag = record_depth + 1;
     const std::optional<gpu::StepState>& planning_record() const { return plan_; }
     const std::optional<Instability>& instability() const { return instability_; }

@@ -78,7 +78,8 @@ TEST_CASE("plan: each frame is planned from the record plan_lag simulated frames
     test::Random rng;
     INFO("seed " << rng.seed());
     // The two solvers whose plan reads the records (PBF's substeps are fixed), over the dam break at a
-    // coarse spacing (llvmpipe): 12 frames, one of them held, so that 6 are planned from records.
+    // coarse spacing (llvmpipe): 12 frames, one of them held, so that 11 - plan_lag are planned from
+    // records, and the one held falls before or among them.
     for (const scene::Solver solver : {scene::Solver::dfsph, scene::Solver::wcsph}) {
         scene::Scene s = scene::load("dam-break");
         s = scene::with_spacing(s, s.spacing * rng.uniform(1.8f, 2.4f), "test");
