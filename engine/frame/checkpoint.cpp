@@ -138,6 +138,7 @@ private:
 }  // namespace
 
 void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build) {
+    pipeline.drain();   // every record back: the guard has seen them all, and the plan's are saved
     if (const auto& bad = pipeline.instability())
         throw InputError(what + ": not written: the simulation went unstable at frame " + std::to_string(bad->frame));
     // The frames this pipeline ran must be known sound (a resumed one that has run none is as sound
@@ -222,7 +223,13 @@ void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, cons
     Opened o = open_file(in, file, what);
     if (pipeline.frames() != 0) throw Error("load_checkpoint: the pipeline has already run frames");
     Loader loader(in, o, what);
-    pipeline.persist(loader);
+    try {
+        pipeline.persist(loader);
+    } catch (const InputError& e) {   // a part's own check of what it read; the loader's name `what` already
+        const std::string why = e.what();
+        if (why.rfind(what, 0) == 0) throw;
+        throw InputError(what + ": " + why);
+    }
     loader.finish();
 }
 

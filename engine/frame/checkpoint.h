@@ -39,8 +39,8 @@ struct CheckpointInfo {
 };
 
 // Writes `pipeline`'s state to `file`, with `build` naming the build (the app's version and commit:
-// read_checkpoint() refuses another's). Call at the end of a run, after pipeline.drain() (it reads
-// every buffer back and waits for the GPU). Throws InputError, naming `what` ("--checkpoint FILE"),
+// read_checkpoint() refuses another's). Call at the end of a run: it drains the pipeline's records and
+// reads every buffer back (it waits for the GPU). Throws InputError, naming `what` ("--checkpoint FILE"),
 // and writes nothing when the run's last frame is not known sound (an instability, or a frame past a
 // guard bound that the next frame has not yet shown to be a spike) or the file cannot be written.
 void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, const std::string& what, const std::string& build);

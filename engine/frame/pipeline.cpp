@@ -69,8 +69,9 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
 
 Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders, const View& view)
     : scene_(scene),
-      // 6 query sets: two more than the fluid's 4-deep record readback, which bounds how far the CPU
-      // runs ahead (gl/readback.h), so a frame goes untimed (GpuTimer) only when the GPU falls further behind.
+      // 6 query sets: two more than the deepest record readback of a fluid (sim::Fluid::record_depth()),
+      // which bounds how far the CPU runs ahead (gl/readback.h), so a frame goes untimed (GpuTimer) only
+      // when the GPU falls further behind.
       timer_(6, scene.model == scene::Model::sph ? 2048 : 64 + scene.substeps()),   // grows when a frame makes more
       shading_(checked_shading(scene, view.shading)),
       camera_(render::scene_camera(scene)),

@@ -6,6 +6,7 @@
 //     Slot& s = ring.acquire(retire);   // the next slot; if still in flight, waits and retires it
 //     ... queue the GPU commands that fill s.data ...
 //     ring.submit(tag, retire);         // fences s, then retires every finished slot, oldest first
+//     ring.fence(tag);                  // fences s alone (slots retire at acquire() or drain())
 //     ring.poll(retire);                // retires finished slots without filling one
 //     ring.drain(retire);               // end of a run: waits for and retires them all
 //
@@ -49,12 +50,16 @@ public:
 
     template <class Retire>
     void submit(std::uint64_t tag, Retire&& retire) {
+        fence(tag);
+        poll(retire);
+    }
+
+    void fence(std::uint64_t tag) {
         Slot& s = slots_[next_];
         s.fence.insert();
         s.tag = tag;
         s.busy = true;
         next_ = (next_ + 1) % slots_.size();
-        poll(retire);
     }
 
     // Retires, oldest first, every slot whose fence has signalled; stops at the first in flight.

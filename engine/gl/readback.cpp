@@ -32,7 +32,8 @@ void AsyncReadback::copy(std::span<const Part> parts, std::uint64_t tag) {
         copy_buffer(*p.src, dst, p.bytes, p.offset, at);
         at += p.bytes;
     }
-    ring_.submit(tag, retire);
+    if (only_when_reused_) ring_.fence(tag);
+    else ring_.submit(tag, retire);
 }
 
 void AsyncReadback::hand_over(FenceRing<Buffer>::Slot& s) {
@@ -41,6 +42,7 @@ void AsyncReadback::hand_over(FenceRing<Buffer>::Slot& s) {
 }
 
 std::size_t AsyncReadback::poll() {
+    if (only_when_reused_) return 0;
     return ring_.poll([this](FenceRing<Buffer>::Slot& s) { hand_over(s); });
 }
 

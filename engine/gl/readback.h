@@ -34,6 +34,10 @@ public:
     std::size_t poll();
     // Waits for every queued record and hands them over. Shutdown and tests only.
     std::size_t drain();
+    // On: records are handed over only when copy() needs their slot again, or by drain(), never by
+    // poll(): the latest the ring allows, as the slowest GPU would return them. For tests of code that
+    // must not depend on when records come back (sim/fluid.h planning_record()).
+    void hand_over_only_when_reused(bool on) { only_when_reused_ = on; }
 
 private:
     void hand_over(FenceRing<Buffer>::Slot& s);
@@ -42,6 +46,7 @@ private:
     std::size_t bytes_;
     FenceRing<Buffer> ring_;
     std::vector<std::uint8_t> scratch_;
+    bool only_when_reused_ = false;
 };
 
 }  // namespace ranryu::gl

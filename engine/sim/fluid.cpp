@@ -175,9 +175,9 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
             sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
       runs_(merge_rows(scene) ? 9 : 27),
-      readback_(sizeof(gpu::StepState), record_depth, "StepState.readback",
-                [this](std::uint64_t opened, const void* bytes) { on_record(opened, bytes); }) {
-    history_opened_.fill(~std::uint64_t(0));
+      readback_(sizeof(gpu::StepState), record_depth(scene), "StepState.readback",
+                [this](std::uint64_t opened, const void* bytes) { on_record(opened, bytes); }),
+      plan_lag_(record_depth(scene) + 1) {
     std::vector<glm::vec4> x = scene.initial_positions(), v = scene.initial_velocities();
     scene_count_ = x.size();
     if (scene.particle_budget > x.size()) {   // the emitter's parked particles, at rest
@@ -348,21 +348,32 @@ shader::StorageSet Fluid::bind_state() {
     return set;
 }
 
+int Fluid::record_depth(const scene::Scene& scene) { return scene.sph.solver == scene::Solver::pbf ? 4 : 1; }
+
+bool Fluid::has_records_of_last_frames() const {
+    for (std::uint64_t k = 1; k <= std::min<std::uint64_t>(opened_, std::uint64_t(plan_lag_)); ++k)
+        if (history_opened_[std::size_t((opened_ - k) % most_plan_lag)] != opened_ - k) return false;
+    return true;
+}
+
 void Fluid::begin_frame(std::uint64_t frame_index) {
+    if (open_) throw Error("Fluid::begin_frame: the frame before was not ended (end_frame)");
+    open_ = true;
     readback_.poll();
     const std::uint64_t n = opened_++;
     plan_.reset();
-    if (n >= std::uint64_t(plan_lag)) {
-        const std::size_t slot = std::size_t((n - plan_lag) % plan_lag);
-        // Always there (planning_record()): a missing one would make the plan depend on timing.
-        if (history_opened_[slot] != n - plan_lag)
-            throw Error("Fluid::begin_frame: the record of frame " + std::to_string(n - plan_lag) + " has not come back by frame " +
-                        std::to_string(n) + " (one end_frame() a begin_frame())");
+    if (n >= std::uint64_t(plan_lag_)) {
+        const std::uint64_t from = n - std::uint64_t(plan_lag_);
+        const std::size_t slot = std::size_t(from % most_plan_lag);
+        // Always there (planning_record()): the ring's back-pressure handed it over.
+        if (history_opened_[slot] != from)
+            throw Error("Fluid::begin_frame: the record of the fluid's frame " + std::to_string(from) + " (of those it simulated) is not back at its frame " +
+                        std::to_string(n));
         plan_ = history_[slot];
     }
     // Enough substeps to cover the frame, and what the planning record's frame left over, at its
     // smallest stable dt (the 0.9 absorbs growth since), or at the scene's estimate for the first
-    // plan_lag frames.
+    // plan_lag() frames.
     float need = frame_dt_, dt = dt_estimate_;
     if (plan_ && plan_->frame_substeps > 0) {
         dt = plan_->frame_min_dt;
@@ -430,7 +441,8 @@ void Fluid::set_viscosity_and_cfl(float viscosity, float cfl) {
 }
 
 void Fluid::end_frame() {
-    if (opened_ == 0) throw Error("Fluid::end_frame: no frame was opened (begin_frame)");
+    if (!open_) throw Error("Fluid::end_frame: no frame is open (begin_frame)");
+    open_ = false;
     auto pass = timer_.scope(diag_pass_);
     readback_.copy(step_, 0, opened_ - 1);
 }
@@ -439,8 +451,8 @@ void Fluid::on_record(std::uint64_t opened, const void* bytes) {
     gpu::StepState r;
     std::memcpy(&r, bytes, sizeof r);
     last_ = r;
-    history_[std::size_t(opened % plan_lag)] = r;
-    history_opened_[std::size_t(opened % plan_lag)] = opened;
+    history_[std::size_t(opened % most_plan_lag)] = r;
+    history_opened_[std::size_t(opened % most_plan_lag)] = opened;
     if (sink_) sink_(r);
     if (!instability_)
         if (auto finding = guard_.observe(r)) instability_ = finding;
@@ -461,11 +473,15 @@ void Fluid::persist(StateIo& io) {
     io.value("fluid.has_last_record", has_last);
     io.value("fluid.last_record", last);
     last_ = has_last ? std::optional<gpu::StepState>(last) : std::nullopt;
-    // The records the next plan_lag frames are planned from (the run has drained them), so that a
-    // resumed run plans its frames as the unstopped run did.
+    // The records the next plan_lag() frames are planned from, so that a resumed run plans its frames
+    // as the unstopped run did: all of them back (the run has drained them), and whole in a file read.
+    if (!io.loading() && (open_ || !has_records_of_last_frames()))
+        throw Error("Fluid::persist: a frame is open or its records are not back (drain them first)");
     io.value("fluid.frames_opened", opened_);
     io.value("fluid.planning_records", history_);
     io.value("fluid.planning_records_opened", history_opened_);
+    if (io.loading() && !has_records_of_last_frames())
+        throw InputError("its planning records do not cover the frames before its last (a damaged file)");
     io.value("fluid.dt_estimate", dt_estimate_);
 }
 

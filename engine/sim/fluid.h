@@ -11,7 +11,7 @@
 //     carried arrays                 per-particle arrays that the reorder moves with the particles
 //     grid, cell ranges, boundary    the neighbour grid, and the boundary particles with their psi_b
 //     step record (StepState)        the adaptive time step, the guard's findings, the solver's
-//                                    iteration record; read back frames late, never waited for
+//                                    iteration record; read back frames late (planning_record())
 //
 // and the passes that belong to the state, not to a solver:
 //
@@ -24,9 +24,10 @@
 //                         boundary re-sorted about the paddle, docs/SPH.md (9) (run)
 //     end_frame()         "diagnostics"        queues the record's readback
 //
-// The CPU never waits: the substeps a frame are planned from the record of the frame plan_lag frames
-// before it (enough at the smallest stable dt it saw), and the dt each step uses is chosen on the GPU.
-// A record that breaks a guard criterion is kept as instability(); the caller stops the run.
+// The CPU reads nothing back in the frame: the substeps a frame are planned from the record of the
+// frame plan_lag() frames before it (enough at the smallest stable dt it saw), which the readback ring's
+// back-pressure has always returned by then, and the dt each step uses is chosen on the GPU. A record
+// that breaks a guard criterion is kept as instability(); the caller stops the run.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -88,6 +89,8 @@ public:
     // ---- the frame
     void begin_frame(std::uint64_t frame_index);   // plans substeps_this_frame() from planning_record()
     int substeps_this_frame() const { return substeps_; }
+    // Queues the frame's record. With the GPU more than record_depth() frames behind, first waits for
+    // the oldest record in flight (the ring's back-pressure): the CPU runs at most that far ahead.
     void end_frame();
     void choose_time_step();
     void rebuild_grid();   // the masks are no longer current
@@ -170,21 +173,24 @@ public:
     // ---- records: the latest StepState read back (frames late), and the first instability seen
     const std::optional<gpu::StepState>& last_record() const { return last_; }
     // What a frame is planned from (its substeps here, a solver's iteration caps): the record of the
-    // frame opened plan_lag frames before it, none for the first plan_lag frames. The readback ring
-    // holds record_depth records in flight and, to reuse a slot, waits for the record in it
-    // (back-pressure, gl/fence_ring.h), so when frame n opens the record of frame n - plan_lag has always
-    // been handed over. A plan that reads that one, and never a newer one that happened to arrive
-    // already, is the same however fast the GPU and the CPU run: a run is determined by its scene (a
-    // resumed one by its checkpoint), not by the timing of its readbacks. Newer records still feed the
-    // guard, the sink and last_record() as they arrive.
-    // One record in flight: the CPU builds frame n while the GPU runs frame n - 1, and waits, if at
-    // all, for frame n - 2 to finish (double buffering). That is where GPU-bound runs stood before the
-    // plan was pinned (the H100's records of 2026-11-26 show frames planned from the record two back);
-    // with four in flight (a plan five frames back) the dam break at 246k took 13 % more substeps over
-    // ten seconds (H200; docs/PERFORMANCE.md "The plan pinned to one record").
-    static constexpr int record_depth = 1;
-    static constexpr int plan_lag = record_depth + 1;
+    // frame opened plan_lag() = record_depth() + 1 frames before it, none for the first plan_lag()
+    // frames. The readback ring holds record_depth() records in flight and, to reuse a slot, waits for
+    // the record in it (back-pressure, gl/fence_ring.h), so when frame n opens the record of frame
+    // n - plan_lag() has always been handed over. A plan that reads that one, and never a newer one that
+    // happened to arrive already, is the same however fast the GPU and the CPU run: a run is determined
+    // by its scene (a resumed one by its checkpoint), not by the timing of its readbacks
+    // (docs/METHOD.md §0). Newer records still feed the guard, the sink and last_record() as
+    // they arrive.
+    // record_depth(): one where the records plan the steps (the CPU builds frame n while the GPU runs
+    // frame n - 1, the plan two frames old: docs/PERFORMANCE.md "The plan pinned to one record"), four
+    // where they plan nothing (a fixed step, PBF's: docs/PBF.md (P1)).
+    static constexpr int most_plan_lag = 5;
+    static int record_depth(const scene::Scene& scene);
+    int plan_lag() const { return plan_lag_; }
     const std::optional<gpu::StepState>& planning_record() const { return plan_; }
+    // Tests: records handed over only when the ring needs their slot again, the latest it allows
+    // (gl::AsyncReadback::hand_over_only_when_reused).
+    void hand_over_records_late(bool on) { readback_.hand_over_only_when_reused(on); }
     const std::optional<Instability>& instability() const { return instability_; }
     // The guard's spikes that passed (guard.h): frames past the density or speed bound, and the largest.
     const Guard& guard() const { return guard_; }
@@ -258,12 +264,20 @@ private:
     int carried_current_ = 0;
     gl::AsyncReadback readback_;
     std::optional<gpu::StepState> last_;
-    // The records of the last plan_lag frames, each in slot (its frame's opening count) % plan_lag
-    // beside that count (~0: none), and the one this frame was planned from.
+    // The records of the last most_plan_lag frames, each in slot (its frame's opening count) %
+    // most_plan_lag beside that count (~0: none), and the one this frame was planned from.
+    int plan_lag_;
     std::uint64_t opened_ = 0;   // frames opened: the readback's tags
-    std::array<gpu::StepState, plan_lag> history_{};
-    std::array<std::uint64_t, plan_lag> history_opened_;
+    bool open_ = false;          // between begin_frame() and end_frame()
+    std::array<gpu::StepState, most_plan_lag> history_{};
+    std::array<std::uint64_t, most_plan_lag> history_opened_ = unheard();
     std::optional<gpu::StepState> plan_;
+    static std::array<std::uint64_t, most_plan_lag> unheard() {
+        std::array<std::uint64_t, most_plan_lag> a;
+        a.fill(~std::uint64_t(0));
+        return a;
+    }
+    bool has_records_of_last_frames() const;   // of the last min(opened_, plan_lag_) frames
     std::optional<Instability> instability_;
     std::function<void(const gpu::StepState&)> sink_;
     int substeps_ = 1;

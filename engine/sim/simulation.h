@@ -3,11 +3,13 @@
 // the passes that act between the solver's stages (the turbulence force, turbulence/force.h, when the
 // scene turns it on). One frame:
 //
-//     begin_frame(frame)        "begin-frame"; the solver reads what has come back (iteration caps)
+//     begin_frame(frame)        "begin-frame"; the fluid and the solver plan the frame (substeps,
+//                               iteration caps) from the fluid's planning_record()
 //     step() × substeps         the solver's step, with the turbulence as its hooks
 //     end_frame()               "diagnostics": the frame's record is queued for readback
 //
-// advance() runs the three. Nothing here waits for the GPU.
+// advance() runs the three. Nothing here reads the GPU back; end_frame() waits only as the fluid's
+// readback ring's back-pressure (sim/fluid.h end_frame()).
 #include <cstdint>
 #include <memory>
 

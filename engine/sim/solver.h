@@ -39,7 +39,7 @@ class Solver {
 public:
     virtual ~Solver() = default;
     virtual scene::Solver kind() const = 0;
-    // Once a frame, after fluid.begin_frame(): reads what has come back (iteration caps).
+    // Once a frame, after fluid.begin_frame(): plans the frame from fluid.planning_record() (iteration caps).
     virtual void begin_frame(Fluid&) {}
     virtual void step(Fluid& fluid, StepHooks& hooks) = 0;
     // The solver's own state from step to step, and what it planned from the records (sim/state_io.h;

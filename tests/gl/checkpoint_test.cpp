@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "frame/checkpoint.h"
@@ -83,7 +84,7 @@ TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that
         }
         // More frames after the checkpoint than the plan's lag, so that the resumed run plans frames from
         // records of the stopped run's (which the checkpoint carries) and then from its own.
-        const std::uint64_t before = 2 + rng.below(3), after = sim::Fluid::plan_lag + 1 + rng.below(2);
+        const std::uint64_t before = 2 + rng.below(3), after = sim::Fluid::most_plan_lag + 1 + rng.below(2);
         INFO(c.scene << " with " << scene::solver_name(c.solver) << " at " << s.spacing << " m: " << before << " frames, then " << after);
         const std::filesystem::path file = temp_file(std::string(c.scene) + ".bin");
 
@@ -110,8 +111,10 @@ TEST_CASE("checkpoint: a run resumed from its checkpoint goes on as the run that
         CHECK(same_bits(got.v, expect.v));
         CHECK(b.simulated_time() == a.simulated_time());
 
-        // A run never stopped nor drained, as far: the same run.
+        // A run never stopped nor drained, as far, its records handed over as late as the readback ring
+        // allows: the same run.
         frame::Pipeline straight = pipeline_of(s);
+        if (straight.simulation()) straight.simulation()->fluid().hand_over_records_late(true);
         frame::run_frames(straight, before + after);
         straight.drain();
         const State unstopped = state_of(straight);
@@ -168,6 +171,49 @@ TEST_CASE("checkpoint: a file of another run, a damaged file, a pipeline already
         frame::Pipeline b = pipeline_of(s);
         run(b, 1);
         CHECK_THROWS(frame::load_checkpoint(b, file, "--resume F"));
+    }
+    // Planning records that do not cover the frame before the last (their tags overwritten with "none"):
+    // the run could not plan its next frame as the stopped run would have.
+    {
+        const std::filesystem::path damaged = temp_file("damaged.bin");
+        std::filesystem::copy_file(file, damaged, std::filesystem::copy_options::overwrite_existing);
+        std::fstream io(damaged, std::ios::in | std::ios::out | std::ios::binary);
+        char magic[8];
+        std::uint32_t format = 0;
+        std::uint64_t length = 0;
+        io.read(magic, 8).read(reinterpret_cast<char*>(&format), 4).read(reinterpret_cast<char*>(&length), 8);
+        std::string header(length, '\0');
+        io.read(header.data(), std::streamsize(length));
+        std::uint64_t at = 20 + length, bytes = 0;
+        const nlohmann::json parsed = nlohmann::json::parse(header);
+        for (const auto& e : parsed["entries"]) {
+            if (e["name"] == "fluid.planning_records_opened") {
+                bytes = e["bytes"].get<std::uint64_t>();
+                break;
+            }
+            at += e["bytes"].get<std::uint64_t>();
+        }
+        REQUIRE(bytes == sim::Fluid::most_plan_lag * sizeof(std::uint64_t));
+        const std::string none(bytes, '\xFF');
+        io.seekp(std::streamoff(at)).write(none.data(), std::streamsize(bytes));
+        io.close();
+        frame::Pipeline b = pipeline_of(s);
+        CHECK_THROWS_WITH(frame::load_checkpoint(b, damaged, "--resume F"),
+                          Catch::Contains("--resume F: its planning records do not cover"));
+        std::filesystem::remove(damaged);
+    }
+    // A run whose records are not all back (handed over as late as the ring allows) is saved whole:
+    // write_checkpoint() drains them first, the next frames' planning records among them.
+    {
+        frame::Pipeline b = pipeline_of(s);
+        b.simulation()->fluid().hand_over_records_late(true);
+        frame::run_frames(b, 2);
+        const std::filesystem::path early = temp_file("early.bin");
+        CHECK_NOTHROW(frame::write_checkpoint(b, early, "--checkpoint E", "build A"));
+        frame::Pipeline c = pipeline_of(s);
+        CHECK_NOTHROW(frame::load_checkpoint(c, early, "--resume E"));
+        CHECK(c.first_frame() == 2);
+        std::filesystem::remove(early);
     }
     // Another build's reader refuses it, naming both builds.
     CHECK_THROWS_WITH(frame::read_checkpoint(file, "--resume F", "build B"),

@@ -1,9 +1,9 @@
 // sim/fluid.h planning_record(): the CPU plans each frame (its substeps; DFSPH's iteration caps) from
-// the record of the frame simulated Fluid::plan_lag frames before, never from a newer one that
+// the record of the frame simulated Fluid::plan_lag() frames before, never from a newer one that
 // happened to come back already. So a run does not depend on how fast its records come back: one that
 // waits for every record at the end of each frame (the newest record always the frame just run) and
-// one that never waits are the same run, to the bit. Before 2026-11-28 the plan read the newest
-// record at hand, and `record` runs parted from `profile` runs of the same scene (docs/DFSPH.md).
+// one whose records are handed over only when the readback ring needs their slot again (the latest
+// the ring allows, as the slowest GPU would return them) are the same run, to the bit.
 #include "support/gl_fixture.h"
 
 #include <cstring>
@@ -26,20 +26,22 @@ struct Planned {
     std::uint64_t frame;                        // the pipeline's frame number
     int substeps;                               // issued this frame
     std::optional<std::uint64_t> from;          // the frame whose record planned it
-    std::optional<std::uint64_t> newest;        // the newest record at hand after the frame (waiting run)
+    std::optional<std::uint64_t> newest;        // the newest record at hand after the frame
 };
+
+enum class Records { waited_for, late };   // every frame's own at its end; only as the ring reuses slots
 
 struct Run {
     std::vector<Planned> planned;
     std::vector<glm::vec4> x, v;
 };
 
-// `frames` frames of `s`, frame `held` held (run's pause: drawn, not simulated). `wait`: every record
-// waited for and collected at the end of each frame.
-Run run(const scene::Scene& s, std::uint64_t frames, std::uint64_t held, bool wait) {
+// `frames` frames of `s`, frame `held` held (run's pause: drawn, not simulated).
+Run run(const scene::Scene& s, std::uint64_t frames, std::uint64_t held, Records records) {
     frame::View view;
     view.draw = false;
     frame::Pipeline p(s, shader::FileSource::embedded(), view);
+    if (records == Records::late) p.simulation()->fluid().hand_over_records_late(true);
     Run r;
     std::uint64_t simulated = 0;
     frame::FrameHooks hooks;
@@ -50,11 +52,11 @@ Run run(const scene::Scene& s, std::uint64_t frames, std::uint64_t held, bool wa
         const sim::Fluid& f = q.simulation()->fluid();
         Planned e{q.frames() - 1, f.substeps_this_frame(), std::nullopt, std::nullopt};
         if (f.planning_record()) e.from = f.planning_record()->frame;
-        if (wait) {
+        if (records == Records::waited_for) {
             q.drain();
             q.poll();
-            if (f.last_record()) e.newest = f.last_record()->frame;
         }
+        if (f.last_record()) e.newest = f.last_record()->frame;
         r.planned.push_back(e);
     };
     frame::run_frames(p, frames, hooks);
@@ -86,37 +88,45 @@ TEST_CASE("plan: each frame is planned from the record plan_lag simulated frames
         s.sph.solver = solver;
         const std::uint64_t frames = 12, held = 2 + rng.below(4);
         INFO(scene::solver_name(solver) << " at " << s.spacing << " m, frame " << held << " held");
-        const Run waiting = run(s, frames, held, true), free = run(s, frames, held, false);
+        const Run waiting = run(s, frames, held, Records::waited_for), late = run(s, frames, held, Records::late);
         REQUIRE(waiting.planned.size() == frames - 1);
-        REQUIRE(free.planned.size() == frames - 1);
-        constexpr std::size_t lag = sim::Fluid::plan_lag;
+        REQUIRE(late.planned.size() == frames - 1);
+        const std::size_t lag = std::size_t(sim::Fluid::record_depth(s)) + 1;
+        REQUIRE(lag >= 2);
         for (std::size_t k = 0; k < waiting.planned.size(); ++k) {
             const Planned& w = waiting.planned[k];
-            const Planned& f = free.planned[k];
+            const Planned& l = late.planned[k];
             INFO("simulated frame " << k << " (frame " << w.frame << ")");
             if (k < lag) {
                 CHECK_FALSE(w.from);
-                CHECK_FALSE(f.from);
+                CHECK_FALSE(l.from);
             } else {
-                // The record of the frame simulated plan_lag before (the held frame made none).
+                // The record of the frame simulated plan_lag() before (the held frame made none).
                 REQUIRE(w.from);
-                REQUIRE(f.from);
+                REQUIRE(l.from);
                 CHECK(*w.from == waiting.planned[k - lag].frame);
-                CHECK(*f.from == free.planned[k - lag].frame);
+                CHECK(*l.from == late.planned[k - lag].frame);
             }
-            // The waiting run had this frame's own record at hand when it planned the next: the plan
-            // did not take it.
+            // The waiting run had this frame's own record at hand when it planned the next, the late
+            // run only the one the ring's reuse handed over, record_depth() frames older: neither plan
+            // took the newest.
             REQUIRE(w.newest);
             CHECK(*w.newest == w.frame);
-            CHECK(w.substeps == f.substeps);
+            if (k + 1 < lag) {
+                CHECK_FALSE(l.newest);
+            } else {
+                REQUIRE(l.newest);
+                CHECK(*l.newest == late.planned[k + 1 - lag].frame);
+            }
+            CHECK(w.substeps == l.substeps);
         }
         // From the first record on, the plan follows the flow: the dam break's first frames need more
         // substeps than the scene's estimate planned (the test sees the records act).
         bool changed = false;
         for (std::size_t k = lag; k < waiting.planned.size(); ++k) changed |= waiting.planned[k].substeps != waiting.planned[0].substeps;
         CHECK(changed);
-        CHECK(same_bits(waiting.x, free.x));
-        CHECK(same_bits(waiting.v, free.v));
+        CHECK(same_bits(waiting.x, late.x));
+        CHECK(same_bits(waiting.v, late.v));
     }
     test::require_no_gl_errors();
 }

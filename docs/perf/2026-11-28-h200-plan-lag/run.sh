@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Is a run the same run however fast its records come back, now that each frame is planned from the
-# record five frames back (engine/sim/fluid.h planning_record())? The dam break at ~246k with DFSPH
-# and WCSPH: 60 frames of `profile` twice, 30 + a checkpoint + 30 resumed, and 60 frames of `record`
+# Is a run the same run however fast its records come back, with each frame planned from the record
+# five frames back (commit c6e48a1's engine/sim/fluid.h planning_record(); two back since)? The dam break at ~246k with DFSPH
+# and WCSPH: 60 frames of `profile`, 30 + a checkpoint + 30 resumed, and 60 frames of `record`
 # (PNG writes slow the CPU side), each frame's record compared; the straight runs also against the
 # H100's of 2026-11-26 (commit c8c3d12, which planned from the newest record at hand). Then the dam
 # break's ten seconds at 246k with DFSPH and the whole pipeline at 1920x1080, for this device's figure.

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The dam break's ten seconds at 246k with DFSPH (particle shading at 640x360, as docs/PERFORMANCE.md's
 # 10 s tables), built from dc51a34 (the plan read the newest record at hand; its sources carried in
-# .old/) and from this tree (the record five frames back), on one machine; then WCSPH's dam break at 1M
+# .old/) and from commit c6e48a1 (the record five frames back), on one machine; then WCSPH's dam break at 1M
 # to t = 1.5 s, past the moment (t = 1.28 s) where the H100's runs passed one frame over the speed bound.
+# Before the call, here: mkdir .old && git archive dc51a34 CMakeLists.txt CMakePresets.json cmake engine glsl
+# app media/scenes scripts tests | tar x -C .old (ignored in .git/info/exclude); carry .gl and .old.
 scripts/gpu/setup-and-build.sh ranryu >/dev/null 2>&1 || { echo build failed; exit 1; }
 . scripts/gpu/env.sh x
 cmake -S .old -B build/old -G Ninja -DCMAKE_BUILD_TYPE=Release -DRANRYU_WINDOW=OFF >/dev/null && cmake --build build/old -j 16 --target ranryu >/dev/null || { echo old build failed; exit 1; }
