@@ -33,6 +33,7 @@ public:
         std::memcpy(add(name, size).data(), data, size);
     }
     bool loading() const override { return false; }
+    [[noreturn]] void refuse(const std::string& why) override { throw InputError(why); }
     std::vector<std::pair<std::string, std::vector<char>>> entries;
 
 private:
@@ -110,6 +111,7 @@ public:
     }
     void bytes(const std::string& name, void* data, std::size_t size) override { read(find(name, size), data); }
     bool loading() const override { return true; }
+    [[noreturn]] void refuse(const std::string& why) override { throw InputError(what_ + ": " + why); }
     void finish() const {
         for (const auto& [name, e] : o_.entries)
             if (!e.used) throw InputError(what_ + ": its entry " + name + " belongs to nothing in this run" + kOther);
@@ -223,13 +225,7 @@ void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, cons
     Opened o = open_file(in, file, what);
     if (pipeline.frames() != 0) throw Error("load_checkpoint: the pipeline has already run frames");
     Loader loader(in, o, what);
-    try {
-        pipeline.persist(loader);
-    } catch (const InputError& e) {   // a part's own check of what it read; the loader's name `what` already
-        const std::string why = e.what();
-        if (why.rfind(what, 0) == 0) throw;
-        throw InputError(what + ": " + why);
-    }
+    pipeline.persist(loader);
     loader.finish();
 }
 

@@ -6,7 +6,7 @@
 // frame numbers that go on from its last frame, and every buffer and value the simulation carries from
 // frame to frame (frame::Pipeline::persist, sim/state_io.h): it goes on from exactly the state the
 // stopped run had, and its frames are an unstopped run's: WCSPH and DFSPH plan each frame's substeps
-// (and DFSPH its iteration caps) from the record of the frame sim::Fluid::plan_lag frames back, never
+// (and DFSPH its iteration caps) from the record of the frame sim::Fluid::plan_lag() frames back, never
 // from whatever newer one a stopped run drained, and the checkpoint carries those records
 // (tests/gl/checkpoint_test.cpp compares the run that wrote a checkpoint, one loaded from it and one
 // never stopped, bit for bit; tests/cli/checkpoint_test.cpp a record's frames, byte for byte).

@@ -459,8 +459,7 @@ void Fluid::on_record(std::uint64_t opened, const void* bytes) {
 }
 
 void Fluid::persist(StateIo& io) {
-    if (boundary_generation_ != 0)
-        throw InputError("the paddle has moved the boundary, and a run with the paddle cannot be saved");
+    if (boundary_generation_ != 0) io.refuse("the paddle has moved the boundary, and a run with the paddle cannot be saved");
     io.buffer("fluid.positions", position_[current_]);
     io.buffer("fluid.velocities", velocity_[current_]);
     io.buffer("fluid.densities", density_);
@@ -481,7 +480,7 @@ void Fluid::persist(StateIo& io) {
     io.value("fluid.planning_records", history_);
     io.value("fluid.planning_records_opened", history_opened_);
     if (io.loading() && !has_records_of_last_frames())
-        throw InputError("its planning records do not cover the frames before its last (a damaged file)");
+        io.refuse("its planning records do not cover the frames before its last (a damaged file)");
     io.value("fluid.dt_estimate", dt_estimate_);
 }
 

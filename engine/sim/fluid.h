@@ -206,10 +206,11 @@ public:
     // ---- checkpoints (frame/checkpoint.h): the state a run carries from frame to frame, in the cell
     // order of the last rebuild_grid(): positions, velocities, densities, accelerations, the StepState
     // (the clock, the next step's dt), every carried array and the emitter's counter; on the CPU the
-    // substep plan's inputs (the records of the last plan_lag frames, the frames opened) and the last
-    // record seen. The boundary is the scene's and is rebuilt by the
-    // constructor; a fluid whose paddle has moved is refused (InputError). Call after the records
-    // have drained; loading needs a fluid built from the same scene.
+    // substep plan's inputs (the records of the last plan_lag() frames, the frames opened) and the last
+    // record seen. The boundary is the scene's and is rebuilt by the constructor. Refused
+    // (StateIo::refuse): saving a fluid whose paddle has moved, loading records that do not cover the
+    // frames before the last. Saving with a frame open or records not back is a caller's error (Error;
+    // write_checkpoint() drains first). Loading needs a fluid built from the same scene.
     void persist(StateIo& io);
 
     // ---- tests

@@ -24,6 +24,9 @@ public:
     virtual void bytes(const std::string& name, void* data, std::size_t size) = 0;
     // Whether this reads a checkpoint back (a part may note that it was resumed).
     virtual bool loading() const = 0;
+    // A part refuses what it was given, `why` its reason: throws InputError, naming the checkpoint
+    // when loading (saving, write_checkpoint() names it).
+    [[noreturn]] virtual void refuse(const std::string& why) = 0;
     template <class T>
     void value(const std::string& name, T& v) {
         static_assert(std::is_trivially_copyable_v<T>, "a CPU value is saved as its bytes");

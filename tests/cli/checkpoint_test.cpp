@@ -2,7 +2,7 @@
 // (a batch job's time limit) leaves a checkpoint beside its frames, and the record resumed from it
 // writes the frames an uninterrupted run writes, byte for byte, into the same folder, keeping the
 // earlier frames and run.json (with PBF, whose substeps a frame are fixed, and with DFSPH, which plans
-// its substeps and iteration caps from the record of the frame plan_lag frames back: sim/fluid.h); a
+// its substeps and iteration caps from the record of the frame plan_lag() frames back: sim/fluid.h); a
 // video of the resumed frames; and each misuse gets one line and exit 2 before any work.
 #include <catch2/catch.hpp>
 

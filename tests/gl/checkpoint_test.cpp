@@ -2,7 +2,7 @@
 // on exactly as the run that wrote it, and as a run never stopped: the same positions and velocities,
 // to the bit, frames later, with every solver, with the turbulence force (whose sub-particles keep
 // nothing between frames), and for the ballistic model. The run that wrote the checkpoint drained its
-// records there, the unstopped one did not: each frame is planned from the record plan_lag frames back
+// records there, the unstopped one did not: each frame is planned from the record plan_lag() frames back
 // (sim/fluid.h planning_record()), which the checkpoint carries. A part of the state that persist()
 // left out (a warm start, the step's clock, a carried array, a planning record) parts the runs within a
 // frame, so bit equality is what shows the list complete. And the checks: an entry of another size or

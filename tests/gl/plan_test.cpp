@@ -130,3 +130,24 @@ TEST_CASE("plan: each frame is planned from the record plan_lag simulated frames
     }
     test::require_no_gl_errors();
 }
+
+TEST_CASE("plan: a frame opened twice, or ended unopened, is refused", "[plan]") {
+    test::context();
+    scene::Scene s = scene::load("dam-break");
+    s = scene::with_spacing(s, s.spacing * 2.0f, "test");
+    s.sph.solver = scene::Solver::dfsph;
+    frame::View view;
+    view.draw = false;
+    frame::Pipeline p(s, shader::FileSource::embedded(), view);
+    sim::Fluid& f = p.simulation()->fluid();
+    // Each frame's record is tagged with the frame it ends, and the plan counts on one a frame.
+    p.begin_frame();   // the timers' frame, which the fluid's passes are timed in
+    CHECK_THROWS_WITH(f.end_frame(), Catch::Contains("no frame is open"));
+    f.begin_frame(0);
+    CHECK_THROWS_WITH(f.begin_frame(0), Catch::Contains("the frame before was not ended"));
+    CHECK_NOTHROW(f.end_frame());
+    CHECK_THROWS_WITH(f.end_frame(), Catch::Contains("no frame is open"));
+    p.end_frame();
+    p.drain();
+    test::require_no_gl_errors();
+}

@@ -210,14 +210,13 @@ void Dfsph::persist(StateIo& io) {
     io.value("dfsph.params", params_);
     io.value("dfsph.recent", recent_);
     io.value("dfsph.recent_next", recent_next_);
-    io.value("dfsph.seen_frame", seen_frame_);
     upload_params();
 }
 
 void Dfsph::begin_frame(Fluid& fluid) {
-    const auto& r = fluid.planning_record();   // one a frame, plan_lag frames back: the caps follow no timing
-    if (fixed_caps_ || !r || r->frame == seen_frame_ || r->frame_substeps == 0) return;
-    seen_frame_ = r->frame;
+    // A new record each frame, plan_lag() frames back: the caps follow no timing.
+    const auto& r = fluid.planning_record();
+    if (fixed_caps_ || !r || r->frame_substeps == 0) return;
     recent_[recent_next_] = glm::uvec2(r->iterations.z, r->iterations.w);
     recent_next_ = (recent_next_ + 1) % recent_.size();
     glm::uvec2 needed(0u);

@@ -122,7 +122,6 @@ private:
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
-    std::uint64_t seen_frame_ = ~std::uint64_t(0);
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
