@@ -238,8 +238,11 @@ int record(const Options& o) {
     print_device(ctx->info());
     SimulationLog log(pipeline, 0, o.records);
     if (resumed) log.resume_at(first, resumed->time);
-    // SPH frames are written only once the guard's record of them has arrived and is sound.
-    const bool gated = scene.model == scene::Model::sph;
+    // A frame is written only once it is known sound (Pipeline::poll): an SPH frame once the guard's
+    // record of it has arrived and is sound, every frame once it has ended without a GPU fault. A
+    // capture can reach its writer before its frame ends (its readback may finish at once), so the
+    // ballistic model is gated too, by the frames that ended.
+    const bool gated = true;
     std::unique_ptr<record::Recorder> recorder;     // PNGs and the video (null with --no-png and no --video)
     std::unique_ptr<record::MeshExporter> meshes;   // --export-mesh: frame_NNNNN.ply, gated the same way
     std::unique_ptr<record::ParticleExporter> particles;   // --export-particles: particles_NNNNN.EXT, likewise

@@ -15,7 +15,8 @@ using Catch::Matchers::Contains;
 
 TEST_CASE("fault: a GL error in a pass stops record with exit 1 naming the pass, and the frames before it are intact",
           "[cli][fault]") {
-    // Ballistic frames are written as they come; SPH frames wait for their guard's records.
+    // Every frame waits for its frame's end before it is written (its readback can finish before the
+    // fault ends the frame), SPH frames for their guard's records too.
     const std::string scene = GENERATE(as<std::string>(), "small.json", "sph");
     INFO(scene);
     TempDir tmp;
