@@ -453,7 +453,6 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.density_limit = float(p.number("density_limit"));
         h.speed_limit = float(p.number("speed_limit"));
         h.artificial_viscosity = float(p.number("artificial_viscosity"));
-        h.pair_slots = p.integer("pair_slots");
         {
             Reader b = p.object("pbf");
             PbfSettings& q = h.pbf;

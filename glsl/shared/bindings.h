@@ -317,12 +317,6 @@ RANRYU_STRUCT_END(SurfaceGrid, 80)
 #define RANRYU_CORRECTION_NONE 0.4
 #define RANRYU_CORRECTION_FULL 0.7
 
-// DFSPH's pair list (docs/DFSPH.md (D12)), vec4 entries: a header per particle, (0, 0, 0, the count's
-// bits) at [i], then its k-th pair at [(k + 1) N + i], N the particle count: (gradW_ij, the bits of
-// j), with this bit set in j where it is a boundary particle's index. Written by
-// glsl/sim/dfsph/list_pairs.comp, read by glsl/sim/dfsph/pairs.glsl and by tests.
-#define RANRYU_PAIR_BOUNDARY 0x80000000u
-
 // Marching cubes' GPU-side state (std430 SSBO), written by its own passes; also the indirect
 // argument buffer: cell_dispatch at byte 0, emit_dispatch at 16, draw at 32.
 RANRYU_STRUCT(MeshState) {

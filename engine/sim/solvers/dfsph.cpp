@@ -52,14 +52,10 @@ std::vector<float> initial_boundary_kappa(const scene::Scene& scene, const std::
     return kappa;
 }
 
-std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correction, int slots = 0) {
+std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correction) {
     return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "") +
-           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "") +
-           (slots > 0 ? "#define RANRYU_PAIR_SLOTS " + std::to_string(slots) + "\n" : "");
+           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
-
-// (D12)'s list: a header and `slots` pairs a particle, a vec4 each (shared/bindings.h).
-std::size_t pair_list_bytes(std::size_t n, int slots) { return slots > 0 ? n * std::size_t(slots + 1) * sizeof(glm::vec4) : 0; }
 
 shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows) {
     return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true, false)) : shader::Program{};
@@ -88,19 +84,15 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       integrate_pass_(timer.pass("dfsph.integrate")),
       prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
       wall_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.wall") : profile::PassId{}),
-      pairs_pass_(scene.sph.pair_slots > 0 ? timer.pass("dfsph.pairs") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       correction_(scene.sph.gradient_correction),
-      slots_(scene.sph.pair_slots),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_, correction_))),
-      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_, slots_))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false, slots_))),
-      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_, slots_))),
-      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_, slots_))),
-      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_, slots_))),
-      list_pairs_(slots_ > 0 ? shader::Program::compute(shaders, "sim/dfsph/list_pairs.comp", defines(fluid, false, false, false, slots_))
-                             : shader::Program{}),
+      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false))),
+      finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
+      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
+      integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
@@ -160,7 +152,6 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
     // (D10)'s previous iterates; one float, bound but never read, when it is off.
     kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
-    if (slots_ > 0) pairs_ = gl::Buffer(pair_list_bytes(n, slots_), GL_DYNAMIC_COPY, nullptr, "dfsph.pairs");   // (D12)
     if (rows_) {
         if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
@@ -176,11 +167,11 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int pair_slots) {
-    const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_, pressure_accel_ and pairs_
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction) {
+    const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
-                             Fluid::carried_bytes(count, kWarmWords) + pair_list_bytes(n, pair_slots);
+                             Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_; rows_state_ and its marks
     return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
@@ -206,8 +197,7 @@ void Dfsph::upload_params() { params_ubo_.upload_value(params_); }
 void Dfsph::persist(StateIo& io) {
     // kappa_ holds the rows' kappa_b kept from step to step after the fluid's, and rows_state_ the
     // rows' epoch and per-boundary marks; the rest is rebuilt by a step before it is read, and saved
-    // so that nothing of a step is left out by mistake; but not (D12)'s pair list, slots + 1 vec4 a particle,
-    // which the density pass's step lists again before any pass reads it.
+    // so that nothing of a step is left out by mistake.
     io.buffer("dfsph.kappa", kappa_);
     io.buffer("dfsph.kappa_previous", kappa_previous_);
     io.buffer("dfsph.pressure_accelerations", pressure_accel_);
@@ -245,7 +235,6 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     shader::StorageSet set = fluid.bind_state();
     set.add("Kappa", kappa_).add("PressureAccel", pressure_accel_).add("KappaPrevious", kappa_previous_);
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
-    set.add("Pairs", pairs_);   // skipped when empty (no list)
     if (rows_)
         set.add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
             .add("BoundaryWall", boundary_wall_);
@@ -301,11 +290,6 @@ void Dfsph::compute_density(Fluid& fluid) {
         size_rows_.bind(state(fluid, 1)).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    }
-    if (slots_ > 0) {   // (D12): every walk until the integration reads the step's pairs
-        auto listing = timer_.scope(pairs_pass_);
-        list_pairs_.bind(state(fluid, 1)).dispatch(fluid.count());
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }
 

@@ -5,8 +5,6 @@
 //     "dfsph.density"                rho, factor (D2), flags and masks, the non-pressure accelerations
 //                                    (D7), the divergence solve's source (D5), warm start and first
 //                                    pressure accelerations
-//     "dfsph.pairs"                  with sph.pair_slots, each particle's neighbours and kernel
-//                                    gradients, which every walk below reads (D12)
 //     (hooks.after_density, hooks.add_accelerations)
 //     "dfsph.divergence.solve"       (D6) iterations: the first correct_pressure.comp direct, then
 //                                    accelerate.comp and correct_pressure.comp issued in pairs,
@@ -67,8 +65,8 @@ public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
     // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
     // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
-    // `correction`, (D12)'s list of `pair_slots`), its carried warm start included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int pair_slots);
+    // `correction`), its carried warm start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -106,8 +104,6 @@ public:
     const gl::Buffer& boundary_rows() const { return rows_state_; }
     const gl::Buffer& boundary_list() const { return boundary_list_; }
     const gl::Buffer& boundary_wall() const { return boundary_wall_; }
-    // (D12), tests: the step's pair list (vec4, layout in shared/bindings.h); empty without it.
-    const gl::Buffer& pairs() const { return pairs_; }
 
 private:
     shader::StorageSet state(Fluid& fluid, int solve) const;
@@ -119,17 +115,16 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
-        prepare_pass_, wall_pass_, pairs_pass_;
+        prepare_pass_, wall_pass_;
     bool divergence_, rows_, correction_;
-    int slots_;   // (D12): sph.pair_slots
-    shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_, list_pairs_;
+    shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
-    gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_, pairs_;
+    gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
     // (D9), per boundary particle: the step's list entry and row, and the wall's own density
     // (compute_wall_density.comp); the rows' BoundaryRowsState followed by a mark per boundary particle.
     gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_;

@@ -13,18 +13,18 @@ layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source, kept
 layout(std430) readonly buffer Solve { SolveState solve; };
 
-#include "pairs.glsl"
+#include "../fluid/neighbours.glsl"
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid_pair(uint j, vec3 g) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * g; }
-void visit_boundary_pair(uint b, vec3 g) { a_ -= (kappa_i_ + KAPPA_B(b, solve.solve)) * boundary[b].w * g; }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, solve.solve)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
     kappa_i_ = kappa[i];
     a_ = vec3(0.0);
-    for_each_pair(i, floatBitsToUint(density[i].w));
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
     pressure_accel[i].xyz = CORRECTED(i, a_);   // (D11)
 }

@@ -37,7 +37,7 @@ layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 layout(std430) coherent buffer Solve { SolveState solve; };
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1)
 
-#include "pairs.glsl"
+#include "../fluid/neighbours.glsl"
 
 #ifdef RANRYU_BOUNDARY_ROWS
 layout(std430) readonly buffer BoundaryRow { vec2 row[]; };   // (s_b, 1/D_b), prepare_boundary_rows.comp
@@ -59,8 +59,8 @@ void correct_row(uint k) {
 
 vec3 a_i_;
 float change_;
-void visit_fluid_pair(uint j, vec3 g) { change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, g); }
-void visit_boundary_pair(uint b, vec3 g) { change_ += boundary[b].w * dot(a_i_, g); }
+void visit_fluid(uint j, vec3 d, float r2) { change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, kernel_grad(d, sqrt(r2), sph.h)); }
+void visit_boundary(uint b, vec3 d, float r2) { change_ += boundary[b].w * dot(a_i_, kernel_grad(d, sqrt(r2), sph.h)); }
 
 shared float wg_error_[gl_WorkGroupSize.x];
 
@@ -102,7 +102,7 @@ void main() {
         vec4 d = density[i], own = pressure_accel[i];
         a_i_ = own.xyz;
         change_ = 0.0;
-        for_each_pair(i, floatBitsToUint(d.w));
+        for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
         float residual = dt2 * change_ - own.w;
         uint k = solve.iterations;

@@ -18,12 +18,12 @@ layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D
 #ifdef RANRYU_DIVERGENCE_SOLVE
 layout(std430) readonly buffer Kappa { float kappa[]; };
 
-#include "pairs.glsl"
+#include "../fluid/neighbours.glsl"
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid_pair(uint j, vec3 g) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * g; }
-void visit_boundary_pair(uint b, vec3 g) { a_ -= (kappa_i_ + KAPPA_B(b, 1u)) * boundary[b].w * g; }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 1u)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
 #endif
 
 void main() {
@@ -34,7 +34,7 @@ void main() {
 #ifdef RANRYU_DIVERGENCE_SOLVE
     kappa_i_ = kappa_v = kappa[i];
     a_ = vec3(0.0);
-    for_each_pair(i, floatBitsToUint(density[i].w));
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
     a += CORRECTED(i, a_);   // (D11)
 #endif
     velocity[i].xyz += step.dt * a;

@@ -19,13 +19,13 @@ layout(std430) buffer Warm { vec2 warm[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
 #endif
 
-#include "pairs.glsl"
+#include "../fluid/neighbours.glsl"
 #include "../fluid/motion.glsl"
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid_pair(uint j, vec3 g) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * g; }
-void visit_boundary_pair(uint b, vec3 g) { a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * g; }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -39,7 +39,7 @@ void main() {
         vec3 x0 = position[i].xyz;
         kappa_i_ = kappa[i];
         a_ = vec3(0.0);
-        for_each_pair(i, floatBitsToUint(d.w));
+        for_each_neighbour(i, x0, floatBitsToUint(d.w));
         vec3 v = velocity[i].xyz + step.dt * CORRECTED(i, a_);   // (D11)
         vec3 x = x0 + step.dt * v;
         keep_out_of_obstacles(x0, x, v);

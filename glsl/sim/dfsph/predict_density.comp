@@ -15,15 +15,17 @@ layout(std430) readonly buffer Warm { vec2 warm[]; };
 layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source; (D11)'s L_i after
 
-#include "pairs.glsl"
+#include "../fluid/neighbours.glsl"
 
 vec3 vi_, a_;
 float rate_, kappa_i_;
-void visit_fluid_pair(uint j, vec3 g) {
+void visit_fluid(uint j, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     rate_ += sph.mass * dot(vi_ - velocity[j].xyz, g);
     a_ -= sph.mass * (kappa_i_ + dfsph.warm_start * warm[j].x) * g;
 }
-void visit_boundary_pair(uint b, vec3 g) {
+void visit_boundary(uint b, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     rate_ += boundary[b].w * dot(vi_, g);
     a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * g;
 }
@@ -36,7 +38,7 @@ void main() {
     kappa_i_ = dfsph.warm_start * warm[i].x;
     rate_ = 0.0;
     a_ = vec3(0.0);
-    for_each_pair(i, floatBitsToUint(d.w));
+    for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
     kappa[i] = kappa_i_;
     pressure_accel[i] = vec4(CORRECTED(i, a_), sph.rest_density - (d.x + step.dt * rate_));
 }
