@@ -278,24 +278,34 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     r.spacing = scene.spacing;
     std::vector<glm::vec4> relaxed;   // the relaxed positions, empty for the lattice start
     if (relaxation.max_frames > 0) {
-        // Relaxation's contract (cases.h): each frame from rest, its speeds recorded, its velocities
-        // zeroed; the speeds come back frames late, so the frames stop a few after the one that met the bound.
+        // Relaxation's contract (cases.h): each frame from rest, its speeds and positions recorded, its
+        // velocities zeroed; the snapshots come back frames late, so the frames stop a few after the one
+        // that met the bound, and the start is that frame's.
         const auto start = std::chrono::steady_clock::now();
         frame::Pipeline settling = simulation_only(scene, shaders);
         sim::Fluid& fluid = settling.simulation()->fluid();
-        fluid.set_record_sink([&](const gpu::StepState& s) { r.relax_steps += s.frame_substeps; });
+        std::vector<std::uint64_t> steps;   // each frame's, in frame order (one record a frame)
+        fluid.set_record_sink([&](const gpu::StepState& s) { steps.push_back(s.frame_substeps); });
         if (progress) progress->expect(std::uint64_t(relaxation.max_frames));
         r.relax_rms_speeds.reserve(std::size_t(relaxation.max_frames));
-        ParticleSnapshots speeds_of(fluid, ParticleSnapshots::kVelocities, [&](const ParticleSnapshots::View& s) {
+        ParticleSnapshots snapshots(fluid, ParticleSnapshots::kPositions | ParticleSnapshots::kVelocities, [&](const ParticleSnapshots::View& s) {
+            if (r.relaxed) return;   // a frame after the one that met the bound
             const Speeds now = speeds(s.velocities);
             r.relax_rms_speeds.push_back(now.rms);
             r.relax_max_speed = now.max;
             // The first frame starts from the lattice, not from a relaxed state: it never ends it.
-            if (s.tag > 1 && now.rms <= relaxation.rms_speed) r.relaxed = true;
+            if (s.tag > 1 && now.rms <= relaxation.rms_speed) {
+                r.relaxed = true;
+                relaxed.assign(s.positions.begin(), s.positions.end());
+            }
         });
-        r.relax_frames = run_observed(settling, relaxation.max_frames, progress, speeds_of, [&] { fluid.stop_particles(); },
-                                      [&](const frame::Pipeline&) { return !r.relaxed; });
-        relaxed = fluid.positions().read<glm::vec4>(fluid.count());   // once, at rest after the last frame
+        snapshots.hand_over_late(relaxation.late_snapshots);
+        const int ran = run_observed(settling, relaxation.max_frames, progress, snapshots, [&] { fluid.stop_particles(); },
+                                     [&](const frame::Pipeline&) { return !r.relaxed; });
+        r.relax_frames = int(r.relax_rms_speeds.size());   // the frame that met the bound, or all that ran
+        if (!r.relaxed) relaxed = fluid.positions().read<glm::vec4>(fluid.count());   // once, at rest after the last frame
+        if (std::size_t(ran) != steps.size() || r.relax_frames > ran) throw Error("hydrostatic: the relaxation's records do not match its frames");
+        for (int k = 0; k < r.relax_frames; ++k) r.relax_steps += steps[std::size_t(k)];
         r.relax_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     frame::Pipeline pipeline = simulation_only(scene, shaders);

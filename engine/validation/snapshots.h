@@ -39,6 +39,9 @@ public:
     std::size_t poll();
     // Waits for every queued record and hands them over (the end of a case's run).
     std::size_t drain();
+    // Tests: records are handed over only when their slot is reused or drained, the latest the ring
+    // allows (gl::AsyncReadback::hand_over_only_when_reused), so a case's result must not depend on when.
+    void hand_over_late(bool on) { readback_.hand_over_only_when_reused(on); }
 
 private:
     static constexpr int kDepth = 3;
