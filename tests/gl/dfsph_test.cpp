@@ -80,31 +80,6 @@ struct Rig : ranryu::test::SphRig {
     std::vector<glm::vec2> warm() { return dfsph().warm_start().read<glm::vec2>(fluid.count()); }
 };
 
-// The block on a lattice of pitch `ratio`·dx at `corner`, jittered by ±`jitter`·dx, velocities in
-// ±`speed`; no pair distance within 1e-5·h of h (float and double would disagree on a neighbour).
-void block_state(ranryu::test::Random& rng, const Rig& rig, glm::vec3 corner, float ratio, float jitter, float speed,
-                 std::vector<glm::vec4>& x, std::vector<glm::vec4>& v) {
-    const float dx = rig.scene.spacing;
-    const double h = 2.0 * double(dx);
-    REQUIRE(rig.fluid.count() == 512);
-    for (int attempt = 0;; ++attempt) {
-        REQUIRE(attempt < 100);
-        x.clear();
-        for (int k = 0; k < 8; ++k)
-            for (int j = 0; j < 8; ++j)
-                for (int i = 0; i < 8; ++i) {
-                    const glm::vec3 w(rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter));
-                    x.emplace_back(corner + ((glm::vec3(float(i), float(j), float(k)) + 0.5f) * ratio + w) * dx, 0.0f);
-                }
-        bool ok = true;
-        for (std::size_t a = 0; a < x.size() && ok; ++a)
-            for (std::size_t b = a + 1; b < x.size() && ok; ++b) ok = std::abs(glm::length(d3(x[a]) - d3(x[b])) - h) >= 1e-5 * h;
-        if (ok) break;
-    }
-    v.resize(x.size());
-    for (auto& u : v) u = glm::vec4(rng.uniform(-speed, speed), rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0f);
-}
-
 // Per particle: Σ_j m|∇W_ij| over fluid neighbours j != i and Σ_b psi_b|∇W_ib| (the magnitudes the
 // bounds scale with), and the number of terms.
 struct Magnitudes {

@@ -76,34 +76,6 @@ std::vector<dvec3> d3(const std::vector<glm::vec4>& v) {
     return out;
 }
 
-// The 8x8x8 block on a lattice of pitch `ratio`·dx with its lower corner at `corner`, each particle
-// moved by up to ±`jitter`·dx per axis, with velocity components uniform in ±`speed`. A pitch below dx
-// compresses the fluid (ρ ≈ ρ0/ratio³): non-zero pressures. No pair distance lies within 1e-5·h of
-// h, where a float and a double distance could fall on either side of the kernel's support.
-void block_state(ranryu::test::Random& rng, const Rig& rig, glm::vec3 corner, float ratio, float jitter, float speed,
-                 std::vector<glm::vec4>& x, std::vector<glm::vec4>& v) {
-    const float dx = rig.scene.spacing;
-    const double h = 2.0 * double(dx);
-    REQUIRE(rig.fluid.count() == 512);
-    for (int attempt = 0;; ++attempt) {
-        REQUIRE(attempt < 100);
-        x.clear();
-        for (int k = 0; k < 8; ++k)
-            for (int j = 0; j < 8; ++j)
-                for (int i = 0; i < 8; ++i) {
-                    const glm::vec3 wobble(rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter));
-                    x.emplace_back(corner + ((glm::vec3(float(i), float(j), float(k)) + 0.5f) * ratio + wobble) * dx, 0.0f);
-                }
-        bool ok = true;
-        for (std::size_t a = 0; a < x.size() && ok; ++a)
-            for (std::size_t b = a + 1; b < x.size() && ok; ++b)
-                ok = std::abs(glm::length(d3(x[a]) - d3(x[b])) - h) >= 1e-5 * h;
-        if (ok) break;
-    }
-    v.resize(x.size());
-    for (auto& u : v) u = glm::vec4(rng.uniform(-speed, speed), rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0f);
-}
-
 // Everything the density and force passes read and wrote, in the sorted order of the substep.
 struct Fields {
     std::vector<glm::vec4> x, v, density, accel;
