@@ -49,6 +49,8 @@ void SimulationSummary::add(const gpu::StepState& r) {
     most_divergence_iterations = std::max(most_divergence_iterations, r.iterations.w);
     unconverged += r.unconverged.x;
     unconverged_divergence += r.unconverged.y;
+    issued += r.issued;
+    issued_divergence += r.issued_divergence;
     density_error += r.error.x;
     divergence_error += r.error.y;
     max_density_error = std::max(max_density_error, double(r.error.z));
@@ -61,6 +63,8 @@ SimulationSummary per_step(SimulationSummary s) {
     const double n = double(std::max<std::uint64_t>(s.steps, 1));
     s.iterations /= n;
     s.divergence_iterations /= n;
+    s.issued /= n;
+    s.issued_divergence /= n;
     s.density_error /= n;
     s.divergence_error /= n;
     return s;
@@ -130,15 +134,15 @@ std::string table(const Report& r) {
         out << line;
         if (s->solver == "dfsph") {
             std::snprintf(line, sizeof line,
-                          "  density solve: %.2f iterations/step (most %u, %llu steps stopped at the cap), mean error "
-                          "%.3f %% (most %.3f %%)\n",
-                          s->iterations, s->most_iterations, static_cast<unsigned long long>(s->unconverged),
+                          "  density solve: %.2f iterations/step (most %u, %llu steps stopped at the cap; %.1f issued), "
+                          "mean error %.3f %% (most %.3f %%)\n",
+                          s->iterations, s->most_iterations, static_cast<unsigned long long>(s->unconverged), s->issued,
                           100.0 * s->density_error, 100.0 * s->max_density_error);
             out << line;
             std::snprintf(line, sizeof line,
-                          "  divergence solve: %.2f iterations/step (most %u, %llu at the cap), mean error %.3f %%\n",
+                          "  divergence solve: %.2f iterations/step (most %u, %llu at the cap; %.1f issued), mean error %.3f %%\n",
                           s->divergence_iterations, s->most_divergence_iterations,
-                          static_cast<unsigned long long>(s->unconverged_divergence), 100.0 * s->divergence_error);
+                          static_cast<unsigned long long>(s->unconverged_divergence), s->issued_divergence, 100.0 * s->divergence_error);
             out << line;
             std::snprintf(line, sizeof line, "  the step the iterations allow (D8): least %.3f ms at a frame's end\n",
                           1000.0 * s->least_iteration_dt);
@@ -199,6 +203,8 @@ nlohmann::json to_json(const Report& r) {
                            {"iterations_per_step", s->iterations},
                            {"most_iterations", s->most_iterations},
                            {"unconverged_steps", s->unconverged},
+                           {"issued_iterations_per_step", s->issued},
+                           {"issued_divergence_iterations_per_step", s->issued_divergence},
                            {"divergence_iterations_per_step", s->divergence_iterations},
                            {"most_divergence_iterations", s->most_divergence_iterations},
                            {"unconverged_divergence_steps", s->unconverged_divergence},
@@ -225,7 +231,8 @@ std::string to_csv(const Report& r) {
 
 std::string record_csv_header() {
     return "frame,time,substeps,min_dt,max_speed,max_density,iterations,divergence_iterations,most_iterations,"
-           "most_divergence_iterations,unconverged,unconverged_divergence,error,divergence_error,max_error,nan,escaped,iteration_dt\n";
+           "most_divergence_iterations,unconverged,unconverged_divergence,error,divergence_error,max_error,nan,escaped,iteration_dt,"
+           "issued,issued_divergence\n";
 }
 
 std::string record_csv_row(const gpu::StepState& r) {
@@ -235,10 +242,11 @@ std::string record_csv_row(const gpu::StepState& r) {
         return x;
     };
     char line[512];
-    std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u,%.7g\n", r.frame, double(r.time),
+    std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u,%.7g,%u,%u\n", r.frame, double(r.time),
                   r.frame_substeps, double(r.frame_min_dt), double(f(r.frame_max_speed)), double(f(r.frame_max_density)),
                   r.iterations.x, r.iterations.y, r.iterations.z, r.iterations.w, r.unconverged.x, r.unconverged.y,
-                  double(r.error.x), double(r.error.y), double(r.error.z), r.nan_count, r.escaped_count, double(r.iteration_dt));
+                  double(r.error.x), double(r.error.y), double(r.error.z), r.nan_count, r.escaped_count, double(r.iteration_dt),
+                  r.issued, r.issued_divergence);
     return line;
 }
 

@@ -47,6 +47,9 @@ struct SimulationSummary {
     double iterations = 0.0, divergence_iterations = 0.0;
     std::uint32_t most_iterations = 0, most_divergence_iterations = 0;
     std::uint64_t unconverged = 0, unconverged_divergence = 0;   // steps that stopped at the issued cap
+    // The iterations the CPU issued (its caps, docs/DFSPH.md "The iteration cap"), per step: those past
+    // what ran dispatched no work but cost a dispatch and a barrier each.
+    double issued = 0.0, issued_divergence = 0.0;
     double density_error = 0.0, max_density_error = 0.0;         // the solve's last mean error (units of rho0): per step, most
     double divergence_error = 0.0;
     // The step the density solve's iterations allowed (docs/DFSPH.md (D8)) at the end of a frame, the

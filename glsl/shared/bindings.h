@@ -149,8 +149,9 @@ RANRYU_STRUCT(StepState) {
     float stable_dt;          // this substep's stable dt: dt before the frame's remainder is spread (s)
     float iteration_dt;       // the step the density solve's iterations allow (docs/DFSPH.md (D8)): a bound
                               // on dt kept from step to step; sph.dt_max where no solve sets it (s)
-    uint pad0;
-    uint pad1;
+    uint issued;              // DFSPH: density-solve iterations the CPU issued this frame (its caps), summed over
+                              // its steps; iterations.x is what ran of them, the rest dispatched no work
+    uint issued_divergence;   // the same for the divergence solve
     vec4 speed_position;      // xyz: where speed_index was when its speed was recorded (the end of its step, m)
     vec4 density_position;    // xyz: where density_index was when its density was computed (m)
 }

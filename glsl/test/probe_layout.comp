@@ -82,7 +82,7 @@ void main() {
     put(step.escaped_index); put(step.speed_index); put(step.density_index); put(step.front);
     put(step.frame); put(step.steps); put(step.live_count);
     put(step.iterations); put(step.unconverged); put(step.error);
-    put(step.stable_dt); put(step.iteration_dt); put(step.pad0); put(step.pad1);
+    put(step.stable_dt); put(step.iteration_dt); put(step.issued); put(step.issued_divergence);
     put(step.speed_position); put(step.density_position);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);

@@ -343,7 +343,8 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
     // The tank at rest at 0.025 m (480 particles) with DFSPH, 12 frames, none of warm-up: every frame's
     // StepState record (engine/profile/report.h record_csv_row()) is a row, and the JSON's simulation
     // summary is built from the same records: its steps are the rows' substeps, its iterations a step
-    // the rows' density iterations over them, its least_iteration_dt the least of the rows' iteration_dt
+    // the rows' density iterations over them, its issued iterations a step the rows' issued over them
+    // (each at least what ran), its least_iteration_dt the least of the rows' iteration_dt
     // (docs/DFSPH.md (D8)), within the scene's largest step of 5 ms.
     TempDir tmp;
     const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025", "--size",
@@ -360,8 +361,9 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
         REQUIRE(at != head.end());
         return std::size_t(at - head.begin());
     };
-    const std::size_t steps_at = column("substeps"), iterations_at = column("iterations"), dt_at = column("iteration_dt");
-    double steps = 0.0, iterations = 0.0, least = 1.0;
+    const std::size_t steps_at = column("substeps"), iterations_at = column("iterations"), dt_at = column("iteration_dt"),
+                      issued_at = column("issued");
+    double steps = 0.0, iterations = 0.0, issued = 0.0, least = 1.0;
     for (std::size_t k = 1; k < csv.size(); ++k) {
         REQUIRE(csv[k].size() == head.size());
         const double dt = std::stod(csv[k][dt_at]);
@@ -369,10 +371,13 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
         CHECK(dt <= 0.005 * (1.0 + 1e-6));
         steps += std::stod(csv[k][steps_at]);
         iterations += std::stod(csv[k][iterations_at]);
+        issued += std::stod(csv[k][issued_at]);
+        CHECK(std::stod(csv[k][issued_at]) >= std::stod(csv[k][iterations_at]));   // what ran of what was issued
         least = std::min(least, dt);
     }
     const nlohmann::json s = nlohmann::json::parse(read_file(tmp / "report.json"))["simulation"];
     CHECK(s["steps"].get<double>() == steps);
     CHECK(s["iterations_per_step"].get<double>() == Approx(iterations / steps).epsilon(1e-12));
+    CHECK(s["issued_iterations_per_step"].get<double>() == Approx(issued / steps).epsilon(1e-12));
     CHECK(s["least_iteration_dt"].get<double>() == Approx(least).epsilon(1e-6));
 }

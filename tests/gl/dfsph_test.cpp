@@ -749,14 +749,20 @@ TEST_CASE("dfsph: the iteration cap: the scene's most until a record, then learn
     rig.fluid.set_fixed_dt(4e-3f);
     std::vector<gpu::StepState> records;
     rig.fluid.set_record_sink([&](const gpu::StepState& r) { records.push_back(r); });
+    // Each frame's caps, set by its begin_frame(): the records' `issued` are them times the frame's steps.
+    std::vector<glm::uvec2> caps;
+    const auto frame = [&](std::uint64_t k) {
+        rig.frame(k);
+        caps.emplace_back(d.issued_iterations(), d.issued_divergence_iterations());
+    };
     std::uint64_t f = 0;
-    for (; f < 8; ++f) rig.frame(f);
+    for (; f < 8; ++f) frame(f);
     rig.finish();
     const std::size_t seen = records.size();
     REQUIRE(seen == 8u);
     const int lag = rig.fluid.plan_lag();
     REQUIRE(lag <= 8);
-    rig.frame(f++);   // its begin_frame() reads the record plan_lag() frames back
+    frame(f++);   // its begin_frame() reads the record plan_lag() frames back
     // The cap is the rule's for the most one step needed over the records the solver took in: one a
     // frame from the plan_lag()-th on, each plan_lag() frames old (records 0 to seen - plan_lag() here),
     // the last of them having no stop.
@@ -778,7 +784,7 @@ TEST_CASE("dfsph: the iteration cap: the scene's most until a record, then learn
     rig.fluid.upload_state(x, v);
     d.upload_warm_start(std::vector<glm::vec2>(x.size(), glm::vec2(0.0f)));
     const std::size_t before = records.size();
-    rig.frame(f++);
+    frame(f++);
     rig.finish();
     REQUIRE(records.size() > before);
     INFO("the compressed block's frame: most " << records.back().iterations.z << " iterations a step, "
@@ -792,12 +798,20 @@ TEST_CASE("dfsph: the iteration cap: the scene's most until a record, then learn
         REQUIRE(records[k].unconverged.x == 0u);
     }
     for (int k = 1; k < lag; ++k) {
-        rig.frame(f++);
+        frame(f++);
         CHECK(d.issued_iterations() < 30);
     }
-    rig.frame(f++);
+    frame(f++);
     CHECK(d.issued_iterations() == 60);
     rig.finish();
+    // The records count the iterations issued, each frame's caps over its steps (profile's "issued").
+    REQUIRE(records.size() == caps.size());
+    for (const gpu::StepState& r : records) {
+        INFO("frame " << r.frame << ": " << r.frame_substeps << " steps, caps " << caps[r.frame].x << " and " << caps[r.frame].y);
+        CHECK(r.issued == caps[r.frame].x * r.frame_substeps);
+        CHECK(r.issued_divergence == caps[r.frame].y * r.frame_substeps);
+        CHECK(r.iterations.x <= r.issued);
+    }
     ranryu::test::require_no_gl_errors();
 }
 

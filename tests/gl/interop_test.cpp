@@ -127,8 +127,8 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.error", {offsetof(gpu::StepState, error), GL_FLOAT_VEC4}},
         {"step.stable_dt", {offsetof(gpu::StepState, stable_dt), GL_FLOAT}},
         {"step.iteration_dt", {offsetof(gpu::StepState, iteration_dt), GL_FLOAT}},
-        {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
-        {"step.pad1", {offsetof(gpu::StepState, pad1), GL_UNSIGNED_INT}},
+        {"step.issued", {offsetof(gpu::StepState, issued), GL_UNSIGNED_INT}},
+        {"step.issued_divergence", {offsetof(gpu::StepState, issued_divergence), GL_UNSIGNED_INT}},
         {"step.speed_position", {offsetof(gpu::StepState, speed_position), GL_FLOAT_VEC4}},
         {"step.density_position", {offsetof(gpu::StepState, density_position), GL_FLOAT_VEC4}},
 
@@ -439,8 +439,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     st.error = d.v4();
     st.stable_dt = d.f();
     st.iteration_dt = d.f();
-    st.pad0 = d.u();
-    st.pad1 = d.u();
+    st.issued = d.u();
+    st.issued_divergence = d.u();
     st.speed_position = d.v4();
     st.density_position = d.v4();
 
@@ -511,7 +511,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.escaped_count); expect.put(st.escaped_index); expect.put(st.speed_index); expect.put(st.density_index);
     expect.put(st.front); expect.put(st.frame); expect.put(st.steps); expect.put(st.live_count);
     expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
-    expect.put(st.stable_dt); expect.put(st.iteration_dt); expect.put(st.pad0); expect.put(st.pad1);
+    expect.put(st.stable_dt); expect.put(st.iteration_dt); expect.put(st.issued); expect.put(st.issued_divergence);
     expect.put(st.speed_position); expect.put(st.density_position);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);

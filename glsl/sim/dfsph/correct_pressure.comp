@@ -79,6 +79,8 @@ void decide() {
         solve.dispatch.x = 0u;
         solve.correct_groups = 0u;
         step.iterations[s] += it;
+        if (s == 0u) step.issued += dfsph.issued;
+        else step.issued_divergence += dfsph.issued_divergence;
         step.iterations[s + 2u] = max(step.iterations[s + 2u], it);
         if (!converged) step.unconverged[s] += 1u;
         step.error[s] += mean;

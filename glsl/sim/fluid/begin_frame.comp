@@ -27,5 +27,7 @@ void main() {
     step.frame = frame_index;
     step.iterations = uvec4(0u);
     step.unconverged = uvec4(0u);
+    step.issued = 0u;
+    step.issued_divergence = 0u;
     step.error = vec4(0.0);
 }
