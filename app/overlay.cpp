@@ -108,7 +108,8 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     const std::optional<std::uint32_t> substeps = p.substeps_per_frame();
     const auto& record = sim ? sim->fluid().last_record() : std::nullopt;
     if (substeps && record && scene.sph.solver == scene::Solver::dfsph)
-        ImGui::Text("substeps %u a frame   solver iterations %u + %u", *substeps, record->iterations.x, record->iterations.y);
+        ImGui::Text("substeps %u a frame   solver iterations %u + %u of %u + %u issued", *substeps, record->iterations.x,
+                    record->iterations.y, record->issued, record->issued_divergence);
     else if (substeps)
         ImGui::Text("substeps %u a frame", *substeps);
     else
