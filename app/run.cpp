@@ -388,7 +388,9 @@ int run(const Options& o) {
                 apply(e->command);
             return !c.quit && !c.restart && !window.should_close();
         };
-        // The sound frames so far into the take (SPH frames are written once the guard has seen them).
+        // The sound frames so far into the take (Pipeline::poll): an SPH frame is written once the guard
+        // has seen its record, every frame once it has ended without a GPU fault (a capture can reach its
+        // writer before its frame ends), as `record` gates them (app/commands.cpp).
         auto validate_take = [&] {
             if (!recorder) return;
             if (const auto sound = pipeline.poll(); sound && *sound >= take_from) recorder->validate_through(*sound - take_from);
@@ -399,7 +401,7 @@ int run(const Options& o) {
                 take = next_take(o.record_dir);
                 fs::create_directories(take);
                 take_from = p.frames();
-                recorder = std::make_unique<record::Recorder>(p.timer(), take, size.x, size.y, p.simulation() != nullptr, validate_take);
+                recorder = std::make_unique<record::Recorder>(p.timer(), take, size.x, size.y, /*gated=*/true, validate_take);
                 std::printf("recording into %s\n", take.string().c_str());
                 std::fflush(stdout);
             } else if (!c.record && recorder) {
