@@ -127,8 +127,6 @@ std::vector<Key> make_keys() {
         boolean("sph.divergence_solve", h.divergence_solve, "DFSPH: run the divergence solve (docs/DFSPH.md (D5)); false: the density solve alone."),
         boolean("sph.boundary_rows", h.boundary_rows, "DFSPH: the boundary particles near the fluid are rows of the solves with their own pressure (docs/DFSPH.md (D9)); false: Akinci's boundary term, the fluid particle's pressure once."),
         number("sph.boundary_relaxation", "", h.boundary_relaxation, 0.05, 1.0, "DFSPH: the boundary rows' l1-Jacobi relaxation ω_b (docs/DFSPH.md (D9))."),
-        integer("sph.coarse_sweeps", "", h.coarse_sweeps, 0, 1000,
-                "DFSPH: after the density solve's first iteration, a correction of its residual on a grid of cells 2h wide, solved by this many red-black sweeps (docs/DFSPH.md (D12)); 0: none."),
         number("sph.warm_start", "", h.warm_start, 0.0, 1.0, "DFSPH: the density solve's warm-start weight w (docs/DFSPH.md (D6))."),
         number("sph.divergence_warm_start", "", h.divergence_warm_start, 0.0, 1.0,
                "DFSPH: the divergence solve's warm-start weight w (docs/DFSPH.md (D6))."),

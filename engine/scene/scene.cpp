@@ -439,7 +439,6 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.divergence_solve = p.boolean("divergence_solve");
         h.boundary_rows = p.boolean("boundary_rows");
         h.boundary_relaxation = float(p.number("boundary_relaxation"));
-        h.coarse_sweeps = p.integer("coarse_sweeps");
         h.warm_start = float(p.number("warm_start"));
         h.divergence_warm_start = float(p.number("divergence_warm_start"));
         h.relaxation = float(p.number("relaxation"));

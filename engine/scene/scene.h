@@ -83,7 +83,6 @@ struct SphSettings {
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
     float boundary_relaxation = 1.0f;     // omega_b of (D9)
-    int coarse_sweeps = 0;                // (D12): red-black sweeps of the density solve's coarse correction; 0: off
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie
                                     // inside h, and forces reads that instead of testing every candidate

@@ -51,8 +51,6 @@ std::size_t sort_capacity(std::size_t count, std::size_t boundary) { return std:
 
 std::size_t Fluid::boundary_count(const scene::Scene& s) { return sim::boundary_count(s, layers_of(s)); }
 
-GridLayout Fluid::grid_layout(const scene::Scene& s) { return fluid_grid(s, kernel_support(s.spacing), layers_of(s)); }
-
 std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
     return 2 * std::max<std::size_t>(count, 1) * words * sizeof(std::uint32_t);
 }

@@ -83,8 +83,6 @@ public:
     static std::size_t transient_bytes(std::size_t boundary);
     // The boundary particles a Fluid of `scene` samples: sample_boundary()'s count at its layers.
     static std::size_t boundary_count(const scene::Scene& scene);
-    // The neighbour grid a Fluid of `scene` builds.
-    static GridLayout grid_layout(const scene::Scene& scene);
     // Device memory of one carry() of `words` words a particle.
     static std::size_t carried_bytes(std::size_t count, std::uint32_t words);
 

@@ -23,10 +23,8 @@ std::size_t solver_bytes(const scene::Scene& scene, std::size_t count) {
         case scene::Solver::pbf: return Pbf::bytes_for(scene, count);
         case scene::Solver::dfsph: break;
     }
-    return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows,
-                           scene.sph.chebyshev > 0.0f && scene.sph.coarse_sweeps == 0,
-                           scene.sph.gradient_correction,
-                           scene.sph.coarse_sweeps > 0 ? Dfsph::coarse_cells(Fluid::grid_layout(scene)) : 0);
+    return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f,
+                           scene.sph.gradient_correction);
 }
 
 }  // namespace ranryu::sim

@@ -181,7 +181,7 @@ RANRYU_STRUCT(DfsphParams) {
     uint shrink_step_above;      // (D8): a density solve of more iterations than this shrinks the step; 0: off
     uint grow_step_below;        // (D8): one of fewer lets it grow
     float iteration_dt_min;      // (D8): the least step the iterations may ask for (s)
-    uint coarse_sweeps;          // (D12): red-black sweeps of the density solve's coarse correction; 0: off
+    uint pad0;
 }
 RANRYU_STRUCT_END(DfsphParams, 80)
 
@@ -203,9 +203,6 @@ RANRYU_STRUCT(SolveState) {
 }
 RANRYU_STRUCT_END(SolveState, 48)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
-// (D12): the density solve's coarse correction follows its iterations 0, k, 2k, ... (k this), while
-// it has not converged (engine/sim/solvers/dfsph.cpp iterate(), correct_pressure.comp).
-#define RANRYU_DFSPH_COARSE_EVERY 4
 
 // The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block
 // BoundaryRows, followed there by one mark a boundary particle): those within h of a fluid particle,

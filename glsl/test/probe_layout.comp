@@ -20,7 +20,7 @@
 //   SolveState:   dispatch, iterations, error_sum, groups_done, solve, weight, pads (std430)  12 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               26 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               25 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -39,7 +39,7 @@ layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
 layout(std140, binding = RANRYU_UBO_PBF) uniform PbfBlock { PbfParams pbf; };
 layout(std430) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[26] = uint[26](
+const uint kMacros[25] = uint[25](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
     RANRYU_UBO_SURFACE, RANRYU_UBO_NOISE,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
@@ -47,7 +47,7 @@ const uint kMacros[26] = uint[26](
     RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
     RANRYU_UBO_SUBPARTICLES, RANRYU_LOC_SUBPARTICLE_GROUP,
     RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE),
-    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_DFSPH_COARSE_EVERY, RANRYU_UBO_PBF, floatBitsToUint(RANRYU_PBF_WARM_CAP));
+    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF, floatBitsToUint(RANRYU_PBF_WARM_CAP));
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }
@@ -95,7 +95,7 @@ void main() {
     put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.complementarity_error);
-    put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.coarse_sweeps);
+    put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.pad0);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
     put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);

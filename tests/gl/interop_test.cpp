@@ -172,7 +172,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.shrink_step_above", {offsetof(gpu::DfsphParams, shrink_step_above), GL_UNSIGNED_INT}},
         {"dfsph.grow_step_below", {offsetof(gpu::DfsphParams, grow_step_below), GL_UNSIGNED_INT}},
         {"dfsph.iteration_dt_min", {offsetof(gpu::DfsphParams, iteration_dt_min), GL_FLOAT}},
-        {"dfsph.coarse_sweeps", {offsetof(gpu::DfsphParams, coarse_sweeps), GL_UNSIGNED_INT}},
+        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -254,7 +254,6 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_SUBPARTICLE_SPLAT_SCALE", std::uint32_t(RANRYU_SUBPARTICLE_SPLAT_SCALE)},
     {"RANRYU_UBO_DFSPH", RANRYU_UBO_DFSPH},
     {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
-    {"RANRYU_DFSPH_COARSE_EVERY", RANRYU_DFSPH_COARSE_EVERY},
     {"RANRYU_UBO_PBF", RANRYU_UBO_PBF},
     {"RANRYU_PBF_WARM_CAP", std::bit_cast<std::uint32_t>(float(RANRYU_PBF_WARM_CAP))},
 };
@@ -469,7 +468,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.shrink_step_above = d.u();
     dp.grow_step_below = d.u();
     dp.iteration_dt_min = d.f();
-    dp.coarse_sweeps = d.u();
+    dp.pad0 = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -527,7 +526,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
     expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
-    expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.coarse_sweeps);
+    expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.pad0);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);

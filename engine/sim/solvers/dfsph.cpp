@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
-#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -53,19 +52,10 @@ std::vector<float> initial_boundary_kappa(const scene::Scene& scene, const std::
     return kappa;
 }
 
-std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correction, bool coarse = false) {
+std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correction) {
     return fluid.neighbour_defines() + (divergence ? "#define RANRYU_DIVERGENCE_SOLVE 1\n" : "") +
-           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "") +
-           (coarse ? "#define RANRYU_COARSE_CORRECTION 1\n" : "");
+           (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
-
-shader::Program coarse_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool coarse, bool rows) {
-    return coarse ? shader::Program::compute(shaders, path, defines(fluid, false, rows, false)) : shader::Program{};
-}
-
-// (D12)'s list block: two counts, each colour's capacity, a pad, then the two lists.
-constexpr std::size_t kCoarseListHeader = 4 * sizeof(std::uint32_t);
-std::size_t coarse_capacity(std::size_t cells) { return cells / 2 + 1; }
 
 shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows) {
     return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true, false)) : shader::Program{};
@@ -94,25 +84,18 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       integrate_pass_(timer.pass("dfsph.integrate")),
       prepare_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.prepare") : profile::PassId{}),
       wall_pass_(scene.sph.boundary_rows ? timer.pass("dfsph.boundary.wall") : profile::PassId{}),
-      restrict_pass_(scene.sph.coarse_sweeps > 0 ? timer.pass("dfsph.coarse.restrict") : profile::PassId{}),
-      coarse_solve_pass_(scene.sph.coarse_sweeps > 0 ? timer.pass("dfsph.coarse.solve") : profile::PassId{}),
-      prolong_pass_(scene.sph.coarse_sweeps > 0 ? timer.pass("dfsph.coarse.prolong") : profile::PassId{}),
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       correction_(scene.sph.gradient_correction),
-      coarse_(scene.sph.coarse_sweeps > 0),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_, correction_))),
       accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false, coarse_))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false))),
       finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
-      restrict_(coarse_program(shaders, "sim/dfsph/restrict_residual.comp", fluid, coarse_, rows_)),
-      solve_coarse_(coarse_program(shaders, "sim/dfsph/solve_coarse.comp", fluid, coarse_, rows_)),
-      prolong_(coarse_program(shaders, "sim/dfsph/prolong_correction.comp", fluid, coarse_, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
@@ -124,7 +107,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.eta = scene.sph.max_density_error;
     params_.eta_divergence = scene.sph.max_divergence_error;
     params_.relaxation = scene.sph.relaxation;
-    params_.chebyshev = coarse_ ? 0.0f : scene.sph.chebyshev;   // (D12) iterates plain relaxed Jacobi
+    params_.chebyshev = scene.sph.chebyshev;
     params_.complementarity_error = scene.sph.complementarity_error ? 1u : 0u;
     params_.warm_start = scene.sph.warm_start;
     params_.warm_start_divergence = scene.sph.divergence_warm_start;
@@ -142,7 +125,6 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     // The least step the iterations may ask for: a 64th of the fluid's largest step (SphParams.dt_max:
     // sph.max_time_step, at most the frame), so a solve that cannot converge stops costing steps there.
     params_.iteration_dt_min = fluid.params().dt_max / 64.0f;
-    params_.coarse_sweeps = std::uint32_t(std::max(scene.sph.coarse_sweeps, 0));
     params_ubo_ = gl::Buffer(sizeof params_, GL_DYNAMIC_DRAW, &params_, "DfsphParams");
     // A solve opens with its iterations' dispatch at full size, none run and no error summed.
     std::vector<std::uint8_t> opened(2 * RANRYU_DFSPH_SOLVE_STRIDE, 0);
@@ -183,32 +165,13 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         std::memcpy(rows_state.data(), &opened_rows, sizeof opened_rows);
         rows_state_ = gl::Buffer(rows_state.size(), GL_DYNAMIC_COPY, rows_state.data(), "dfsph.boundary_rows");
     }
-    if (coarse_) {
-        coarse_count_ = coarse_cells(fluid.grid().layout());
-        coarse_residual_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.coarse_residual");
-        coarse_cells_ = gl::Buffer(coarse_count_ * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "dfsph.coarse_cells");
-        // Both counts at 0 (prolong_correction.comp leaves them so after each use), then the capacity.
-        const std::uint32_t capacity = std::uint32_t(coarse_capacity(coarse_count_));
-        std::vector<std::uint32_t> list(4 + 2 * std::size_t(capacity), 0u);
-        list[2] = capacity;
-        coarse_list_ = gl::Buffer(list.size() * sizeof(std::uint32_t), GL_DYNAMIC_COPY, list.data(), "dfsph.coarse_list");
-    }
 }
 
-std::size_t Dfsph::coarse_cells(const GridLayout& layout) {
-    const glm::uvec3 n = (layout.dims + 1u) / 2u;
-    return std::size_t(n.x) * n.y * n.z;
-}
-
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction,
-                             std::size_t coarse_cells) {
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
-    std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
-                       (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
-                       Fluid::carried_bytes(count, kWarmWords);
-    if (coarse_cells > 0)   // coarse_residual_, coarse_cells_, coarse_list_
-        base += n * sizeof(float) + coarse_cells * sizeof(glm::vec4) + kCoarseListHeader +
-                2 * coarse_capacity(coarse_cells) * sizeof(std::uint32_t);
+    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
+                             (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
+                             Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_; rows_state_ and its marks
     return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
@@ -220,11 +183,6 @@ const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
 void Dfsph::upload_warm_start(const std::vector<glm::vec2>& kappa) {
     if (kappa.size() != fluid_.count()) throw Error("Dfsph::upload_warm_start: expected " + std::to_string(fluid_.count()) + " pairs");
     fluid_.carried(warm_).upload(kappa.data(), kappa.size() * sizeof(glm::vec2));
-}
-
-void Dfsph::upload_coarse_residuals(const std::vector<float>& e) {
-    if (!coarse_ || e.size() != fluid_.count()) throw Error("Dfsph::upload_coarse_residuals: no coarse correction, or not one value a particle");
-    coarse_residual_.upload(e.data(), e.size() * sizeof(float));
 }
 
 void Dfsph::set_issued_iterations(int density, int divergence) {
@@ -280,7 +238,6 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     if (rows_)
         set.add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
             .add("BoundaryWall", boundary_wall_);
-    if (coarse_) set.add("CoarseResidual", coarse_residual_).add("CoarseCell", coarse_cells_).add("CoarseList", coarse_list_);
     return set;
 }
 
@@ -355,58 +312,26 @@ void Dfsph::prepare_rows(Fluid& fluid, int solve) {
 
 // A solve's (D6) iterations, timed as one pass: the first "correct" (the pass before it computed the
 // first accelerations), then `issued` − 1 pairs, all from the solve's indirect arguments, which the GPU
-// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9). With
-// (D12) the density solve's coarse correction follows its iterations 0, k, 2k, ... (k =
-// RANRYU_DFSPH_COARSE_EVERY) that another follows, timed as its own passes.
+// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9).
 void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
     const shader::StorageSet set = state(fluid, solve);
+    auto pass = timer_.scope(pass_id);
     const auto at = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE);
     const auto accelerate_args = at + GLintptr(offsetof(gpu::SolveState, dispatch)),
                correct_args = at + GLintptr(offsetof(gpu::SolveState, correct_groups));
-    std::optional<profile::GpuTimer::Scope> pass;
-    pass.emplace(timer_, pass_id);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
-    for (int k = 0; k < issued; ++k) {
-        if (k > 0) {
-            accelerate_.bind(set).use();
-            glDispatchComputeIndirect(accelerate_args);
-            glMemoryBarrier(kAfterAccelerate);
-        }
+    correct_.bind(set).use();
+    glDispatchComputeIndirect(correct_args);
+    glMemoryBarrier(kAfterResidual);
+    for (int k = 1; k < issued; ++k) {
+        accelerate_.bind(set).use();
+        glDispatchComputeIndirect(accelerate_args);
+        glMemoryBarrier(kAfterAccelerate);
         correct_.bind(set).use();
         glDispatchComputeIndirect(correct_args);
         glMemoryBarrier(kAfterResidual);
-        if (solve == 0 && coarse_ && k % RANRYU_DFSPH_COARSE_EVERY == 0 && k + 1 < issued) {
-            pass.reset();
-            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-            correct_coarsely(fluid);
-            pass.emplace(timer_, pass_id);
-            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
-        }
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-}
-
-// (D12): the first iteration's residuals restricted to the coarse grid, its Poisson problem swept, and
-// the correction added to every particle's kappa; each pass does nothing once the solve has converged.
-void Dfsph::correct_coarsely(Fluid& fluid) {
-    const shader::StorageSet set = state(fluid, 0);
-    {
-        auto pass = timer_.scope(restrict_pass_);
-        restrict_.bind(set).dispatch(coarse_count_);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    {
-        auto pass = timer_.scope(coarse_solve_pass_);
-        solve_coarse_.bind(set).use();
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    auto pass = timer_.scope(prolong_pass_);
-    prolong_.bind(set).use();
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
-    glDispatchComputeIndirect(GLintptr(offsetof(gpu::SolveState, correct_groups)));   // the density solve's, at 0
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void Dfsph::solve_divergence(Fluid& fluid) {

@@ -65,12 +65,8 @@ public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
     // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
     // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
-    // `correction`, (D12)'s grid of `coarse_cells` cells when not 0), its carried warm start included
-    // (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction,
-                                 std::size_t coarse_cells);
-    // (D12): the cells of the coarse grid over `layout`, two of its cells wide.
-    static std::size_t coarse_cells(const GridLayout& layout);
+    // `correction`), its carried warm start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -82,9 +78,6 @@ public:
     void solve_divergence(Fluid& fluid);   // iterations and "dfsph.divergence.finish"
     void predict_density(Fluid& fluid);    // "dfsph.pressure.predict"
     void solve_density(Fluid& fluid);      // iterations
-    // (D12): "dfsph.coarse.restrict", ".solve", ".prolong" on the residuals in coarse_residuals(); the
-    // density solve runs it between its iterations, and does nothing once the solve has converged.
-    void correct_coarsely(Fluid& fluid);
     void integrate(Fluid& fluid);          // "dfsph.integrate"
 
     // The iterations a solve is issued this frame (its cap), and a way for tests to fix them.
@@ -111,11 +104,6 @@ public:
     const gl::Buffer& boundary_rows() const { return rows_state_; }
     const gl::Buffer& boundary_list() const { return boundary_list_; }
     const gl::Buffer& boundary_wall() const { return boundary_wall_; }
-    // (D12), tests: the residuals e_i of the density solve's first iteration (float a particle), and
-    // the coarse grid's cells (vec4: e_c, rhs_c, kind, links; glsl/sim/dfsph/coarse.glsl); empty when off.
-    const gl::Buffer& coarse_residuals() const { return coarse_residual_; }
-    void upload_coarse_residuals(const std::vector<float>& e);
-    const gl::Buffer& coarse_grid() const { return coarse_cells_; }
 
 private:
     shader::StorageSet state(Fluid& fluid, int solve) const;
@@ -127,11 +115,10 @@ private:
 
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
-        prepare_pass_, wall_pass_, restrict_pass_, coarse_solve_pass_, prolong_pass_;
-    bool divergence_, rows_, correction_, coarse_;
+        prepare_pass_, wall_pass_;
+    bool divergence_, rows_, correction_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
-    shader::Program restrict_, solve_coarse_, prolong_;         // (D12), built when coarse_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;
@@ -141,10 +128,6 @@ private:
     // (D9), per boundary particle: the step's list entry and row, and the wall's own density
     // (compute_wall_density.comp); the rows' BoundaryRowsState followed by a mark per boundary particle.
     gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_;
-    // (D12): e_i per particle, the coarse cells (vec4 each), and the active cells' lists after their
-    // two counts, the capacity of each colour's list and a pad (glsl/sim/dfsph/coarse.glsl).
-    gl::Buffer coarse_residual_, coarse_cells_, coarse_list_;
-    std::size_t coarse_count_ = 0;   // cells of the coarse grid
     Fluid& fluid_;
     int warm_;
     std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to

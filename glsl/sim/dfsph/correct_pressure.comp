@@ -36,14 +36,6 @@ layout(std430) buffer Kappa { float kappa[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 layout(std430) coherent buffer Solve { SolveState solve; };
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1)
-#ifdef RANRYU_COARSE_CORRECTION
-// (D12): the density solve's iterations that a coarse correction follows leave each particle's
-// projected residual for it (restrict_residual.comp): e_i = max(r_i, −kappa_i dt^2 D_i), the residual
-// less what kappa_i >= 0 cannot give back; max(r_i, 0) for a particle that separates from the fluid
-// (warm_start_drop(): the free surface, a splash), whose density below rho0 is its place, not a
-// pressure to take back.
-layout(std430) writeonly buffer CoarseResidual { float coarse_residual[]; };
-#endif
 
 #include "../fluid/neighbours.glsl"
 
@@ -124,10 +116,6 @@ void main() {
             if (k >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
         }
         kappa[i] = next;
-#ifdef RANRYU_COARSE_CORRECTION
-        if (solve.solve == 0u && k % uint(RANRYU_DFSPH_COARSE_EVERY) == 0u)   // the residual projected on kappa >= 0
-            coarse_residual[i] = own.w > warm_start_drop() || d.z <= 0.0 ? max(residual, 0.0) : max(residual, -kappa_i * dt2 / d.z);
-#endif
         bool held = solve.solve == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
         error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
     }
