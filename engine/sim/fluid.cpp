@@ -35,6 +35,12 @@ bool merge_rows(const scene::Scene& s) {
     return !s.sph.morton && !(off && std::string(off) == "1");
 }
 
+}  // namespace
+
+int Fluid::neighbour_runs(const scene::Scene& s) { return merge_rows(s) ? 9 : 27; }
+
+namespace {
+
 int layers_of(const scene::Scene& s) { return boundary_layers(s.spacing, kernel_support(s.spacing)); }
 std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_boundary(s, layers_of(s)); }
 
@@ -61,7 +67,7 @@ std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
     const GridLayout g = fluid_grid(s, kernel_support(s.spacing), layers_of(s));
     std::size_t b = 6 * vec4_array_bytes(count)                      // position, velocity (two each), density, accel
-                    + (s.sph.neighbour_masks ? mask_bytes(count, merge_rows(s) ? 9 : 27) : 0)
+                    + (s.sph.neighbour_masks ? mask_bytes(count, neighbour_runs(s)) : 0)
                     + vec4_array_bytes(boundary)                     // boundary
                     + std::size_t(g.key_count) * sizeof(std::uint32_t)   // boundary_near
                     + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
@@ -174,7 +180,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
             fluid_grid(scene, kernel_support(scene.spacing), layers_of(scene)),
             sort_capacity(scene.particle_capacity(), boundary_count(scene)),
             scene.sph.sort == "bitonic" ? SortMethod::bitonic : SortMethod::radix),
-      runs_(merge_rows(scene) ? 9 : 27),
+      runs_(neighbour_runs(scene)),
       readback_(sizeof(gpu::StepState), record_depth(scene), "StepState.readback",
                 [this](std::uint64_t opened, const void* bytes) { on_record(opened, bytes); }),
       plan_lag_(record_depth(scene) + 1) {

@@ -83,6 +83,8 @@ public:
     static std::size_t transient_bytes(std::size_t boundary);
     // The boundary particles a Fluid of `scene` samples: sample_boundary()'s count at its layers.
     static std::size_t boundary_count(const scene::Scene& scene);
+    // Runs a neighbour walk visits in `scene`: 9 merged x-rows, or 27 cells (glsl/sim/fluid/fluid.glsl).
+    static int neighbour_runs(const scene::Scene& scene);
     // Device memory of one carry() of `words` words a particle.
     static std::size_t carried_bytes(std::size_t count, std::uint32_t words);
 

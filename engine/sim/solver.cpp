@@ -24,7 +24,7 @@ std::size_t solver_bytes(const scene::Scene& scene, std::size_t count) {
         case scene::Solver::dfsph: break;
     }
     return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f,
-                           scene.sph.gradient_correction);
+                           scene.sph.gradient_correction, Fluid::neighbour_runs(scene));
 }
 
 }  // namespace ranryu::sim

@@ -949,12 +949,16 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
     INFO("seed " << rng.seed());
     // The compressed block in the corner of floor and two walls, one iteration of each solve. Twice: with
     // the divergence solve, and without it, where the density solve's rows open the step's solving.
-    std::vector<glm::vec4> x, v;
-    block_state(rng, Rig(R"("boundary_rows": true)"), glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
-    std::vector<glm::vec2> warm(x.size());
-    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    // And once more with the block compressed to 0.8 of the spacing, where some rows have a neighbour 32
+    // or more places into a run of their walk and are walked instead of read from their masks.
+    for (const float ratio : {0.95f, 0.8f})
     for (const bool divergence : {true, false}) {
-        INFO("divergence solve " << (divergence ? "on" : "off"));
+        if (ratio < 0.9f && !divergence) continue;
+        INFO("divergence solve " << (divergence ? "on" : "off") << ", the block at " << ratio << " of the spacing");
+        std::vector<glm::vec4> x, v;
+        block_state(rng, Rig(R"("boundary_rows": true)"), glm::vec3(0.0f), ratio, 0.15f, 0.3f, x, v);
+        std::vector<glm::vec2> warm(x.size());
+        for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
         Rig rig(divergence ? R"("boundary_rows": true)" : R"("boundary_rows": true, "divergence_solve": false)");
         auto& d = rig.dfsph();
         const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
@@ -1018,6 +1022,13 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
             row_count += want_rows[b];
         }
         CHECK(row_count > 100);   // the corner block touches floor and two walls
+        // Both ways of walking a row's fluid neighbours ran (glsl/sim/dfsph/boundary_rows.glsl): its masks,
+        // recorded by the prepare pass, and where a neighbour lies 32 or more places into its run, the walk.
+        const std::vector<std::uint32_t> row_masks = d.row_masks().read<std::uint32_t>(nb);
+        const auto incomplete = std::count(row_masks.begin(), row_masks.begin() + rows.rows, 0xFFFFFFFFu);
+        INFO(incomplete << " of " << rows.rows << " rows walked");
+        if (ratio > 0.9f) CHECK(incomplete == 0);
+        else CHECK(incomplete > 0);
         CHECK(rows.dispatch.x == (rows.rows + 127u) / 128u);
 
         // u_j as the density pass left it in Accelerations.w: a sum of 2·terms magnitudes, (terms + c) u relative.

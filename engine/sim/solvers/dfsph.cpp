@@ -94,7 +94,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
-      prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_)),
+      prepare_rows_(rows_ ? shader::Program::compute(shaders, "sim/dfsph/prepare_boundary_rows.comp", defines(fluid, divergence_, true, false))
+                          : shader::Program{}),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
@@ -157,6 +158,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
         boundary_list_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_list");
         boundary_row_ = gl::Buffer(nb * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_row");
+        // A (run start, mask) pair per run of the walk a row, recorded by the prepare pass
+        // (glsl/sim/dfsph/boundary_rows.glsl).
+        row_masks_ = gl::Buffer(nb * 2 * std::size_t(fluid.neighbour_runs()) * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.row_masks");
         boundary_wall_ = gl::Buffer(nb * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_wall");
         // The BoundaryRowsState, then a mark per boundary particle (compute_density.comp).
         gpu::BoundaryRowsState opened_rows{};
@@ -167,14 +171,14 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction) {
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
                              Fluid::carried_bytes(count, kWarmWords);
     if (!rows || boundary == 0) return base;
-    // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_; rows_state_ and its marks
-    return base + boundary * (3 * sizeof(float) + 2 * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
+    // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_, row_masks_; rows_state_ and its marks
+    return base + boundary * (3 * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
 }
 
@@ -205,6 +209,7 @@ void Dfsph::persist(StateIo& io) {
     io.buffer("dfsph.opened", opened_);
     io.buffer("dfsph.boundary_list", boundary_list_);
     io.buffer("dfsph.boundary_row", boundary_row_);
+    io.buffer("dfsph.row_masks", row_masks_);
     io.buffer("dfsph.boundary_rows", rows_state_);
     // The iteration caps planned from the records (begin_frame).
     io.value("dfsph.params", params_);
@@ -237,7 +242,7 @@ shader::StorageSet Dfsph::state(Fluid& fluid, int solve) const {
     set.range("Solve", solve_, std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE, sizeof(gpu::SolveState));
     if (rows_)
         set.add("BoundaryList", boundary_list_).add("BoundaryRow", boundary_row_).add("BoundaryRows", rows_state_)
-            .add("BoundaryWall", boundary_wall_);
+            .add("BoundaryWall", boundary_wall_).add("RowMasks", row_masks_);
     return set;
 }
 

@@ -21,8 +21,9 @@
 // is computed when the boundary is built ("dfsph.boundary.wall": at the first step, and after the
 // paddle moves), the density pass's walk also lists the boundary particles near the fluid as the
 // step's rows and size_boundary_rows.comp closes the list (both timed as "dfsph.density"), each solve
-// opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start), and every iteration's
-// correct_pressure.comp updates the rows too, in workgroups after the fluid's.
+// opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start; the step's first also
+// records each row's neighbour masks), and every iteration's correct_pressure.comp updates the rows
+// too, in workgroups after the fluid's, walking the rows' masks.
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
@@ -65,8 +66,9 @@ public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
     // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
     // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
-    // `correction`), its carried warm start included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction);
+    // `correction`; a row's neighbour masks take two words for each of the `runs` runs of a walk), its
+    // carried warm start included (frame/memory.h).
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -103,6 +105,7 @@ public:
     // own density per boundary particle (compute_wall_density.comp); empty without rows.
     const gl::Buffer& boundary_rows() const { return rows_state_; }
     const gl::Buffer& boundary_list() const { return boundary_list_; }
+    const gl::Buffer& row_masks() const { return row_masks_; }   // (run start, mask) a run a row, run-major
     const gl::Buffer& boundary_wall() const { return boundary_wall_; }
 
 private:
@@ -126,8 +129,9 @@ private:
     std::size_t recent_next_ = 0;
     gl::Buffer params_ubo_, solve_, opened_, kappa_, pressure_accel_, kappa_previous_;
     // (D9), per boundary particle: the step's list entry and row, and the wall's own density
-    // (compute_wall_density.comp); the rows' BoundaryRowsState followed by a mark per boundary particle.
-    gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_;
+    // (compute_wall_density.comp); the rows' BoundaryRowsState followed by a mark per boundary particle;
+    // the rows' neighbour masks (glsl/sim/dfsph/boundary_rows.glsl).
+    gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_, row_masks_;
     Fluid& fluid_;
     int warm_;
     std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to

@@ -41,6 +41,7 @@ layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the densit
 
 #ifdef RANRYU_BOUNDARY_ROWS
 layout(std430) readonly buffer BoundaryRow { vec2 row[]; };   // (s_b, 1/D_b), prepare_boundary_rows.comp
+layout(std430) readonly buffer RowMasks { uint row_masks[]; };   // the prepare pass's (boundary_rows.glsl)
 #include "boundary_rows.glsl"
 float row_change_;
 void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r, sph.h)); }
@@ -49,7 +50,7 @@ void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pr
 void correct_row(uint k) {
     uint b = boundary_list[k] & ~kFreshRow, s = solve.solve;
     row_change_ = 0.0;
-    for_each_fluid_near(boundary[b].xyz);
+    for_each_fluid_near_row(boundary[b].xyz, k);
     vec2 rw = row[k];
     float dt2 = step.dt * step.dt;
     float residual = dt2 * row_change_ - rw.x;

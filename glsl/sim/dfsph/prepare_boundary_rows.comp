@@ -28,6 +28,8 @@ layout(std430) buffer Solve { SolveState solve; };
 layout(std430) buffer Kappa { float kappa[]; };   // after the fluid's: kappa_b (D9)
 layout(std430) readonly buffer BoundaryWall { float wall[]; };   // Σ_b' psi_b' W_bb', per boundary particle
 
+layout(std430) buffer RowMasks { uint row_masks[]; };   // recorded here (boundary_rows.glsl)
+#define RANRYU_RECORD_ROW_MASKS 1
 #include "boundary_rows.glsl"
 
 float rho_, rate_, diagonal_;
@@ -45,7 +47,12 @@ void main() {
     uint entry = boundary_list[k], b = entry & ~kFreshRow, s = solve.solve;
     vec3 xb = boundary[b].xyz;
     rho_ = rate_ = diagonal_ = 0.0;
-    for_each_fluid_near(xb);
+    // The step's first solve records the rows' masks; after the divergence solve the density solve's
+    // prepare walks them (the positions have not moved since).
+#ifdef RANRYU_DIVERGENCE_SOLVE
+    if (s == 0u) for_each_fluid_near_row(xb, k); else
+#endif
+    for_each_fluid_near_recording(xb, k);
     float w = wall[b];
     float source = s == 0u ? max(sph.rest_density, w) - (rho_ + w + step.dt * rate_) : -step.dt * rate_;
     float d_b = boundary[b].w * diagonal_;

@@ -55,6 +55,7 @@ uvec2 merge_row(uvec2 a, uvec2 b, uvec2 c) {
 }
 
 #if defined(RANRYU_MERGE_ROWS)
+const uint kNeighbourRuns = 9u;   // the runs FOR_EACH_RUN visits
 #define FOR_EACH_RUN                          \
     for (int dz_ = -1; dz_ <= 1; ++dz_)       \
     for (int dy_ = -1; dy_ <= 1; ++dy_)
@@ -63,6 +64,7 @@ uvec2 merge_row(uvec2 a, uvec2 b, uvec2 c) {
               cell_run((center) + ivec3(0, dy_, dz_), fluid),              \
               cell_run((center) + ivec3(1, dy_, dz_), fluid))
 #else
+const uint kNeighbourRuns = 27u;
 #define FOR_EACH_RUN                          \
     for (int dz_ = -1; dz_ <= 1; ++dz_)       \
     for (int dy_ = -1; dy_ <= 1; ++dy_)       \
