@@ -10,8 +10,9 @@
 # time over its iterations is an iteration's cost, at about each particle count of COUNTS (default
 # "246078 1000000"), FRAMES frames after WARMUP, particle shading at 640x360. Then the variants of
 # TEN_S_VARIANTS (default none) run the dam break as shipped for ten simulated seconds at about 250k
-# particles, with their records. Prints the DFSPH passes; reports under $OUT/bench (tarred as
-# $OUT/bench.tgz).
+# particles, with their records, and the variants of WCSPH_VARIANTS (default none) run it with WCSPH at
+# about WCSPH_COUNT particles (default 246078), FRAMES frames after WARMUP (default 10 after 20), its
+# passes timed a substep. Prints the passes; reports under $OUT/bench (tarred as $OUT/bench.tgz).
 #     VARIANTS="head current" TEN_S_VARIANTS="head current" scripts/gpu/iteration-bench.sh
 . "$(dirname "$0")/env.sh" iteration-bench-out
 o=$out/bench; mkdir -p "$o"
@@ -19,15 +20,16 @@ o=$out/bench; mkdir -p "$o"
 work=$(mktemp -d)
 variants=${VARIANTS:-head current}
 ten_s_variants=${TEN_S_VARIANTS:-}
+wcsph_variants=${WCSPH_VARIANTS:-}
 iterations=${ITERATIONS:-30}
-for v in $(echo $variants $ten_s_variants | tr ' ' '\n' | sort -u); do
+for v in $(echo $variants $ten_s_variants $wcsph_variants | tr ' ' '\n' | sort -u); do
   case $v in
     head) cp -r "${BASE_GLSL:-scratch/base-glsl}/glsl" "$work/$v" || { echo "no $v shaders"; exit 2; } ;;
     current) cp -r glsl "$work/$v" ;;
     *) echo "unknown variant $v"; exit 2 ;;
   esac
 done
-passes='dfsph\.(density|boundary|divergence|pressure|integrate)|frame \(GPU|^simulation|density solve|divergence solve|fps and|^guard|^ranryu:'
+passes='dfsph\.(density|boundary|divergence|pressure|integrate)|^(density|forces|integrate) |frame \(GPU|^simulation|density solve|divergence solve|fps and|^guard|^ranryu:'
 for n in ${COUNTS:-246078 1000000}; do
   dx=$(python3 scripts/gpu/scene-at.py dam-break "$o/scene-$n.json" "$n" sph.min_iterations="$iterations" \
        sph.max_iterations="$iterations" sph.shrink_step_above=0)
@@ -48,6 +50,17 @@ if [ -n "$ten_s_variants" ]; then
     timeout 150 "$B" profile --scene "$o/db10-scene.json" --spacing "$dx" --shading particles --size 640x360 \
       --frames 600 --warmup 0 --shader-dir "$work/$v" --records "$f.csv" > "$f.txt" 2>&1
     echo "== 10 s $v $dx: rc $?"
+    grep -E "$passes" "$f.txt" | grep -v "^why its settings"
+  done
+fi
+if [ -n "$wcsph_variants" ]; then
+  n=${WCSPH_COUNT:-246078}
+  dx=$(python3 scripts/gpu/scene-at.py dam-break "$o/wcsph-scene.json" "$n")
+  for v in $wcsph_variants; do
+    f=$o/wcsph-$v-$n
+    timeout 200 "$B" profile --scene "$o/wcsph-scene.json" --solver wcsph --spacing "$dx" --shading particles --size 640x360 \
+      --frames "${FRAMES:-10}" --warmup "${WARMUP:-20}" --shader-dir "$work/$v" --records "$f.csv" > "$f.txt" 2>&1
+    echo "== wcsph $v $n ($dx): rc $?"
     grep -E "$passes" "$f.txt" | grep -v "^why its settings"
   done
 fi
