@@ -27,12 +27,13 @@ void for_each_fluid_near(vec3 xb) {
 
 // The rows' neighbour masks, as the fluid's (fluid/neighbours.glsl): a row's walk tests some 200
 // candidates for the 10-20 fluid particles within h, and the residual pass walks every row once an
-// iteration. So the prepare pass, which walks each row first in a solve, records for row k and the
+// iteration. So the step's first prepare pass (prepare_boundary_rows.comp) records for row k and the
 // r-th run [s, e) of its walk row_masks[2r·B + k] = s and row_masks[(2r + 1)·B + k] = the bits j − s
 // of the fluid j within h (B = sph.boundary_count, the most rows a step can have: consecutive rows
 // store contiguously). A neighbour 32 or more places into its run marks the row incomplete
 // (row_masks[k] = kIncompleteRow), and it is walked as before. The positions do not move between
-// the density pass and the integration, so the masks hold through both solves; either way a row's
+// the density pass and the integration, so the masks hold through both solves (the residual passes
+// and, after the divergence solve's, the density solve's prepare pass walk them); either way a row's
 // neighbours come in the walk's order, so its sums are the walk's bit for bit.
 const uint kIncompleteRow = 0xFFFFFFFFu;
 
