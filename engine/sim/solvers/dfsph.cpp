@@ -57,8 +57,9 @@ std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correct
            (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
 
-shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows) {
-    return rows ? shader::Program::compute(shaders, path, defines(fluid, false, true, false)) : shader::Program{};
+shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows,
+                             bool divergence = false) {
+    return rows ? shader::Program::compute(shaders, path, defines(fluid, divergence, true, false)) : shader::Program{};
 }
 
 }  // namespace
@@ -94,8 +95,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
-      prepare_rows_(rows_ ? shader::Program::compute(shaders, "sim/dfsph/prepare_boundary_rows.comp", defines(fluid, divergence_, true, false))
-                          : shader::Program{}),
+      prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_, divergence_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
@@ -201,7 +201,8 @@ void Dfsph::upload_params() { params_ubo_.upload_value(params_); }
 void Dfsph::persist(StateIo& io) {
     // kappa_ holds the rows' kappa_b kept from step to step after the fluid's, and rows_state_ the
     // rows' epoch and per-boundary marks; the rest is rebuilt by a step before it is read, and saved
-    // so that nothing of a step is left out by mistake.
+    // so that nothing of a step is left out by mistake, but for the rows' neighbour masks: recorded
+    // afresh by every step's first prepare pass, and as large as the rest of the rows' state together.
     io.buffer("dfsph.kappa", kappa_);
     io.buffer("dfsph.kappa_previous", kappa_previous_);
     io.buffer("dfsph.pressure_accelerations", pressure_accel_);
@@ -209,7 +210,6 @@ void Dfsph::persist(StateIo& io) {
     io.buffer("dfsph.opened", opened_);
     io.buffer("dfsph.boundary_list", boundary_list_);
     io.buffer("dfsph.boundary_row", boundary_row_);
-    io.buffer("dfsph.row_masks", row_masks_);
     io.buffer("dfsph.boundary_rows", rows_state_);
     // The iteration caps planned from the records (begin_frame).
     io.value("dfsph.params", params_);

@@ -9,40 +9,25 @@ layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
 
 void visit_row_fluid(uint j, vec3 d, float r);
 
-// The fluid particles within h of xb, in the grid's runs (no masks: those belong to fluid particles);
-// parked ones (the emitter's reserve) are none.
-void for_each_fluid_near(vec3 xb) {
-    ivec3 c = grid_cell(xb);
-    float h2 = sph.h * sph.h;
-    FOR_EACH_RUN {
-        uvec2 run = NEIGHBOUR_RUN(c, true);
-        for (uint j = run.x; j < run.y; ++j) {
-            vec4 xj = position[j];
-            vec3 d = xb - xj.xyz;
-            float r2 = dot(d, d);
-            if (r2 < h2 && !parked(xj)) visit_row_fluid(j, d, sqrt(r2));
-        }
-    }
-}
-
 // The rows' neighbour masks, as the fluid's (fluid/neighbours.glsl): a row's walk tests some 200
 // candidates for the 10-20 fluid particles within h, and the residual pass walks every row once an
-// iteration. So the step's first prepare pass (prepare_boundary_rows.comp) records for row k and the
-// r-th run [s, e) of its walk row_masks[2r·B + k] = s and row_masks[(2r + 1)·B + k] = the bits j − s
-// of the fluid j within h (B = sph.boundary_count, the most rows a step can have: consecutive rows
-// store contiguously). A neighbour 32 or more places into its run marks the row incomplete
-// (row_masks[k] = kIncompleteRow), and it is walked as before. The positions do not move between
-// the density pass and the integration, so the masks hold through both solves (the residual passes
-// and, after the divergence solve's, the density solve's prepare pass walk them); either way a row's
-// neighbours come in the walk's order, so its sums are the walk's bit for bit.
+// iteration. So the step's first prepare pass (prepare_boundary_rows.comp, with
+// RANRYU_RECORD_ROW_MASKS) records for row k and the r-th run [s, e) of its walk row_masks[2r·B + k] = s
+// and row_masks[(2r + 1)·B + k] = the bits j − s of the fluid j within h (B = sph.boundary_count, the
+// most rows a step can have: consecutive rows store contiguously). A neighbour 32 or more places into
+// its run marks the row incomplete (row_masks[k] = kIncompleteRow), and it is walked as before. The
+// positions do not move between the density pass and the integration, so the masks hold through both
+// solves (the residual passes and, after the divergence solve's, the density solve's prepare pass
+// walk them); either way a row's neighbours come in the walk's order, so its sums are the walk's bit
+// for bit.
 const uint kIncompleteRow = 0xFFFFFFFFu;
 
-#ifdef RANRYU_RECORD_ROW_MASKS
-// for_each_fluid_near(), recording row k's masks.
-void for_each_fluid_near_recording(vec3 xb, uint k) {
+// The fluid particles within h of xb (row k's), in the grid's runs; parked ones (the emitter's
+// reserve) are none. With RANRYU_RECORD_ROW_MASKS it records row k's masks as it walks.
+void for_each_fluid_near(vec3 xb, uint k) {
     ivec3 c = grid_cell(xb);
     float h2 = sph.h * sph.h;
-    uint run_index = 0u, b = sph.boundary_count;
+    uint run_index = 0u;
     bool complete = true;
     FOR_EACH_RUN {
         uvec2 run = NEIGHBOUR_RUN(c, true);
@@ -57,19 +42,22 @@ void for_each_fluid_near_recording(vec3 xb, uint k) {
                 else complete = false;
             }
         }
-        row_masks[2u * run_index * b + k] = run.x;
-        row_masks[(2u * run_index + 1u) * b + k] = mask;
+#ifdef RANRYU_RECORD_ROW_MASKS
+        row_masks[2u * run_index * sph.boundary_count + k] = run.x;
+        row_masks[(2u * run_index + 1u) * sph.boundary_count + k] = mask;
+#endif
         ++run_index;
     }
+#ifdef RANRYU_RECORD_ROW_MASKS
     if (!complete) row_masks[k] = kIncompleteRow;
-}
 #endif
+}
 
 // Row k's fluid neighbours from its masks, or its walk where they are incomplete.
 void for_each_fluid_near_row(vec3 xb, uint k) {
     uint b = sph.boundary_count;
     if (row_masks[k] == kIncompleteRow) {
-        for_each_fluid_near(xb);
+        for_each_fluid_near(xb, k);
         return;
     }
     for (uint r = 0u; r < kNeighbourRuns; ++r) {

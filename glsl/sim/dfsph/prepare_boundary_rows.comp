@@ -52,7 +52,7 @@ void main() {
 #ifdef RANRYU_DIVERGENCE_SOLVE
     if (s == 0u) for_each_fluid_near_row(xb, k); else
 #endif
-    for_each_fluid_near_recording(xb, k);
+    for_each_fluid_near(xb, k);
     float w = wall[b];
     float source = s == 0u ? max(sph.rest_density, w) - (rho_ + w + step.dt * rate_) : -step.dt * rate_;
     float d_b = boundary[b].w * diagonal_;
