@@ -46,9 +46,13 @@ std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_bounda
 
 // One vec4 a particle (at least one), the size of every state array.
 std::size_t vec4_array_bytes(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec4); }
-// (start, mask) per neighbour run and particle.
-std::size_t mask_bytes(std::size_t count, int runs) {
-    return std::max<std::size_t>(count, 1) * 2 * std::size_t(runs) * sizeof(std::uint32_t);
+// The boundary's neighbour masks beside the fluid's (glsl/sim/fluid/neighbours.glsl): where the walks
+// after the density pass see its positions, the solvers but PBF, whose corrections move the particles
+// between its walks (so they walk the boundary around their sorted cell instead, glsl/sim/pbf/pbf.glsl).
+bool boundary_masks(const scene::Scene& s) { return s.sph.neighbour_masks && s.sph.solver != scene::Solver::pbf; }
+// (start, mask) per neighbour run and particle, the fluid's and with boundary_masks() the boundary's.
+std::size_t mask_bytes(const scene::Scene& s, std::size_t count) {
+    return std::max<std::size_t>(count, 1) * (boundary_masks(s) ? 4 : 2) * std::size_t(Fluid::neighbour_runs(s)) * sizeof(std::uint32_t);
 }
 // One sort serves the fluid every substep and the boundary once at start.
 std::size_t sort_capacity(std::size_t count, std::size_t boundary) { return std::max({count, boundary, std::size_t(1)}); }
@@ -67,7 +71,7 @@ std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
     const GridLayout g = fluid_grid(s, kernel_support(s.spacing), layers_of(s));
     std::size_t b = 6 * vec4_array_bytes(count)                      // position, velocity (two each), density, accel
-                    + (s.sph.neighbour_masks ? mask_bytes(count, neighbour_runs(s)) : 0)
+                    + (s.sph.neighbour_masks ? mask_bytes(s, count) : 0)
                     + vec4_array_bytes(boundary)                     // boundary
                     + std::size_t(g.key_count) * sizeof(std::uint32_t)   // boundary_near
                     + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
@@ -165,7 +169,8 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       boundary_cells_pass_(timer.pass("boundary-cells")),
       emit_pass_(timer.pass("emit")),
       defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
-               (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "")),
+               (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "") +
+               (boundary_masks(scene) ? "#define RANRYU_BOUNDARY_MASKS 1\n" : "")),
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/fluid/choose_time_step.comp")),
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
@@ -215,7 +220,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     density_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.density");
     accel_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.accel");
     if (scene.sph.neighbour_masks)
-        neighbours_ = gl::Buffer(mask_bytes(count_, runs_), GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
+        neighbours_ = gl::Buffer(mask_bytes(scene, count_), GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
     ranges_ = grid_.make_ranges("fluid.cells");
     boundary_ranges_ = grid_.make_ranges("fluid.boundary_cells");
 

@@ -483,8 +483,8 @@ std::vector<std::string> check_substeps(Rig& rig, int substeps) {
 
 TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags equal the full walk's, bit for bit", "[sph]") {
     // With sph.neighbour_masks the density pass records, per neighbour run, which candidates lie inside
-    // h (j != i), and a flag for boundary particles inside h; forces then reads the masks instead of
-    // testing every candidate and walks the boundary runs only when flagged (compute_density.comp). The
+    // h (j != i), and a flag for boundary particles inside h, and which of the boundary's candidates do;
+    // forces then reads the masks instead of testing every candidate (compute_density.comp). The
     // same pairs in the same order through the same add_pair() give the same float sums: required
     // equal, bit for bit, to the walk without masks, on a block at rest density (every mask complete:
     // the masks' set bits count the brute-force neighbours) and on a compressed one (some particles
@@ -508,28 +508,37 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
         REQUIRE(f.x == base.x);   // the same sorted order
         const std::size_t n = f.x.size(), runs = std::size_t(rig.fluid.neighbour_runs());
         CHECK(runs == (keys == "linear" ? 9u : 27u));
-        const std::vector<std::uint32_t> masks = rig.fluid.neighbour_masks().read<std::uint32_t>(2 * runs * n);
+        // The fluid's (start, mask) pairs, then the boundary's (glsl/sim/fluid/neighbours.glsl).
+        const std::vector<std::uint32_t> masks = rig.fluid.neighbour_masks().read<std::uint32_t>(4 * runs * n);
         const double h = double(rig.fluid.params().h);
-        std::size_t complete = 0, mismatched = 0, walls = 0;
+        std::size_t complete = 0, mismatched = 0, walls = 0, walls_masked = 0;
         for (std::size_t i = 0; i < n; ++i) {
             std::uint32_t flags;
             std::memcpy(&flags, &f.density[i].w, sizeof flags);
             int brute = 0, set = 0;
             for (std::size_t j = 0; j < n; ++j) brute += j != i && glm::length(d3(f.x[i]) - d3(f.x[j])) < h;
             for (std::size_t r = 0; r < runs; ++r) set += std::popcount(masks[(2 * r + 1) * n + i]);
-            bool near_wall = false;
-            for (const dvec3& b : f.boundary) near_wall = near_wall || glm::length(d3(f.x[i]) - b) < h;
+            int brute_walls = 0, set_walls = 0;
+            for (const dvec3& b : f.boundary) brute_walls += glm::length(d3(f.x[i]) - b) < h;
+            const bool near_wall = brute_walls > 0;
             CHECK(((flags & 2u) != 0) == near_wall);
             walls += near_wall;
+            if (near_wall && (flags & 8u)) {   // kBoundaryMasksComplete: the boundary's masks hold every one
+                ++walls_masked;
+                for (std::size_t r = 0; r < runs; ++r) set_walls += std::popcount(masks[(2 * (runs + r) + 1) * n + i]);
+                CHECK(set_walls == brute_walls);
+            }
             if (flags & 1u) {
                 ++complete;
                 CHECK(set == brute);
             }
             mismatched += glm::vec3(f.accel[i]) != glm::vec3(base.accel[i]) || glm::vec3(f.density[i]) != glm::vec3(base.density[i]);
         }
-        INFO(complete << " of " << n << " particles with complete masks, " << walls << " near a wall");
+        INFO(complete << " of " << n << " particles with complete masks, " << walls << " near a wall, "
+                      << walls_masked << " of them with complete boundary masks");
         CHECK(mismatched == 0);
         CHECK((walls > 0 && walls < n));
+        CHECK(walls_masked > 0);
         if (pitch > 0.9f) CHECK(complete == n);
         else CHECK((complete > 0 && complete < n));
     }

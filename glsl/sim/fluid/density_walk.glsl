@@ -1,6 +1,7 @@
 // The neighbour walk of a density pass (WCSPH's and DFSPH's): every candidate in the 27 cells (or 9
 // merged rows) around particle i is tested against h, and with RANRYU_NEIGHBOUR_MASKS the ones inside
-// are recorded as per-run masks for the passes after it (neighbours.glsl describes the layout).
+// are recorded as per-run masks for the passes after it, with RANRYU_BOUNDARY_MASKS the boundary's
+// too (neighbours.glsl describes the layout).
 //
 // Needs fluid.glsl and a `Positions` block (vec4 position[]) declared before it. The including pass
 // defines the visitors:
@@ -33,6 +34,9 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
 #ifdef RANRYU_NEIGHBOUR_MASKS
     flags = kMasksComplete;
 #endif
+#ifdef RANRYU_BOUNDARY_MASKS
+    flags |= kBoundaryMasksComplete;
+#endif
     FOR_EACH_RUN {
         uvec2 run = NEIGHBOUR_RUN(c, true);
         uint mask = 0u;
@@ -53,8 +57,8 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
         neighbours[2u * run_index * sph.particle_count + i] = run.x;
         neighbours[(2u * run_index + 1u) * sph.particle_count + i] = mask;
 #endif
-        ++run_index;
         run = near_boundary ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
+        uint boundary_mask = 0u;
         for (uint b = run.x; b < run.y; ++b) {
             vec3 d = xi - boundary[b].xyz;
             float r2 = dot(d, d);
@@ -62,8 +66,17 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
                 visit_boundary(b, d, r2);
                 flags |= kBoundaryNear;
                 ++count;
+                if (b - run.x < 32u) boundary_mask |= 1u << (b - run.x);
+                else flags &= ~kBoundaryMasksComplete;
             }
         }
+#ifdef RANRYU_BOUNDARY_MASKS
+        if (near_boundary) {   // else kBoundaryNear stays clear and no walk reads them
+            neighbours[2u * (kNeighbourRuns + run_index) * sph.particle_count + i] = run.x;
+            neighbours[(2u * (kNeighbourRuns + run_index) + 1u) * sph.particle_count + i] = boundary_mask;
+        }
+#endif
+        ++run_index;
     }
     return flags;
 }

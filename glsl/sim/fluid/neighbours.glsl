@@ -11,6 +11,12 @@
 // holds bit j − s for each fluid j != i inside h (N = particle_count: consecutive particles store
 // contiguously, and every invocation stores at the same run, so the stores coalesce). A neighbour 32 or
 // more places into its run leaves the kMasksComplete flag clear, and the particle is walked instead.
+// With RANRYU_BOUNDARY_MASKS (where the positions stay those of the density pass: DFSPH, WCSPH) the
+// boundary's runs have masks too, after the fluid's: for the r-th run [s, e) of the boundary's walk,
+// neighbours[2(R + r)·N + i] = s and neighbours[(2(R + r) + 1)·N + i] the bits b − s of the boundary
+// particles within h (R = kNeighbourRuns), written where the particle's cell has boundary particles
+// around it, and kBoundaryMasksComplete says they hold every one; a particle walks a boundary run only
+// where that flag is clear. A run's fluid neighbours come before its boundary ones, masked or walked.
 // Either way the fluid neighbours come in the walk's order, so sums are the walk's bit for bit.
 #ifdef RANRYU_NEIGHBOUR_MASKS
 layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
@@ -27,16 +33,20 @@ void visit_boundary(uint b, vec3 d, float r2);
 void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
     if (parked(position[i])) return;
     float h2 = sph.h * sph.h;
-    bool masked = false, walls = (flags & kBoundaryNear) != 0u;
+    bool masked = false, walls = (flags & kBoundaryNear) != 0u, walls_masked = false;
 #ifdef RANRYU_NEIGHBOUR_MASKS
     masked = (flags & kMasksComplete) != 0u;
 #endif
+#ifdef RANRYU_BOUNDARY_MASKS
+    walls_masked = walls && (flags & kBoundaryMasksComplete) != 0u;
+#endif
     uint run_index = 0u;
     FOR_EACH_RUN {
+        uint r = run_index++;
 #ifdef RANRYU_NEIGHBOUR_MASKS
         if (masked) {
-            uint start = neighbours[2u * run_index * sph.particle_count + i];
-            uint mask = neighbours[(2u * run_index + 1u) * sph.particle_count + i];
+            uint start = neighbours[2u * r * sph.particle_count + i];
+            uint mask = neighbours[(2u * r + 1u) * sph.particle_count + i];
             while (mask != 0u) {
                 uint j = start + uint(findLSB(mask));
                 mask &= mask - 1u;
@@ -45,7 +55,6 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
             }
         }
 #endif
-        ++run_index;
         uvec2 run = masked ? uvec2(0u) : NEIGHBOUR_RUN(c, true);   // ?: evaluates one side only
         for (uint j = run.x; j < run.y; ++j) {
             vec3 d = xi - position[j].xyz;
@@ -53,7 +62,19 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
             if (r2 >= h2 || j == i) continue;   // before the square root: most candidates lie outside h
             visit_fluid(j, d, r2);
         }
-        run = walls ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
+#ifdef RANRYU_BOUNDARY_MASKS
+        if (walls_masked) {
+            uint start = neighbours[2u * (kNeighbourRuns + r) * sph.particle_count + i];
+            uint mask = neighbours[(2u * (kNeighbourRuns + r) + 1u) * sph.particle_count + i];
+            while (mask != 0u) {
+                uint b = start + uint(findLSB(mask));
+                mask &= mask - 1u;
+                vec3 d = xi - boundary[b].xyz;
+                visit_boundary(b, d, dot(d, d));
+            }
+        }
+#endif
+        run = walls && !walls_masked ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
         for (uint b = run.x; b < run.y; ++b) {
             vec3 d = xi - boundary[b].xyz;
             float r2 = dot(d, d);
