@@ -25,6 +25,17 @@ layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
 
+// The neighbours a run's mask holds, from `start`: fluid particles or boundary ones.
+void visit_masked(vec3 xi, uint start, uint mask, bool fluid) {
+    while (mask != 0u) {
+        uint j = start + uint(findLSB(mask));
+        mask &= mask - 1u;
+        vec3 d = xi - (fluid ? position[j].xyz : boundary[j].xyz);
+        if (fluid) visit_fluid(j, d, dot(d, d));
+        else visit_boundary(j, d, dot(d, d));
+    }
+}
+
 // Visits the fluid neighbours of particle i at xi, and its boundary neighbours when `flags` (its
 // density[i].w bits) has kBoundaryNear; a particle without complete masks walks the runs around cell
 // c, which is xi's cell for for_each_neighbour() (a pass that moves particles between the sort and
@@ -44,16 +55,7 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
     FOR_EACH_RUN {
         uint r = run_index++;
 #ifdef RANRYU_NEIGHBOUR_MASKS
-        if (masked) {
-            uint start = neighbours[2u * r * sph.particle_count + i];
-            uint mask = neighbours[(2u * r + 1u) * sph.particle_count + i];
-            while (mask != 0u) {
-                uint j = start + uint(findLSB(mask));
-                mask &= mask - 1u;
-                vec3 d = xi - position[j].xyz;
-                visit_fluid(j, d, dot(d, d));
-            }
-        }
+        if (masked) visit_masked(xi, neighbours[2u * r * sph.particle_count + i], neighbours[(2u * r + 1u) * sph.particle_count + i], true);
 #endif
         uvec2 run = masked ? uvec2(0u) : NEIGHBOUR_RUN(c, true);   // ?: evaluates one side only
         for (uint j = run.x; j < run.y; ++j) {
@@ -63,16 +65,8 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
             visit_fluid(j, d, r2);
         }
 #ifdef RANRYU_BOUNDARY_MASKS
-        if (walls_masked) {
-            uint start = neighbours[2u * (kNeighbourRuns + r) * sph.particle_count + i];
-            uint mask = neighbours[(2u * (kNeighbourRuns + r) + 1u) * sph.particle_count + i];
-            while (mask != 0u) {
-                uint b = start + uint(findLSB(mask));
-                mask &= mask - 1u;
-                vec3 d = xi - boundary[b].xyz;
-                visit_boundary(b, d, dot(d, d));
-            }
-        }
+        uint w = kNeighbourRuns + r;   // the boundary's run r
+        if (walls_masked) visit_masked(xi, neighbours[2u * w * sph.particle_count + i], neighbours[(2u * w + 1u) * sph.particle_count + i], false);
 #endif
         run = walls && !walls_masked ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
         for (uint b = run.x; b < run.y; ++b) {
