@@ -22,7 +22,8 @@ n = len(rows)
 steps = sum(float(r["substeps"]) for r in rows)
 iterations = sum(float(r["iterations"]) for r in rows)
 print(f"   frames {n}, t {float(rows[-1]['time']):.2f}, substeps/frame {steps / n:.1f}, density iterations/step "
-      f"{iterations / max(steps, 1):.2f}, largest rho/rho0 {max(float(r['max_density']) for r in rows):.3f}, "
+      f"{iterations / max(steps, 1):.2f}, divergence iterations/step "
+      f"{sum(float(r['divergence_iterations']) for r in rows) / max(steps, 1):.2f}, largest rho/rho0 {max(float(r['max_density']) for r in rows):.3f}, "
       f"fastest {max(float(r['max_speed']) for r in rows):.1f} m/s, steps at the cap {sum(int(r['unconverged']) for r in rows)}")
 PY
 }
@@ -34,7 +35,7 @@ for n in ${NS:-250000}; do
     timeout "${RUN_TIMEOUT:-250}" $B profile --scene "$f.json" --spacing "$dx" --shading particles --size 640x360 \
       --frames "${FRAMES:-600}" --warmup 0 --records "$f.csv" > "$f.txt" 2>&1
     echo "== $n particles, eta $eta, spacing $dx: rc $?, $(( $(date +%s) - start )) s"
-    grep -hE "substeps/frame \(|density solve|fps and real-time|^guard|^ranryu:" "$f.txt" | sed 's/^/   /'
+    grep -hE "substeps/frame \(|density solve|divergence solve|fps and real-time|^guard|^ranryu:" "$f.txt" | sed 's/^/   /'
     summary "$f.csv"
   done
 done

@@ -5,6 +5,7 @@
 #     head     glsl/ of git's HEAD (BASE_GLSL, default scratch/base-glsl: the development machine
 #              fills it before the call, `git archive HEAD glsl | tar x -C scratch/base-glsl`)
 #     current  this tree's glsl/
+#     NAME     any other name: scratch/NAME/glsl, a variant the development machine wrote there
 # Runs, with every variant of VARIANTS: the dam break with every density solve fixed at ITERATIONS
 # iterations (sph.min_iterations = sph.max_iterations; the step rule (D8) off), so that the solve's
 # time over its iterations is an iteration's cost, at about each particle count of COUNTS (default
@@ -18,6 +19,10 @@
 o=$out/bench; mkdir -p "$o"
 { nvidia-smi --query-gpu=name,driver_version --format=csv,noheader; date -u; } | tee "$o/device.txt"
 work=$(mktemp -d)
+# The clocks, power and load through the run, to tell a slow pass from a slow chip.
+nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,pstate,power.draw,utilization.gpu --format=csv -lms 1000 \
+  > "$o/clocks.csv" 2>&1 &
+clocks=$!
 variants=${VARIANTS:-head current}
 ten_s_variants=${TEN_S_VARIANTS:-}
 wcsph_variants=${WCSPH_VARIANTS:-}
@@ -26,7 +31,7 @@ for v in $(echo $variants $ten_s_variants $wcsph_variants | tr ' ' '\n' | sort -
   case $v in
     head) cp -r "${BASE_GLSL:-scratch/base-glsl}/glsl" "$work/$v" || { echo "no $v shaders"; exit 2; } ;;
     current) cp -r glsl "$work/$v" ;;
-    *) echo "unknown variant $v"; exit 2 ;;
+    *) cp -r "scratch/$v/glsl" "$work/$v" || { echo "unknown variant $v (no scratch/$v/glsl)"; exit 2; } ;;
   esac
 done
 passes='dfsph\.(density|boundary|divergence|pressure|integrate)|^(density|forces|integrate) |frame \(GPU|^simulation|density solve|divergence solve|fps and|^guard|^ranryu:'
@@ -64,4 +69,5 @@ if [ -n "$wcsph_variants" ]; then
     grep -E "$passes" "$f.txt" | grep -v "^why its settings"
   done
 fi
+kill "$clocks" 2>/dev/null
 if [ -n "${OUT:-}" ]; then (cd "$out" && tar czf bench.tgz bench && rm -rf bench); fi
