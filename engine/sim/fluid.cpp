@@ -46,10 +46,11 @@ std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_bounda
 
 // One vec4 a particle (at least one), the size of every state array.
 std::size_t vec4_array_bytes(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec4); }
-// The boundary's neighbour masks beside the fluid's (glsl/sim/fluid/neighbours.glsl): where the walks
-// after the density pass see its positions, the solvers but PBF, whose corrections move the particles
-// between its walks (so they walk the boundary around their sorted cell instead, glsl/sim/pbf/pbf.glsl).
-bool boundary_masks(const scene::Scene& s) { return s.sph.neighbour_masks && s.sph.solver != scene::Solver::pbf; }
+// The boundary's neighbour masks beside the fluid's (glsl/sim/fluid/neighbours.glsl), with the fluid's.
+bool boundary_masks(const scene::Scene& s) { return s.sph.neighbour_masks; }
+// PBF's corrections move the particles between its walks: its boundary masks hold the boundary
+// particles within h plus a skin, read while a particle stays within the skin (glsl/sim/pbf/pbf.glsl).
+bool boundary_skin(const scene::Scene& s) { return boundary_masks(s) && s.sph.solver == scene::Solver::pbf; }
 // (start, mask) per neighbour run and particle, the fluid's and with boundary_masks() the boundary's.
 std::size_t mask_bytes(const scene::Scene& s, std::size_t count) {
     return std::max<std::size_t>(count, 1) * (boundary_masks(s) ? 4 : 2) * std::size_t(Fluid::neighbour_runs(s)) * sizeof(std::uint32_t);
@@ -170,7 +171,8 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       emit_pass_(timer.pass("emit")),
       defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
                (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "") +
-               (boundary_masks(scene) ? "#define RANRYU_BOUNDARY_MASKS 1\n" : "")),
+               (boundary_masks(scene) ? "#define RANRYU_BOUNDARY_MASKS 1\n" : "") +
+               (boundary_skin(scene) ? "#define RANRYU_BOUNDARY_SKIN 1\n" : "")),
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/fluid/choose_time_step.comp")),
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
@@ -219,8 +221,18 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     velocity_[0].upload(v.data(), v.size() * sizeof(glm::vec4));
     density_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.density");
     accel_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.accel");
-    if (scene.sph.neighbour_masks)
-        neighbours_ = gl::Buffer(mask_bytes(scene, count_), GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
+    if (scene.sph.neighbour_masks) {
+        // The shaders index the masks with 32-bit uints (neighbours.glsl), and the whole array is one
+        // storage block, which the driver bounds.
+        const std::size_t mask = mask_bytes(scene, count_);
+        GLint64 block = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+        if (mask / sizeof(std::uint32_t) > 0xFFFFFFFFull || (block > 0 && mask > std::size_t(block)))
+            throw Error("scene: the neighbour masks of " + std::to_string(count_) + " particles take " + std::to_string(mask) +
+                        " bytes, more than one storage block holds here (" + std::to_string(block) +
+                        " bytes, 2^32 words); set \"sph\": {\"neighbour_masks\": false} or use fewer particles");
+        neighbours_ = gl::Buffer(mask, GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
+    }
     ranges_ = grid_.make_ranges("fluid.cells");
     boundary_ranges_ = grid_.make_ranges("fluid.boundary_cells");
 

@@ -148,10 +148,12 @@ public:
     // carried array under its name. Binds the SphParams and GridParams uniform blocks too.
     shader::StorageSet bind_state();
     // "#define" lines every neighbour pass of this fluid is built with: RANRYU_MERGE_ROWS (9 merged
-    // rows of linear keys instead of 27 cells) and RANRYU_NEIGHBOUR_MASKS (sph.neighbour_masks).
+    // rows of linear keys instead of 27 cells), RANRYU_NEIGHBOUR_MASKS (sph.neighbour_masks) and with
+    // it RANRYU_BOUNDARY_MASKS, and for PBF RANRYU_BOUNDARY_SKIN (glsl/sim/fluid/neighbours.glsl).
     std::string neighbour_defines() const;
 
-    // The density pass's (run start, mask) pairs, 2·runs·count() uints (sph.neighbour_masks), and
+    // The density pass's (run start, mask) pairs, the fluid's and the boundary's, 4·runs·count() uints
+    // (sph.neighbour_masks), and
     // whether they describe the current cell order and positions: a density pass sets it, and
     // rebuild_grid() and every integration clear it.
     const gl::Buffer& neighbour_masks() const { return neighbours_; }

@@ -69,6 +69,7 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     lambda_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "pbf.lambda");
     velocity_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.velocity");
     if (vorticity_on_) vorticity_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.vorticity");
+    if (scene.sph.neighbour_masks) mask_origins_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.mask_origins");
     // The first prediction's non-pressure accelerations: gravity (later ones: the first lambda pass's,
     // with the hooks' additions).
     const glm::vec4 g = fluid.params().gravity;
@@ -83,7 +84,8 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
 std::size_t Pbf::bytes_for(const scene::Scene& scene, std::size_t count) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's buffers
     return sizeof(gpu::PbfParams) + n * (sizeof(float) + sizeof(glm::vec4)) +
-           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + Fluid::carried_bytes(count, kStartWords) +
+           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + (scene.sph.neighbour_masks ? n * sizeof(glm::vec4) : 0) +
+           Fluid::carried_bytes(count, kStartWords) +
            (scene.sph.pbf.warm_start > 0.0f ? Fluid::carried_bytes(count, kWarmWords) : 0);
 }
 
@@ -92,6 +94,7 @@ shader::StorageSet Pbf::state(Fluid& fluid) const {
     shader::StorageSet set = fluid.bind_state();
     set.add("Lambda", lambda_).add("PbfVelocity", velocity_);
     if (vorticity_on_) set.add("Vorticity", vorticity_);
+    set.add("MaskOrigins", mask_origins_);   // none without the masks: add() skips it
     return set;
 }
 

@@ -64,6 +64,7 @@ private:
     shader::Program predict_, lambda_walk_, lambda_program_, correct_, velocity_update_, viscosity_, vorticity_confine_;
     gpu::PbfParams params_{};
     gl::Buffer params_ubo_, lambda_, velocity_, vorticity_;
+    gl::Buffer mask_origins_;   // vec4: x* where the first lambda pass recorded the boundary masks (pbf.glsl)
     Fluid& fluid_;
     int start_, warm_;
 };

@@ -1,7 +1,7 @@
 // The neighbour walk of a density pass (WCSPH's and DFSPH's): every candidate in the 27 cells (or 9
 // merged rows) around particle i is tested against h, and with RANRYU_NEIGHBOUR_MASKS the ones inside
 // are recorded as per-run masks for the passes after it, with RANRYU_BOUNDARY_MASKS the boundary's
-// too (neighbours.glsl describes the layout).
+// too, with RANRYU_BOUNDARY_SKIN those within h + skin (neighbours.glsl describes the layout).
 //
 // Needs fluid.glsl and a `Positions` block (vec4 position[]) declared before it. The including pass
 // defines the visitors:
@@ -17,11 +17,15 @@ layout(std430) writeonly buffer NeighbourMasks { uint neighbours[]; };
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
 
-// Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear of fluid.glsl) and
+// Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear, kBoundaryMasksComplete
+// of fluid.glsl) and
 // in `count` how many neighbours it has within h, fluid (j != i) and boundary.
 uint walk_neighbours(uint i, vec3 xi, out uint count) {
     ivec3 c = grid_cell(xi);
-    float h2 = sph.h * sph.h;
+    float h2 = sph.h * sph.h, mask2 = h2;   // the boundary masks' radius squared
+#ifdef RANRYU_BOUNDARY_SKIN
+    mask2 = sph.h * sph.h * (1.0 + kBoundarySkin) * (1.0 + kBoundarySkin);
+#endif
     uint flags = 0u, run_index = 0u;
     count = 0u;
     // A parked particle (fluid.glsl) has no neighbour but itself: nothing is within h of it, and the
@@ -66,6 +70,8 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
                 visit_boundary(b, d, r2);
                 flags |= kBoundaryNear;
                 ++count;
+            }
+            if (r2 < mask2) {
                 if (b - run.x < 32u) boundary_mask |= 1u << (b - run.x);
                 else flags &= ~kBoundaryMasksComplete;
             }

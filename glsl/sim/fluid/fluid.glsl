@@ -75,8 +75,11 @@ const uint kNeighbourRuns = 27u;
 // The flags a density pass stores in density[i].w (as the bits of a uint) for the passes after it:
 const uint kMasksComplete = 1u;    // the neighbour masks hold every fluid neighbour of i (neighbours.glsl)
 const uint kBoundaryNear = 2u;     // some boundary particle lies within h of i
-const uint kDeficient = 4u;
-const uint kBoundaryMasksComplete = 8u;   // with RANRYU_BOUNDARY_MASKS: the boundary masks hold every boundary neighbour of i        // fewer neighbours than a full support (DFSPH's divergence solve, docs/DFSPH.md (D5))
+const uint kDeficient = 4u;        // fewer neighbours than a full support (DFSPH's divergence solve, docs/DFSPH.md (D5))
+const uint kBoundaryMasksComplete = 8u;   // with RANRYU_BOUNDARY_MASKS: the boundary masks hold every boundary neighbour of i
+// With RANRYU_BOUNDARY_SKIN (PBF) the boundary masks hold the boundary particles within h + skin,
+// skin = kBoundarySkin h, of where the density pass found them (neighbours.glsl).
+const float kBoundarySkin = 0.25;
 
 // Workgroup maxima of non-negative floats (as bits, see StepState), each with one invocation that
 // has it, so that a pass makes one global atomic per workgroup instead of one per particle (a

@@ -16,7 +16,12 @@
 // neighbours[2(R + r)·N + i] = s and neighbours[(2(R + r) + 1)·N + i] the bits b − s of the boundary
 // particles within h (R = kNeighbourRuns), written where the particle's cell has boundary particles
 // around it, and kBoundaryMasksComplete says they hold every one; a particle walks a boundary run only
-// where that flag is clear. A run's fluid neighbours come before its boundary ones, masked or walked.
+// where that flag is clear. With RANRYU_BOUNDARY_SKIN (PBF, whose corrections move the particles
+// between its walks) the boundary masks hold the boundary particles within h + skin of where the
+// density pass found them (fluid.glsl kBoundarySkin); a walk reads them while the including solver's
+// boundary_masks_hold(i, xi) says particle i has moved less than the skin since, and tests each
+// against h: then every boundary particle within h of xi is among them, in the walk's order.
+// A run's fluid neighbours come before its boundary ones, masked or walked.
 // Either way the fluid neighbours come in the walk's order, so sums are the walk's bit for bit.
 #ifdef RANRYU_NEIGHBOUR_MASKS
 layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
@@ -24,6 +29,9 @@ layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
 
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
+#ifdef RANRYU_BOUNDARY_SKIN
+bool boundary_masks_hold(uint i, vec3 xi);
+#endif
 
 // The neighbours a run's mask holds, from `start`: fluid particles or boundary ones.
 void visit_masked(vec3 xi, uint start, uint mask, bool fluid) {
@@ -32,7 +40,11 @@ void visit_masked(vec3 xi, uint start, uint mask, bool fluid) {
         mask &= mask - 1u;
         vec3 d = xi - (fluid ? position[j].xyz : boundary[j].xyz);
         if (fluid) visit_fluid(j, d, dot(d, d));
+#ifdef RANRYU_BOUNDARY_SKIN
+        else if (dot(d, d) < sph.h * sph.h) visit_boundary(j, d, dot(d, d));
+#else
         else visit_boundary(j, d, dot(d, d));
+#endif
     }
 }
 
@@ -50,6 +62,9 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
 #endif
 #ifdef RANRYU_BOUNDARY_MASKS
     walls_masked = walls && (flags & kBoundaryMasksComplete) != 0u;
+#endif
+#ifdef RANRYU_BOUNDARY_SKIN
+    walls_masked = walls_masked && boundary_masks_hold(i, xi);
 #endif
     uint run_index = 0u;
     FOR_EACH_RUN {

@@ -10,7 +10,8 @@
 // walk tests every candidate and records the flags and neighbour masks (density_walk.glsl), and the
 // non-pressure accelerations of (P1) restart as gravity in this cell order. Without it (the later
 // iterations) the fluid neighbours are those the walk found (neighbours.glsl), at the moved positions,
-// and the boundary particles are those around the particle's sorted cell (walk_flags, pbf.glsl).
+// and the boundary particles are those within h around the particle's sorted cell (walk_flags,
+// pbf.glsl): from the first pass's boundary masks while it stays within their skin (neighbours.glsl).
 // Guard: the frame's largest rho/rho0, in the step's last iteration only (`last`): the densities the
 // last correction starts from, not those of the prediction (P1), which a fast flow compresses far more
 // before the iterations undo it. The walk also counts the step's iterations into StepState
@@ -24,6 +25,9 @@ layout(std430) writeonly buffer Lambda { float lambda[]; };
 #ifdef RANRYU_PBF_WALK
 layout(std430) writeonly buffer Density { vec4 density[]; };
 layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
+#ifdef RANRYU_BOUNDARY_SKIN
+layout(std430) writeonly buffer MaskOrigins { vec4 mask_origin[]; };   // where the boundary masks were recorded (pbf.glsl)
+#endif
 #include "../fluid/density_walk.glsl"
 #else
 layout(std430) buffer Density { vec4 density[]; };
@@ -60,6 +64,9 @@ void main() {
         sum_w_ = 0.0;
         uint count;
         uint flags = walk_neighbours(i, xi, count);
+#ifdef RANRYU_BOUNDARY_SKIN
+        mask_origin[i] = vec4(xi, 0.0);
+#endif
         float p = 0.0;
         accel[i] = vec4(sph.gravity.xyz, 0.0);
         if (i == 0u) {   // one invocation: nothing else writes these this pass

@@ -5,7 +5,8 @@
 //     s_corr(r) = −k dx² (W(r) / W(|dq|))^n,
 // so the new positions go to the fluid's other buffer (NextPositions); the Pbf swaps them after.
 // The fluid neighbours are those of the step's first lambda pass, the boundary particles those around
-// the particle's sorted cell (walk_flags, pbf.glsl).
+// the particle's sorted cell (walk_flags, pbf.glsl), from the first lambda pass's boundary masks while
+// it stays within their skin (neighbours.glsl).
 #include "pbf.glsl"
 
 layout(local_size_x = 128) in;

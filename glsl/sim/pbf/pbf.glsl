@@ -23,4 +23,17 @@ layout(std430) readonly buffer BoundaryNear { uint boundary_near[]; };
 // cell has boundary particles in its 27 cells (flag_boundary_cells.comp), not only where the first
 // pass found one within h, so that a particle the corrections carry towards a wall meets it.
 uint walk_flags(uint i, uint flags) { return boundary_near[sorted_keys[i]] != 0u ? flags | kBoundaryNear : flags; }
+
+#ifdef RANRYU_BOUNDARY_SKIN
+layout(std430) readonly buffer MaskOrigins { vec4 mask_origin[]; };   // x* where the first lambda pass recorded the masks
+
+// The boundary masks of the first lambda pass still hold every boundary particle within h of xi
+// (neighbours.glsl): i has moved less than the skin since, |xi − x*| ≤ 0.99 kBoundarySkin h (the 1 %
+// for the rounding of both tests), so a boundary particle within h of xi lay within h + skin of x*.
+bool boundary_masks_hold(uint i, vec3 xi) {
+    vec3 d = xi - mask_origin[i].xyz;
+    float skin = 0.99 * kBoundarySkin * sph.h;
+    return dot(d, d) <= skin * skin;
+}
+#endif
 #endif
