@@ -46,21 +46,34 @@ std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_bounda
 
 // One vec4 a particle (at least one), the size of every state array.
 std::size_t vec4_array_bytes(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec4); }
-// The boundary's neighbour masks beside the fluid's (glsl/sim/fluid/neighbours.glsl), with the fluid's.
-bool boundary_masks(const scene::Scene& s) { return s.sph.neighbour_masks; }
+// The most bytes one storage block holds here (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe 128 MiB), and
+// at most 2^32 words: the shaders index the masks with 32-bit uints (neighbours.glsl).
+std::size_t storage_block_limit() {
+    GLint64 block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+    const std::size_t words = std::size_t(0xFFFFFFFFull) * sizeof(std::uint32_t);
+    return block > 0 ? std::min(std::size_t(block), words) : words;
+}
+// (start, mask) per neighbour run and particle: the fluid's, and with `boundary` the boundary's.
+std::size_t pair_bytes(const scene::Scene& s, std::size_t count, bool boundary) {
+    return std::max<std::size_t>(count, 1) * (boundary ? 4 : 2) * std::size_t(Fluid::neighbour_runs(s)) * sizeof(std::uint32_t);
+}
 // PBF's corrections move the particles between its walks: its boundary masks hold the boundary
 // particles within h plus a skin, read while a particle stays within the skin (glsl/sim/pbf/pbf.glsl).
-bool boundary_skin(const scene::Scene& s) { return boundary_masks(s) && s.sph.solver == scene::Solver::pbf; }
-// (start, mask) per neighbour run and particle, the fluid's and with boundary_masks() the boundary's.
-std::size_t mask_bytes(const scene::Scene& s, std::size_t count) {
-    return std::max<std::size_t>(count, 1) * (boundary_masks(s) ? 4 : 2) * std::size_t(Fluid::neighbour_runs(s)) * sizeof(std::uint32_t);
+bool boundary_skin(const scene::Scene& s, std::size_t count) {
+    return Fluid::boundary_masks(s, count) && s.sph.solver == scene::Solver::pbf;
 }
+std::size_t mask_bytes(const scene::Scene& s, std::size_t count) { return pair_bytes(s, count, Fluid::boundary_masks(s, count)); }
 // One sort serves the fluid every substep and the boundary once at start.
 std::size_t sort_capacity(std::size_t count, std::size_t boundary) { return std::max({count, boundary, std::size_t(1)}); }
 
 }  // namespace
 
 std::size_t Fluid::boundary_count(const scene::Scene& s) { return sim::boundary_count(s, layers_of(s)); }
+
+bool Fluid::boundary_masks(const scene::Scene& s, std::size_t count) {
+    return s.sph.neighbour_masks && pair_bytes(s, count, true) <= storage_block_limit();
+}
 
 std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
     return 2 * std::max<std::size_t>(count, 1) * words * sizeof(std::uint32_t);
@@ -171,8 +184,8 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       emit_pass_(timer.pass("emit")),
       defines_(std::string(merge_rows(scene) ? "#define RANRYU_MERGE_ROWS 1\n" : "") +
                (scene.sph.neighbour_masks ? "#define RANRYU_NEIGHBOUR_MASKS 1\n" : "") +
-               (boundary_masks(scene) ? "#define RANRYU_BOUNDARY_MASKS 1\n" : "") +
-               (boundary_skin(scene) ? "#define RANRYU_BOUNDARY_SKIN 1\n" : "")),
+               (boundary_masks(scene, scene.particle_capacity()) ? "#define RANRYU_BOUNDARY_MASKS 1\n" : "") +
+               (boundary_skin(scene, scene.particle_capacity()) ? "#define RANRYU_BOUNDARY_SKIN 1\n" : "")),
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/fluid/choose_time_step.comp")),
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
@@ -222,15 +235,13 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     density_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.density");
     accel_ = gl::Buffer(bytes, GL_DYNAMIC_COPY, nullptr, "fluid.accel");
     if (scene.sph.neighbour_masks) {
-        // The shaders index the masks with 32-bit uints (neighbours.glsl), and the whole array is one
-        // storage block, which the driver bounds.
+        // One storage block: the boundary's masks only where both fit (boundary_masks()), the fluid's
+        // or none.
         const std::size_t mask = mask_bytes(scene, count_);
-        GLint64 block = 0;
-        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
-        if (mask / sizeof(std::uint32_t) > 0xFFFFFFFFull || (block > 0 && mask > std::size_t(block)))
+        if (mask > storage_block_limit())
             throw Error("scene: the neighbour masks of " + std::to_string(count_) + " particles take " + std::to_string(mask) +
-                        " bytes, more than one storage block holds here (" + std::to_string(block) +
-                        " bytes, 2^32 words); set \"sph\": {\"neighbour_masks\": false} or use fewer particles");
+                        " bytes, more than one storage block holds here (" + std::to_string(storage_block_limit()) +
+                        " bytes); set \"sph\": {\"neighbour_masks\": false} or use fewer particles");
         neighbours_ = gl::Buffer(mask, GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
     }
     ranges_ = grid_.make_ranges("fluid.cells");

@@ -76,6 +76,9 @@ public:
     // Samples the boundary, computes its psi_b and the cells near it (start-up passes
     // "boundary-volume", "boundary-cells"), and places the scene's particles.
     Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene);
+    // Whether the density pass records the boundary's masks beside the fluid's (neighbours.glsl): with
+    // sph.neighbour_masks, where both fit one storage block for `count` particles (this context's bound).
+    static bool boundary_masks(const scene::Scene& s, std::size_t count);
     // Device memory the constructor keeps for `count` particles and `boundary` boundary particles
     // (scene.particle_count(), boundary_count()): the state, the masks, the boundary, the grid and its
     // sort (frame/memory.h). `transient`: what start-up holds besides, and frees.

@@ -127,8 +127,11 @@ struct Stages {
     std::uint32_t max_density = 0;   // StepState.frame_max_density: the bits of the largest ρ/ρ0 recorded
 };
 
+// With `walk_boundary` the boundary masks' origins are moved a metre away after the first lambda
+// pass, so that no later walk may read the masks (glsl/sim/pbf/pbf.glsl boundary_masks_hold): every
+// particle walks the boundary's cells.
 Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, float dt,
-                  const std::vector<glm::vec4>& warm = {}) {
+                  const std::vector<glm::vec4>& warm = {}, bool walk_boundary = false) {
     Stages s;
     auto& pbf = rig.pbf();
     REQUIRE(pbf.iterations() == 2);
@@ -150,6 +153,12 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     s.v0 = rig.read(rig.fluid.velocities());
     s.xstar = rig.read(rig.fluid.positions());
     pbf.compute_lambda(rig.fluid, true, false);
+    if (walk_boundary) {
+        std::vector<glm::vec4> origins = rig.read(pbf.mask_origins());
+        for (glm::vec4& o : origins) o += glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
+        pbf.mask_origins().upload(origins.data(), origins.size() * sizeof(glm::vec4));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     s.density1 = rig.read(rig.fluid.densities());
     s.lambda1 = rig.read_doubles(pbf.lambda());
     pbf.correct_positions(rig.fluid);
@@ -330,6 +339,38 @@ TEST_CASE("pbf: the prediction, lambda and the position correction of both itera
     double before = 0.0, after = 0.0;
     for (std::size_t i = 0; i < N; ++i) before += double(s.density1[i].x), after += double(s.density2[i].x);
     CHECK(after < before);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("pbf: the boundary's masks with their skin give the walk's sums, bit for bit", "[pbf]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A compressed block in the tank's corner (the floor and two walls), moving: one step read through
+    // the masks where a particle stays within the skin of x*, and one with every boundary walked.
+    Rig masked, walked;
+    const float dt = 2e-3f;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, masked, glm::vec3(0.0f), 0.9f, 0.15f, 1.0f, dt, x, v);
+    const Stages a = run_stages(masked, x, v, dt), b = run_stages(walked, x, v, dt, {}, true);
+    REQUIRE(a.xstar == b.xstar);
+    CHECK(a.density2 == b.density2);
+    CHECK(a.x2 == b.x2);
+    CHECK(a.vend == b.vend);
+    // Both ways ran in the masked step: particles near a wall that stayed within the skin (0.99 h/4) of
+    // x* read the masks, those the correction carried beyond it walked (about 180-220 and 50-100 of 275).
+    const std::vector<glm::vec4> origins = masked.read(masked.pbf().mask_origins());
+    const double h = double(masked.fluid.params().h), skin = 0.99 * 0.25 * h;
+    std::size_t near = 0, held = 0, moved = 0;
+    for (std::size_t i = 0; i < a.x1.size(); ++i) {
+        if (!(flags_of(a.density1[i]) & 2u)) continue;   // kBoundaryNear
+        ++near;
+        const double d = glm::length(d3(a.x1[i]) - d3(origins[i]));
+        held += d <= skin;
+        moved += d > skin;
+    }
+    INFO(near << " particles near a wall: " << held << " within the skin after the first correction, " << moved << " beyond it");
+    CHECK(held > 0);
+    CHECK(moved > 0);
     ranryu::test::require_no_gl_errors();
 }
 

@@ -545,6 +545,25 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("sph: the boundary's masks are recorded only where they and the fluid's fit one storage block", "[sph]") {
+    Rig rig(scene_json(0.3));
+    REQUIRE(Fluid::boundary_masks(rig.scene, rig.fluid.count()));   // 512 particles: on
+    // The shaders index the masks with 32-bit uints, and the driver bounds a storage block.
+    GLint64 block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+    REQUIRE(block > 0);
+    const std::size_t limit = std::min<std::size_t>(std::size_t(block), std::size_t(0xFFFFFFFFull) * 4);
+    // (start, mask) pairs for the fluid and the boundary: 4 words a run and particle.
+    const std::size_t per_particle = 4 * std::size_t(rig.fluid.neighbour_runs()) * sizeof(std::uint32_t), most = limit / per_particle;
+    INFO("storage block " << block << " bytes, " << rig.fluid.neighbour_runs() << " runs: the boundary's masks up to " << most << " particles");
+    CHECK(Fluid::boundary_masks(rig.scene, most));
+    CHECK_FALSE(Fluid::boundary_masks(rig.scene, most + 1));
+    ranryu::scene::Scene off = rig.scene;
+    off.sph.neighbour_masks = false;
+    CHECK_FALSE(Fluid::boundary_masks(off, 512));
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("sph: symplectic Euler step and the GPU's time step match the reference", "[sph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());

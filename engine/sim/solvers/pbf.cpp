@@ -69,7 +69,7 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
     lambda_ = gl::Buffer(n * sizeof(float), GL_DYNAMIC_COPY, nullptr, "pbf.lambda");
     velocity_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.velocity");
     if (vorticity_on_) vorticity_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.vorticity");
-    if (scene.sph.neighbour_masks) mask_origins_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.mask_origins");
+    if (Fluid::boundary_masks(scene, fluid.count())) mask_origins_ = gl::Buffer(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "pbf.mask_origins");
     // The first prediction's non-pressure accelerations: gravity (later ones: the first lambda pass's,
     // with the hooks' additions).
     const glm::vec4 g = fluid.params().gravity;
@@ -84,7 +84,7 @@ Pbf::Pbf(const shader::FileSource& shaders, profile::GpuTimer& timer, const scen
 std::size_t Pbf::bytes_for(const scene::Scene& scene, std::size_t count) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's buffers
     return sizeof(gpu::PbfParams) + n * (sizeof(float) + sizeof(glm::vec4)) +
-           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + (scene.sph.neighbour_masks ? n * sizeof(glm::vec4) : 0) +
+           (scene.sph.pbf.vorticity > 0.0f ? n * sizeof(glm::vec4) : 0) + (Fluid::boundary_masks(scene, count) ? n * sizeof(glm::vec4) : 0) +
            Fluid::carried_bytes(count, kStartWords) +
            (scene.sph.pbf.warm_start > 0.0f ? Fluid::carried_bytes(count, kWarmWords) : 0);
 }

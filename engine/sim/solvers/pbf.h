@@ -54,6 +54,7 @@ public:
     const gl::Buffer& vorticity() const { return vorticity_; }           // vec4: omega_i, |omega_i| (P8)
     const gl::Buffer& warm() const { return fluid_.carried(warm_); }     // vec4: (P10)'s carried term (warm_start > 0 only)
     gl::Buffer& warm() { return fluid_.carried(warm_); }
+    gl::Buffer& mask_origins() { return mask_origins_; }   // vec4: x* of the boundary's masks (with them only)
 
 private:
     shader::StorageSet state(Fluid& fluid) const;
