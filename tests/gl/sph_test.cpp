@@ -85,7 +85,9 @@ struct Fields {
 
 // A first pass on the state moved by 2 h in x leaves stale cell ranges behind (the fluid's ranges are
 // not cleared between substeps, grid.h), so the passes under test must tell stale from current.
-Fields run_fields(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v) {
+// With `walk_walls` the density pass's kBoundaryMasksComplete flags are cleared before forces, so that
+// every particle near a wall walks the boundary's cells instead of reading its masks.
+Fields run_fields(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& v, bool walk_walls = false) {
     Fluid& sph = rig.fluid;
     std::vector<glm::vec4> moved = x;
     for (auto& p : moved) p.x += 2.0f * sph.params().h;
@@ -95,6 +97,19 @@ Fields run_fields(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
         rig.timer.begin_frame();
         sph.rebuild_grid();
         rig.solver().compute_density(sph);
+        if (walk_walls) {
+            std::vector<glm::vec4> d = rig.read(sph.densities());
+            for (glm::vec4& e : d) {
+                std::uint32_t flags;
+                std::memcpy(&flags, &e.w, sizeof flags);
+                flags &= ~8u;   // kBoundaryMasksComplete (glsl/sim/fluid/fluid.glsl)
+                std::memcpy(&e.w, &flags, sizeof flags);
+            }
+            glBindBuffer(GL_COPY_WRITE_BUFFER, sph.densities().id());
+            glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(d.size() * sizeof(glm::vec4)), d.data());
+            glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
         rig.solver().compute_forces(sph);
         rig.timer.end_frame();
     }
@@ -489,7 +504,7 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
     // equal, bit for bit, to the walk without masks, on a block at rest density (every mask complete:
     // the masks' set bits count the brute-force neighbours) and on a compressed one (some particles
     // fall back to the walk, both paths in one dispatch), with linear keys (9 merged rows) and Morton
-    // keys (27 cells).
+    // keys (27 cells). The boundary's masks are also compared with its walk, forced for every particle.
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     Rig probe(scene_json(0.3));
@@ -506,6 +521,11 @@ TEST_CASE("sph: forces from the density pass's neighbour masks and wall flags eq
         Rig rig(scene_json(0.3, k));
         const Fields f = run_fields(rig, x, v);
         REQUIRE(f.x == base.x);   // the same sorted order
+        // The boundary's fallback (its masks incomplete: walk its cells), which these blocks never need:
+        // forced for every particle, the same sums.
+        Rig walker(scene_json(0.3, k));
+        const Fields w = run_fields(walker, x, v, true);
+        CHECK(w.accel == f.accel);
         const std::size_t n = f.x.size(), runs = std::size_t(rig.fluid.neighbour_runs());
         CHECK(runs == (keys == "linear" ? 9u : 27u));
         // The fluid's (start, mask) pairs, then the boundary's (glsl/sim/fluid/neighbours.glsl).
