@@ -155,10 +155,9 @@ public:
     // it RANRYU_BOUNDARY_MASKS, and for PBF RANRYU_BOUNDARY_SKIN (glsl/sim/fluid/neighbours.glsl).
     std::string neighbour_defines() const;
 
-    // The density pass's (run start, mask) pairs, the fluid's and the boundary's, 4·runs·count() uints
-    // (sph.neighbour_masks), and
-    // whether they describe the current cell order and positions: a density pass sets it, and
-    // rebuild_grid() and every integration clear it.
+    // The density pass's (run start, mask) pairs, 2·runs·count() uints for the fluid (sph.neighbour_masks)
+    // and as many again for the boundary (boundary_masks()), and whether they describe the current cell
+    // order and positions: a density pass sets it, and rebuild_grid() and every integration clear it.
     const gl::Buffer& neighbour_masks() const { return neighbours_; }
     bool neighbour_masks_current() const { return masks_current_; }
     void set_neighbour_masks_current(bool current) { masks_current_ = current && neighbours_.id() != 0; }

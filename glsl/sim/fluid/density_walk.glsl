@@ -17,9 +17,9 @@ layout(std430) writeonly buffer NeighbourMasks { uint neighbours[]; };
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
 
-// Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear, kBoundaryMasksComplete
-// of fluid.glsl) and
-// in `count` how many neighbours it has within h, fluid (j != i) and boundary.
+// Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear and
+// kBoundaryMasksComplete of fluid.glsl) and in `count` how many neighbours it has within h, fluid
+// (j != i) and boundary.
 uint walk_neighbours(uint i, vec3 xi, out uint count) {
     ivec3 c = grid_cell(xi);
     float h2 = sph.h * sph.h, mask2 = h2;   // the boundary masks' radius squared
