@@ -46,14 +46,6 @@ std::vector<glm::vec4> boundary_of(const scene::Scene& s) { return sample_bounda
 
 // One vec4 a particle (at least one), the size of every state array.
 std::size_t vec4_array_bytes(std::size_t count) { return std::max<std::size_t>(count, 1) * sizeof(glm::vec4); }
-// The most bytes one storage block holds here (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe 128 MiB), and
-// at most 2^32 words: the shaders index the masks with 32-bit uints (neighbours.glsl).
-std::size_t storage_block_limit() {
-    GLint64 block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
-    const std::size_t words = std::size_t(0xFFFFFFFFull) * sizeof(std::uint32_t);
-    return block > 0 ? std::min(std::size_t(block), words) : words;
-}
 // (start, mask) per neighbour run and particle: the fluid's, and with `boundary` the boundary's.
 std::size_t pair_bytes(const scene::Scene& s, std::size_t count, bool boundary) {
     return std::max<std::size_t>(count, 1) * (boundary ? 4 : 2) * std::size_t(Fluid::neighbour_runs(s)) * sizeof(std::uint32_t);
@@ -71,8 +63,15 @@ std::size_t sort_capacity(std::size_t count, std::size_t boundary) { return std:
 
 std::size_t Fluid::boundary_count(const scene::Scene& s) { return sim::boundary_count(s, layers_of(s)); }
 
+std::size_t Fluid::storage_block_bytes() {
+    GLint64 block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+    const std::size_t words = std::size_t(0xFFFFFFFFull) * sizeof(std::uint32_t);
+    return block > 0 ? std::min(std::size_t(block), words) : words;
+}
+
 bool Fluid::boundary_masks(const scene::Scene& s, std::size_t count) {
-    return s.sph.neighbour_masks && pair_bytes(s, count, true) <= storage_block_limit();
+    return s.sph.neighbour_masks && pair_bytes(s, count, true) <= Fluid::storage_block_bytes();
 }
 
 std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
@@ -238,9 +237,9 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         // One storage block: the boundary's masks only where both fit (boundary_masks()), the fluid's
         // or none.
         const std::size_t mask = mask_bytes(scene, count_);
-        if (mask > storage_block_limit())
-            throw Error("scene: the neighbour masks of " + std::to_string(count_) + " particles take " + std::to_string(mask) +
-                        " bytes, more than one storage block holds here (" + std::to_string(storage_block_limit()) +
+        if (mask > Fluid::storage_block_bytes())
+            throw InputError("scene " + scene.name + " (" + scene.origin + "): the neighbour masks of " + std::to_string(count_) + " particles take " + std::to_string(mask) +
+                        " bytes, more than one storage block holds here (" + std::to_string(Fluid::storage_block_bytes()) +
                         " bytes); set \"sph\": {\"neighbour_masks\": false} or use fewer particles");
         neighbours_ = gl::Buffer(mask, GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
     }

@@ -79,6 +79,9 @@ public:
     // Whether the density pass records the boundary's masks beside the fluid's (neighbours.glsl): with
     // sph.neighbour_masks, where both fit one storage block for `count` particles (this context's bound).
     static bool boundary_masks(const scene::Scene& s, std::size_t count);
+    // The most bytes one storage block holds in this context (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe
+    // 128 MiB), and at most 2^32 words: the shaders index the masks with 32-bit uints.
+    static std::size_t storage_block_bytes();
     // Device memory the constructor keeps for `count` particles and `boundary` boundary particles
     // (scene.particle_count(), boundary_count()): the state, the masks, the boundary, the grid and its
     // sort (frame/memory.h). `transient`: what start-up holds besides, and frees.

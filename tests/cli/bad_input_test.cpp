@@ -87,6 +87,25 @@ TEST_CASE("bad input: --spacing outside [0.0001, 1] m or one that leaves no part
                     {"--spacing", "no particle"});
 }
 
+TEST_CASE("bad input: neighbour masks larger than one storage block name the key to turn off", "[cli][bad-input]") {
+    // llvmpipe's storage blocks hold 128 MiB (GL_MAX_SHADER_STORAGE_BLOCK_SIZE), and the shaders index
+    // the masks with 32-bit uints: the dam break at 1.5 mm (2.3M particles) has fluid masks of 336 MB;
+    // a 1 m tank at 4 mm has 955,608 boundary particles, whose DFSPH rows' masks (27 runs with Morton
+    // keys) take 206 MB. Both are refused before any output exists (engine/sim/fluid.cpp, dfsph.cpp).
+    TempDir tmp;
+    Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.0015", "--size", "64x48", "--frames", "1",
+                                       "--out", tmp.str("out")});
+    check_bad_input(r, {"scene dam-break", "neighbour masks", "storage block", "\"neighbour_masks\": false"}, false);
+    CHECK_FALSE(fs::exists(tmp / "out"));
+    const fs::path path = tmp / "tank.json";
+    write_file(path, R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "sph": {"solver": "dfsph", "boundary_rows": true, "neighbour_keys": "morton", "neighbour_masks": false},
+        "particles": {"spacing": 0.004, "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}]}})");
+    r = run_ranryu(tmp.path(), {"record", "--scene", path.string(), "--size", "64x48", "--frames", "1", "--out", tmp.str("out")});
+    check_bad_input(r, {path.string(), "boundary rows' neighbour masks", "storage block", "\"boundary_rows\": false"}, false);
+    CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
 TEST_CASE("bad input: validate without a case or with an unknown one", "[cli][bad-input]") {
     TempDir tmp;
     check_bad_input(run_ranryu(tmp.path(), {"validate"}), {"validate", "dam-break"});

@@ -11,7 +11,7 @@
 // holds bit j − s for each fluid j != i inside h (N = particle_count: consecutive particles store
 // contiguously, and every invocation stores at the same run, so the stores coalesce). A neighbour 32 or
 // more places into its run leaves the kMasksComplete flag clear, and the particle is walked instead.
-// With RANRYU_BOUNDARY_MASKS (where the positions stay those of the density pass: DFSPH, WCSPH) the
+// With RANRYU_BOUNDARY_MASKS (Fluid::boundary_masks(): sph.neighbour_masks, where they fit) the
 // boundary's runs have masks too, after the fluid's: for the r-th run [s, e) of the boundary's walk,
 // neighbours[2(R + r)·N + i] = s and neighbours[(2(R + r) + 1)·N + i] the bits b − s of the boundary
 // particles within h (R = kNeighbourRuns), written where the particle's cell has boundary particles
