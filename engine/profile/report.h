@@ -51,6 +51,7 @@ struct SimulationSummary {
     // what ran dispatched no work but cost a dispatch and a barrier each.
     double issued = 0.0, issued_divergence = 0.0;
     double density_error = 0.0, max_density_error = 0.0;         // the solve's last mean error (units of rho0): per step, most
+    double peak_density_error = 0.0;   // the largest particle error a density solve stopped with (units of rho0; (D6))
     double divergence_error = 0.0;
     // The step the density solve's iterations allowed (docs/DFSPH.md (D8)) at the end of a frame, the
     // least over the frames (s; sph.dt_max where no solve lowered it).

@@ -425,6 +425,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.max_time_step = float(p.number("max_time_step"));
         h.max_density_error = float(p.number("max_density_error"));
         h.max_divergence_error = float(p.number("max_divergence_error"));
+        h.max_particle_density_error = float(p.number("max_particle_density_error"));
         h.min_iterations = p.integer("min_iterations");
         h.max_iterations = p.integer("max_iterations");
         if (h.min_iterations > h.max_iterations) p.fail("\"sph.min_iterations\" must not exceed \"sph.max_iterations\"");

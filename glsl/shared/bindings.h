@@ -154,8 +154,11 @@ RANRYU_STRUCT(StepState) {
     uint issued_divergence;   // the same for the divergence solve
     vec4 speed_position;      // xyz: where speed_index was when its speed was recorded (the end of its step, m)
     vec4 density_position;    // xyz: where density_index was when its density was computed (m)
+    uint peak_error;          // DFSPH: bits of the largest particle error e_i/rho0 a density solve stopped with
+                              // this frame (SolveState.peak of its last iteration; docs/DFSPH.md (D6))
+    uint pad0, pad1, pad2;
 }
-RANRYU_STRUCT_END(StepState, 176)
+RANRYU_STRUCT_END(StepState, 192)
 
 // ---- DFSPH (engine/sim/solvers/dfsph.h, glsl/sim/dfsph/; docs/DFSPH.md) ----
 #define RANRYU_UBO_DFSPH 8   // DfsphParams
@@ -181,7 +184,7 @@ RANRYU_STRUCT(DfsphParams) {
     uint shrink_step_above;      // (D8): a density solve of more iterations than this shrinks the step; 0: off
     uint grow_step_below;        // (D8): one of fewer lets it grow
     float iteration_dt_min;      // (D8): the least step the iterations may ask for (s)
-    uint pad0;
+    float eta_peak;              // density solve: bound on the largest particle's error e_i/rho0 (D6); 0: none
 }
 RANRYU_STRUCT_END(DfsphParams, 80)
 
@@ -200,8 +203,12 @@ RANRYU_STRUCT(SolveState) {
     uint correct_groups; // with correct_y, correct_z: the indirect arguments of its residual pass: the
     uint correct_y;      // fluid's workgroups, then with the boundary rows of (D9) the rows' (set by the
     uint correct_z;      // solve's prepare pass)
+    uint error_peak;     // this iteration's largest min(e_i/rho0, 1) over the particles, as its float's bits
+                         // (atomicMax: non-negative floats order as their bits)
+    float peak;          // the largest e_i/rho0 of the solve's last decided iteration
+    uint pad0, pad1;
 }
-RANRYU_STRUCT_END(SolveState, 48)
+RANRYU_STRUCT_END(SolveState, 64)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
 
 // The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block

@@ -84,6 +84,7 @@ void main() {
     put(step.iterations); put(step.unconverged); put(step.error);
     put(step.stable_dt); put(step.iteration_dt); put(step.issued); put(step.issued_divergence);
     put(step.speed_position); put(step.density_position);
+    put(step.peak_error); put(step.pad0); put(step.pad1); put(step.pad2);
 
     put(subp.level_energy); put(subp.energy_scale); put(subp.spacing); put(subp.beta); put(subp.coherence_time);
     put(subp.inv_sigma); put(subp.noise_lmax); put(subp.tile_size); put(subp.levels); put(subp.budget);
@@ -95,10 +96,11 @@ void main() {
     put(dfsph.min_iterations); put(dfsph.min_divergence_iterations); put(dfsph.issued); put(dfsph.issued_divergence);
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.complementarity_error);
-    put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.pad0);
+    put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.eta_peak);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
     put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);
+    put(solve.error_peak); put(solve.peak); put(solve.pad0); put(solve.pad1);
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
     put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);

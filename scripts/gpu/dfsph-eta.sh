@@ -3,7 +3,7 @@
 # simulated seconds at about each N of NS particles (default 250000), once for each mean density error
 # eta of ETAS (sph.max_density_error; default "1e-4 1e-3"), particle shading at 640x360; then the surge
 # front at a/dx = 40 for each eta of FRONT_ETAS (default none). KEYS adds scene keys to every run
-# ("sph.boundary_rows=true", dotted, as scene-at.py takes them). Prints each run's verdict, substeps,
+# ("sph.boundary_rows=true", dotted, as scene-at.py takes them); SHADERS runs a shader folder (--shader-dir). Prints each run's verdict, substeps,
 # iterations, real-time factor and, from its per-frame records, the largest density and speed; the
 # scenes, reports and records go under $OUT/eta (as $OUT/eta-$TAG.tgz when $OUT is set).
 #     TAG=a NS="250000 1000000" ETAS="1e-4 5e-4" FRONT_ETAS="1e-4 5e-4" scripts/gpu/dfsph-eta.sh
@@ -33,7 +33,7 @@ for n in ${NS:-250000}; do
     dx=$(python3 scripts/gpu/scene-at.py dam-break "$f.json" "$n" sph.max_density_error="$eta" ${KEYS:-})
     start=$(date +%s)
     timeout "${RUN_TIMEOUT:-250}" $B profile --scene "$f.json" --spacing "$dx" --shading particles --size 640x360 \
-      --frames "${FRAMES:-600}" --warmup 0 --records "$f.csv" > "$f.txt" 2>&1
+      --frames "${FRAMES:-600}" --warmup 0 --records "$f.csv" ${SHADERS:+--shader-dir "$SHADERS"} > "$f.txt" 2>&1
     echo "== $n particles, eta $eta, spacing $dx: rc $?, $(( $(date +%s) - start )) s"
     grep -hE "substeps/frame \(|density solve|divergence solve|fps and real-time|^guard|^ranryu:" "$f.txt" | sed 's/^/   /'
     summary "$f.csv"

@@ -345,7 +345,9 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
     // summary is built from the same records: its steps are the rows' substeps, its iterations a step
     // the rows' density iterations over them, its issued iterations a step the rows' issued over them
     // (each at least what ran), its least_iteration_dt the least of the rows' iteration_dt
-    // (docs/DFSPH.md (D8)), within the scene's largest step of 5 ms.
+    // (docs/DFSPH.md (D8)), within the scene's largest step of 5 ms; each row's peak_error (the largest
+    // particle error a density solve stopped with, (D6)) is at least its largest mean error, and the
+    // summary's is the rows' largest.
     TempDir tmp;
     const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025", "--size",
                                              "64x48", "--shading", "particles", "--frames", "12", "--warmup", "0", "--records",
@@ -362,8 +364,8 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
         return std::size_t(at - head.begin());
     };
     const std::size_t steps_at = column("substeps"), iterations_at = column("iterations"), dt_at = column("iteration_dt"),
-                      issued_at = column("issued");
-    double steps = 0.0, iterations = 0.0, issued = 0.0, least = 1.0;
+                      issued_at = column("issued"), peak_at = column("peak_error"), mean_at = column("max_error");
+    double steps = 0.0, iterations = 0.0, issued = 0.0, least = 1.0, peak = 0.0;
     for (std::size_t k = 1; k < csv.size(); ++k) {
         REQUIRE(csv[k].size() == head.size());
         const double dt = std::stod(csv[k][dt_at]);
@@ -374,10 +376,14 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
         issued += std::stod(csv[k][issued_at]);
         CHECK(std::stod(csv[k][issued_at]) >= std::stod(csv[k][iterations_at]));   // what ran of what was issued
         least = std::min(least, dt);
+        CHECK(std::stod(csv[k][peak_at]) >= std::stod(csv[k][mean_at]));
+        peak = std::max(peak, std::stod(csv[k][peak_at]));
     }
+    CHECK(peak > 0.0);
     const nlohmann::json s = nlohmann::json::parse(read_file(tmp / "report.json"))["simulation"];
     CHECK(s["steps"].get<double>() == steps);
     CHECK(s["iterations_per_step"].get<double>() == Approx(iterations / steps).epsilon(1e-12));
     CHECK(s["issued_iterations_per_step"].get<double>() == Approx(issued / steps).epsilon(1e-12));
     CHECK(s["least_iteration_dt"].get<double>() == Approx(least).epsilon(1e-6));
+    CHECK(s["peak_density_error"].get<double>() == Approx(peak).epsilon(1e-6));
 }

@@ -664,6 +664,71 @@ TEST_CASE("dfsph: the complementarity error (D6) keeps the density solve going w
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("dfsph: the peak bound (D6) keeps the density solve going until no particle's error is above it, and the GPU's "
+          "peak is the largest error the CPU finds", "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // The block at pitch 0.99 with particles displaced by up to 0.15 spacing (so the compression differs
+    // from particle to particle), one step of 2 ms from no pressure, plain relaxed Jacobi (no (D10)) with
+    // a loose mean bound eta = 0.2 %: it stops while some particles keep several times eta. With the
+    // peak bound eta_p = eta too it must go on until none keeps more than eta_p.
+    std::vector<glm::vec4> x, v;
+    Rig probe;
+    block_state(rng, probe, glm::vec3(0.0f), 0.99f, 0.15f, 0.0f, x, v);
+    const std::vector<glm::vec2> none(x.size(), glm::vec2(0.0f));
+    const double eta = 2e-3, eta_p = 2e-3;
+    struct Result {
+        gpu::StepState step;
+        gpu::SolveState solve;
+        std::vector<double> deviation;   // what the step left, per particle (predicted_deviation)
+        double rest_density;
+    };
+    auto solve = [&](const std::string& keys, int cap) {
+        Rig rig(R"("boundary_rows": false, "chebyshev": 0, "max_density_error": 2e-3)" + keys);
+        const Stages s = run_stages(rig, x, v, none, 2e-3f, cap);
+        Result r{rig.step(), {}, predicted_deviation(rig, s), double(rig.params().rest_density)};
+        const auto states = rig.dfsph().solve_states().read<std::uint8_t>(2 * RANRYU_DFSPH_SOLVE_STRIDE);
+        std::memcpy(&r.solve, states.data(), sizeof r.solve);
+        return r;
+    };
+    // The largest e_i/rho0 = min(max(r_i, 0)/rho0, 1) of what a run left.
+    auto largest = [](const Result& r) {
+        double most = 0.0;
+        for (double d : r.deviation) most = std::max(most, std::min(std::max(d, 0.0) / r.rest_density, 1.0));
+        return most;
+    };
+    const Result mean_only = solve("", 100), peaked = solve(R"(, "max_particle_density_error": 2e-3)", 100);
+    const std::uint32_t k = peaked.step.iterations.x;
+    INFO("mean bound alone: " << mean_only.step.iterations.x << " iterations, mean " << mean_only.step.error.x << ", peak "
+                              << mean_only.solve.peak << "; with the peak bound: " << k << " iterations, mean "
+                              << peaked.step.error.x << ", peak " << peaked.solve.peak << " (eta " << eta << ", eta_p " << eta_p << ")");
+    CHECK(mean_only.step.unconverged.x == 0u);
+    CHECK(double(mean_only.step.error.x) <= eta);
+    CHECK(double(mean_only.solve.peak) > eta_p);   // the premise: the mean alone leaves particles above eta_p
+    CHECK(peaked.step.unconverged.x == 0u);
+    CHECK(double(peaked.step.error.x) <= eta);
+    CHECK(double(peaked.solve.peak) <= eta_p);
+    CHECK(peaked.solve.peak >= peaked.step.error.x);   // a largest term is at least the mean
+    CHECK(k > mean_only.step.iterations.x);
+    CHECK(peaked.solve.error_peak == 0u);   // the decision cleared it for the next iteration
+    float recorded;   // the frame's record keeps the solve's last peak (StepState.peak_error)
+    std::memcpy(&recorded, &peaked.step.peak_error, sizeof recorded);
+    CHECK(recorded == peaked.solve.peak);
+
+    // The peak the GPU decided on at iteration k is the largest error of kappa after k - 1 iterations,
+    // which a run stopped at k - 1 applies: the CPU's largest of what that run left must equal it. Both
+    // runs compute the same kappa (no atomics in it). Bound: r_i is a float sum of about 60 terms of
+    // order rho0 and of dt Drho/Dt (~0.03 rho0), rounded each at 2^-24, so within 60 * 2^-24 * 1.03
+    // ~ 4e-6 of rho0; and the CPU's rate is from the float velocities: 1e-5 leaves room for both.
+    REQUIRE(k >= 2u);
+    const Result before = solve(R"(, "max_particle_density_error": 2e-3)", int(k) - 1);
+    CHECK(before.step.iterations.x == k - 1);
+    CHECK(before.step.unconverged.x == 1u);
+    INFO("largest error after " << (k - 1) << " iterations: CPU " << largest(before) << ", GPU at iteration " << k << ": " << peaked.solve.peak);
+    CHECK(std::abs(largest(before) - double(peaked.solve.peak)) <= 1e-5);
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference, and saves iterations", "[dfsph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());

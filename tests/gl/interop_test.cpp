@@ -131,6 +131,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"step.issued_divergence", {offsetof(gpu::StepState, issued_divergence), GL_UNSIGNED_INT}},
         {"step.speed_position", {offsetof(gpu::StepState, speed_position), GL_FLOAT_VEC4}},
         {"step.density_position", {offsetof(gpu::StepState, density_position), GL_FLOAT_VEC4}},
+        {"step.peak_error", {offsetof(gpu::StepState, peak_error), GL_UNSIGNED_INT}},
+        {"step.pad0", {offsetof(gpu::StepState, pad0), GL_UNSIGNED_INT}},
+        {"step.pad1", {offsetof(gpu::StepState, pad1), GL_UNSIGNED_INT}},
+        {"step.pad2", {offsetof(gpu::StepState, pad2), GL_UNSIGNED_INT}},
 
         {"subp.level_energy", {offsetof(gpu::SubparticleParams, level_energy), GL_FLOAT_VEC4}},
         {"subp.energy_scale", {offsetof(gpu::SubparticleParams, energy_scale), GL_FLOAT_VEC4}},
@@ -172,7 +176,7 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.shrink_step_above", {offsetof(gpu::DfsphParams, shrink_step_above), GL_UNSIGNED_INT}},
         {"dfsph.grow_step_below", {offsetof(gpu::DfsphParams, grow_step_below), GL_UNSIGNED_INT}},
         {"dfsph.iteration_dt_min", {offsetof(gpu::DfsphParams, iteration_dt_min), GL_FLOAT}},
-        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
+        {"dfsph.eta_peak", {offsetof(gpu::DfsphParams, eta_peak), GL_FLOAT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -183,6 +187,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.correct_groups", {offsetof(gpu::SolveState, correct_groups), GL_UNSIGNED_INT}},
         {"solve.correct_y", {offsetof(gpu::SolveState, correct_y), GL_UNSIGNED_INT}},
         {"solve.correct_z", {offsetof(gpu::SolveState, correct_z), GL_UNSIGNED_INT}},
+        {"solve.error_peak", {offsetof(gpu::SolveState, error_peak), GL_UNSIGNED_INT}},
+        {"solve.peak", {offsetof(gpu::SolveState, peak), GL_FLOAT}},
+        {"solve.pad0", {offsetof(gpu::SolveState, pad0), GL_UNSIGNED_INT}},
+        {"solve.pad1", {offsetof(gpu::SolveState, pad1), GL_UNSIGNED_INT}},
 
         {"rows.dispatch", {offsetof(gpu::BoundaryRowsState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"rows.rows", {offsetof(gpu::BoundaryRowsState, rows), GL_UNSIGNED_INT}},
@@ -443,6 +451,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     st.issued_divergence = d.u();
     st.speed_position = d.v4();
     st.density_position = d.v4();
+    for (std::uint32_t* u : {&st.peak_error, &st.pad0, &st.pad1, &st.pad2}) *u = d.u();
 
     gpu::SubparticleParams pp{};
     pp.level_energy = d.v4();
@@ -468,13 +477,15 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.shrink_step_above = d.u();
     dp.grow_step_below = d.u();
     dp.iteration_dt_min = d.f();
-    dp.pad0 = d.u();
+    dp.eta_peak = d.f();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
     for (std::uint32_t* u : {&ss.iterations, &ss.error_sum, &ss.groups_done, &ss.solve}) *u = d.u();
     ss.weight = d.f();
-    for (std::uint32_t* u : {&ss.correct_groups, &ss.correct_y, &ss.correct_z}) *u = d.u();
+    for (std::uint32_t* u : {&ss.correct_groups, &ss.correct_y, &ss.correct_z, &ss.error_peak}) *u = d.u();
+    ss.peak = d.f();
+    for (std::uint32_t* u : {&ss.pad0, &ss.pad1}) *u = d.u();
 
     gpu::BoundaryRowsState rs{};
     rs.dispatch = d.u4();
@@ -513,6 +524,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(st.iterations); expect.put(st.unconverged); expect.put(st.error);
     expect.put(st.stable_dt); expect.put(st.iteration_dt); expect.put(st.issued); expect.put(st.issued_divergence);
     expect.put(st.speed_position); expect.put(st.density_position);
+    expect.put(st.peak_error); expect.put(st.pad0); expect.put(st.pad1); expect.put(st.pad2);
     const std::size_t step_end = expect.w.size();
     expect.put(pp.level_energy); expect.put(pp.energy_scale); expect.put(pp.spacing); expect.put(pp.beta);
     expect.put(pp.coherence_time); expect.put(pp.inv_sigma); expect.put(pp.noise_lmax); expect.put(pp.tile_size);
@@ -526,10 +538,11 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.issued_divergence); expect.put(dp.error_scale); expect.put(dp.deficient_neighbours);
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
     expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
-    expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.pad0);
+    expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.eta_peak);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);
+    expect.put(ss.error_peak); expect.put(ss.peak); expect.put(ss.pad0); expect.put(ss.pad1);
     const std::size_t solve_end = expect.w.size();
     expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
     const std::size_t rows_end = expect.w.size();

@@ -107,6 +107,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
     params_.eta = scene.sph.max_density_error;
     params_.eta_divergence = scene.sph.max_divergence_error;
+    params_.eta_peak = scene.sph.max_particle_density_error;
     params_.relaxation = scene.sph.relaxation;
     params_.chebyshev = scene.sph.chebyshev;
     params_.complementarity_error = scene.sph.complementarity_error ? 1u : 0u;

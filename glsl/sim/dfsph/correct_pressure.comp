@@ -14,6 +14,10 @@
 // (the excess over rho0), or with dfsph.complementarity_error in the density solve e_i = |r_i| where
 // the iteration's kappa_i > 0 (a particle that carries pressure must be at rho0, (D4)), is
 // summed on the GPU: each workgroup adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
+// The density solve also takes the iteration's largest min(e_i/rho0, 1), the peak (each workgroup's by
+// atomicMax on its float's bits), and with dfsph.eta_peak > 0 it has converged only once that is at
+// most eta_peak too: a mean over N particles lets a compressed splash or impact of a few keep errors
+// that grow with N at the same eta (docs/DFSPH.md (D6)).
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
 // run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
 // iterations issued after it do no work, and adds the solve to the frame's record in StepState. The
@@ -64,18 +68,23 @@ void visit_fluid(uint j, vec3 d, float r2) { change_ += sph.mass * dot(a_i_ - pr
 void visit_boundary(uint b, vec3 d, float r2) { change_ += boundary[b].w * dot(a_i_, kernel_grad(d, sqrt(r2), sph.h)); }
 
 shared float wg_error_[gl_WorkGroupSize.x];
+shared float wg_peak_[gl_WorkGroupSize.x];
 
 // The last workgroup's decision, one invocation.
 void decide() {
     uint total = atomicAdd(solve.error_sum, 0u);   // every workgroup added its part before counting itself
     // Over the particles not parked: a parked one has no neighbours, no residual (fluid.glsl).
     float mean = float(total) / (dfsph.error_scale * float(max(step.live_count, 1u)));
+    float peak = uintBitsToFloat(atomicMax(solve.error_peak, 0u));
+    solve.error_peak = 0u;
+    solve.peak = peak;
     uint it = solve.iterations + 1u, s = solve.solve;
     solve.iterations = it;
     if (it > kChebyshevStart) solve.weight = next_chebyshev_weight(solve.weight);   // (D10): w_it
     uint least = s == 0u ? dfsph.min_iterations : 1u;
     uint cap = s == 0u ? dfsph.issued : dfsph.issued_divergence;
-    bool converged = it >= least && mean <= (s == 0u ? dfsph.eta : dfsph.eta_divergence);
+    bool converged = it >= least && mean <= (s == 0u ? dfsph.eta : dfsph.eta_divergence)
+                     && (s != 0u || dfsph.eta_peak <= 0.0 || peak <= dfsph.eta_peak);
     if (converged || it >= cap) {
         solve.dispatch.x = 0u;
         solve.correct_groups = 0u;
@@ -86,6 +95,7 @@ void decide() {
         if (!converged) step.unconverged[s] += 1u;
         step.error[s] += mean;
         step.error[s + 2u] = max(step.error[s + 2u], mean);
+        if (s == 0u) step.peak_error = max(step.peak_error, floatBitsToUint(peak));
         if (s == 0u && dfsph.shrink_step_above > 0u) step.iteration_dt = next_iteration_dt(step.stable_dt, it);
     }
     solve.error_sum = 0u;
@@ -121,13 +131,18 @@ void main() {
         error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
     }
     wg_error_[l] = error;
+    wg_peak_[l] = error;
     barrier();
     for (uint half_ = gl_WorkGroupSize.x / 2u; half_ > 0u; half_ /= 2u) {
-        if (l < half_) wg_error_[l] += wg_error_[l + half_];
+        if (l < half_) {
+            wg_error_[l] += wg_error_[l + half_];
+            wg_peak_[l] = max(wg_peak_[l], wg_peak_[l + half_]);
+        }
         barrier();
     }
     if (l == 0u) {
         atomicAdd(solve.error_sum, uint(wg_error_[0] * dfsph.error_scale + 0.5));
+        atomicMax(solve.error_peak, floatBitsToUint(wg_peak_[0]));
         memoryBarrierBuffer();
         if (atomicAdd(solve.groups_done, 1u) == gl_NumWorkGroups.x - 1u) decide();
     }

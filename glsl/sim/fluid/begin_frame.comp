@@ -30,4 +30,5 @@ void main() {
     step.issued = 0u;
     step.issued_divergence = 0u;
     step.error = vec4(0.0);
+    step.peak_error = 0u;
 }
