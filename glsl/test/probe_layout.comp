@@ -13,11 +13,12 @@
 //                 viewport, speed_scale, tank_min, tank_max                          80 words
 //   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
 //   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
-//   StepState:    its 20 scalars, then iterations, unconverged, error, then its 4    36 words
+//   StepState:    its 20 scalars, then iterations, unconverged, error, then its 4
+//                 scalars, speed_position, density_position, peak_error and 3 pads  48 words
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
 //   DfsphParams:  its 20 scalars in order                                            20 words
-//   SolveState:   dispatch, iterations, error_sum, groups_done, solve, weight, pads (std430)  12 words
+//   SolveState:   dispatch, then its 12 scalars in order (std430)                    16 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
 //   kMacros:      the RANRYU_* macros, in the order of the array below               25 words

@@ -723,6 +723,7 @@ TEST_CASE("dfsph: the peak bound (D6) keeps the density solve going until no par
     REQUIRE(k >= 2u);
     const Result before = solve(R"(, "max_particle_density_error": 2e-3)", int(k) - 1);
     CHECK(before.step.iterations.x == k - 1);
+    CHECK(before.step.iterations.y == peaked.step.iterations.y);   // the same divergence solve before it
     CHECK(before.step.unconverged.x == 1u);
     INFO("largest error after " << (k - 1) << " iterations: CPU " << largest(before) << ", GPU at iteration " << k << ": " << peaked.solve.peak);
     CHECK(std::abs(largest(before) - double(peaked.solve.peak)) <= 1e-5);

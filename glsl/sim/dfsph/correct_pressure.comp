@@ -142,7 +142,7 @@ void main() {
     }
     if (l == 0u) {
         atomicAdd(solve.error_sum, uint(wg_error_[0] * dfsph.error_scale + 0.5));
-        atomicMax(solve.error_peak, floatBitsToUint(wg_peak_[0]));
+        atomicMax(solve.error_peak, floatBitsToUint(wg_peak_[0]) & 0x7FFFFFFFu);   // -0.0 as 0
         memoryBarrierBuffer();
         if (atomicAdd(solve.groups_done, 1u) == gl_NumWorkGroups.x - 1u) decide();
     }
