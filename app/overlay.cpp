@@ -107,10 +107,15 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
         ImGui::Text("particles %zu   sub-particles %s", live, sub ? "-" : "off");
     const std::optional<std::uint32_t> substeps = p.substeps_per_frame();
     const auto& record = sim ? sim->fluid().last_record() : std::nullopt;
-    if (substeps && record && scene.sph.solver == scene::Solver::dfsph)
+    if (substeps && record && scene.sph.solver == scene::Solver::dfsph) {
         ImGui::Text("substeps %u a frame   solver iterations %u + %u of %u + %u issued", *substeps, record->iterations.x,
                     record->iterations.y, record->issued, record->issued_divergence);
-    else if (substeps)
+        // The density solves' error as they stopped (docs/DFSPH.md (D6)): the mean over the frame's
+        // steps, and the largest one particle kept.
+        ImGui::Text("density error %.3f %% mean, %.3f %% one particle's at most",
+                    100.0 * double(record->error.x) / double(std::max(record->frame_substeps, 1u)),
+                    100.0 * double(std::bit_cast<float>(record->peak_error)));
+    } else if (substeps)
         ImGui::Text("substeps %u a frame", *substeps);
     else
         ImGui::TextUnformatted("substeps -");
