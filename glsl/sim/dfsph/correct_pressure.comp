@@ -14,10 +14,10 @@
 // (the excess over rho0), or with dfsph.complementarity_error in the density solve e_i = |r_i| where
 // the iteration's kappa_i > 0 (a particle that carries pressure must be at rho0, (D4)), is
 // summed on the GPU: each workgroup adds its part in fixed point (units of 1/error_scale), and the last workgroup to finish decides.
-// The density solve also takes the iteration's largest min(e_i/rho0, 1), the peak (each workgroup's by
-// atomicMax on its float's bits), and with dfsph.eta_peak > 0 it has converged only once that is at
+// The iteration's largest min(e_i/rho0, 1), the peak, is taken beside it (each workgroup's by atomicMax
+// on its float's bits); with dfsph.eta_peak > 0 the density solve has converged only once that is at
 // most eta_peak too: a mean over N particles lets a compressed splash or impact of a few keep errors
-// that grow with N at the same eta (docs/DFSPH.md (D6)).
+// that grow with N at the same eta (docs/DFSPH.md (D6)). The density solve's last peak goes to the record.
 // When the solve has converged (at least its minimum iterations, the error at most its eta) or has
 // run the iterations the CPU issued, it sets the solve's dispatch to zero workgroups, so the
 // iterations issued after it do no work, and adds the solve to the frame's record in StepState. The
