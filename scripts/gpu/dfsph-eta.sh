@@ -24,7 +24,9 @@ iterations = sum(float(r["iterations"]) for r in rows)
 print(f"   frames {n}, t {float(rows[-1]['time']):.2f}, substeps/frame {steps / n:.1f}, density iterations/step "
       f"{iterations / max(steps, 1):.2f}, divergence iterations/step "
       f"{sum(float(r['divergence_iterations']) for r in rows) / max(steps, 1):.2f}, largest rho/rho0 {max(float(r['max_density']) for r in rows):.3f}, "
-      f"fastest {max(float(r['max_speed']) for r in rows):.1f} m/s, steps at the cap {sum(int(r['unconverged']) for r in rows)}")
+      f"fastest {max(float(r['max_speed']) for r in rows):.1f} m/s, over the last 2 s {max(float(r['max_speed']) for r in rows[-120:]):.2f}, "
+      f"steps at the cap {sum(int(r['unconverged']) for r in rows)}, "
+      f"one particle's error at most {100 * max(float(r.get('peak_error') or 0) for r in rows):.3f} %")
 PY
 }
 for n in ${NS:-250000}; do
