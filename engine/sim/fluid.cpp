@@ -70,6 +70,13 @@ std::size_t Fluid::storage_block_bytes() {
     return block > 0 ? std::min(std::size_t(block), words) : words;
 }
 
+void Fluid::require_one_block(const scene::Scene& s, const std::string& what, std::size_t bytes, const std::string& off) {
+    if (bytes <= storage_block_bytes()) return;
+    throw InputError("scene " + s.name + " (" + s.origin + "): " + what + " take " + std::to_string(bytes) +
+                     " bytes, more than one storage block holds here (" + std::to_string(storage_block_bytes()) +
+                     " bytes); set \"sph\": {\"" + off + "\": false} or use fewer particles");
+}
+
 bool Fluid::boundary_masks(const scene::Scene& s, std::size_t count) {
     return s.sph.neighbour_masks && pair_bytes(s, count, true) <= Fluid::storage_block_bytes();
 }
@@ -237,10 +244,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         // One storage block: the boundary's masks only where both fit (boundary_masks()), the fluid's
         // or none.
         const std::size_t mask = mask_bytes(scene, count_);
-        if (mask > Fluid::storage_block_bytes())
-            throw InputError("scene " + scene.name + " (" + scene.origin + "): the neighbour masks of " + std::to_string(count_) + " particles take " + std::to_string(mask) +
-                        " bytes, more than one storage block holds here (" + std::to_string(Fluid::storage_block_bytes()) +
-                        " bytes); set \"sph\": {\"neighbour_masks\": false} or use fewer particles");
+        require_one_block(scene, "the neighbour masks of " + std::to_string(count_) + " particles", mask, "neighbour_masks");
         neighbours_ = gl::Buffer(mask, GL_DYNAMIC_COPY, nullptr, "fluid.neighbour_masks");
     }
     ranges_ = grid_.make_ranges("fluid.cells");

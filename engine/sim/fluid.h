@@ -82,6 +82,9 @@ public:
     // The most bytes one storage block holds in this context (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; llvmpipe
     // 128 MiB), and at most 2^32 words: the shaders index the masks with 32-bit uints.
     static std::size_t storage_block_bytes();
+    // InputError naming the scene, `what` takes `bytes`, the bound and the sph key `off` that turns it
+    // off, where `bytes` exceed storage_block_bytes().
+    static void require_one_block(const scene::Scene& s, const std::string& what, std::size_t bytes, const std::string& off);
     // Device memory the constructor keeps for `count` particles and `boundary` boundary particles
     // (scene.particle_count(), boundary_count()): the state, the masks, the boundary, the grid and its
     // sort (frame/memory.h). `transient`: what start-up holds besides, and frees.

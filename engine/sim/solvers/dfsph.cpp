@@ -162,10 +162,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         // A (run start, mask) pair per run of the walk a row, recorded by the prepare pass
         // (glsl/sim/dfsph/boundary_rows.glsl).
         const std::size_t row_mask_bytes = nb * 2 * std::size_t(fluid.neighbour_runs()) * sizeof(std::uint32_t);
-        if (row_mask_bytes > Fluid::storage_block_bytes())
-            throw InputError("scene " + scene.name + " (" + scene.origin + "): the boundary rows' neighbour masks of " + std::to_string(nb) + " boundary particles take " +
-                        std::to_string(row_mask_bytes) + " bytes, more than one storage block holds here (" +
-                        std::to_string(Fluid::storage_block_bytes()) + " bytes); set \"sph\": {\"boundary_rows\": false} or use fewer particles");
+        Fluid::require_one_block(scene, "the boundary rows' neighbour masks of " + std::to_string(nb) + " boundary particles",
+                                 row_mask_bytes, "boundary_rows");
         row_masks_ = gl::Buffer(row_mask_bytes, GL_DYNAMIC_COPY, nullptr, "dfsph.row_masks");
         boundary_wall_ = gl::Buffer(nb * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_wall");
         // The BoundaryRowsState, then a mark per boundary particle (compute_density.comp).
