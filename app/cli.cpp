@@ -436,7 +436,8 @@ settings").
   --spacings LIST     spacings in metres (default: each validation case's own spacing and half of
                       it; a scene case's own spacing)
   --factors LIST      time-step factors: each multiplies every bound on the step, the Courant number
-                      sph.cfl, the force condition's sph.force_factor and the largest step
+                      (sph.cfl, and DFSPH's sph.dfsph_cfl where set), the force condition's
+                      sph.force_factor and the largest step
                       sph.max_time_step (docs/SPH.md (7), docs/DFSPH.md (D8)); for pbf, whose step
                       is fixed, the substeps a frame are divided by it (docs/SWEEP.md); default
                       0.5,1,1.5,2

@@ -422,7 +422,7 @@ int profile_cmd(const Options& o) {
         overlay_cpu_ms.reserve(std::size_t(frames));
         ignored.reserve(64);
         if (pipeline.simulation()) overlay_state.limits = sim::guard_limits(scene);
-        overlay_state.viscosity = scene.sph.viscosity, overlay_state.cfl = scene.sph.cfl;
+        overlay_state.viscosity = scene.sph.viscosity, overlay_state.cfl = scene.sph.courant();
         const profile::PassId pass = pipeline.timer().pass("overlay");
         hooks.after_draw = [&, pass](frame::Pipeline& p) {
             const auto t0 = std::chrono::steady_clock::now();

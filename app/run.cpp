@@ -262,7 +262,7 @@ int run(const Options& o) {
                 }
                 // Kept in the scene, so that a restart keeps them too.
                 if (cmd.kind == input::Kind::viscosity) scene.sph.viscosity = cmd.x;
-                if (cmd.kind == input::Kind::cfl) scene.sph.cfl = cmd.x;
+                if (cmd.kind == input::Kind::cfl) scene.sph.courant() = cmd.x;
                 if (cmd.kind == input::Kind::amplitude) {
                     c.amplitude = cmd.x;
                     if (scene.turbulence.enabled()) scene.turbulence.amplitude = cmd.x;
@@ -413,11 +413,11 @@ int run(const Options& o) {
             view.emitter = c.emitter, view.budget = scene.particle_budget;
             view.paddle = c.paddle, view.recording = recorder != nullptr;
             if (std::exchange(c.settings_changed, false) && p.simulation()) {
-                p.simulation()->fluid().set_viscosity_and_cfl(scene.sph.viscosity, scene.sph.cfl);
+                p.simulation()->fluid().set_viscosity_and_cfl(scene.sph.viscosity, scene.sph.courant());
                 if (turbulence::TurbulenceForce* force = p.simulation()->turbulence())
                     force->set_amplitude(c.turbulence ? scene.turbulence.amplitude : 0.0f);
             }
-            view.viscosity = scene.sph.viscosity, view.cfl = scene.sph.cfl, view.turbulence = c.turbulence;
+            view.viscosity = scene.sph.viscosity, view.cfl = scene.sph.courant(), view.turbulence = c.turbulence;
             view.amplitude = scene.turbulence.enabled() ? scene.turbulence.amplitude : c.amplitude;
         };
         hooks.advance = [&](const frame::Pipeline&) { return !c.paused || std::exchange(c.step, false); };

@@ -138,6 +138,7 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
     scene::Scene scene = scene::with_spacing(validation::case_scene(row.case_name), row.spacing, "--spacings");
     scene.sph.solver = scene::parse_solver(row.solver, "--solvers");
     scene.sph.cfl *= row.factor;             // every bound on the step scales (the frame's length stays one)
+    scene.sph.dfsph_cfl *= row.factor;       // DFSPH's own (D8); 0, DFSPH on sph.cfl, stays 0
     scene.sph.force_factor *= row.factor;
     scene.sph.max_time_step *= row.factor;
     // PBF's step is fixed, frame_dt / substeps (docs/PBF.md (P1)): the factor multiplies it, so the
@@ -147,6 +148,7 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
     nlohmann::json j = {{"key", row.key()}, {"case", row.case_name}, {"solver", row.solver}, {"spacing", row.spacing},
                         {"factor", row.factor}, {"cfl", scene.sph.cfl}, {"force_factor", scene.sph.force_factor}, {"max_time_step", scene.sph.max_time_step}, {"device", device}, {"date", profile::utc_now_iso8601()}};
     if (scene.sph.solver == scene::Solver::pbf) j.update({{"pbf_substeps", pbf.substeps}, {"pbf_iterations", pbf.iterations}});
+    if (scene.sph.solver == scene::Solver::dfsph && scene.sph.dfsph_cfl > 0.0f) j["dfsph_cfl"] = scene.sph.dfsph_cfl;   // (D8): in force over cfl
     // A closed system under gravity only loses energy (viscosity, impacts), so a gain is an
     // instability; the turbulence force does work on the fluid, and there a gain says nothing.
     const bool energy_checked = !scene.turbulence.enabled();

@@ -56,6 +56,10 @@ class OneLineParser(argparse.ArgumentParser):
         fail(message)
 
 
+# The step's bounds a factor scales (app/sweep.cpp); DFSPH's sph.dfsph_cfl too where a row carries it.
+STEP_KEYS = ("cfl", "force_factor", "max_time_step")
+
+
 def bounds(schema_path):
     """The sph keys a choice sets, with their (minimum, maximum) from the scene schema."""
     try:
@@ -63,7 +67,7 @@ def bounds(schema_path):
             sph = json.load(f)["properties"]["sph"]["properties"]
     except (OSError, ValueError, KeyError, TypeError) as e:
         fail(f"{schema_path}: not the scene schema ({e})")
-    out = {k: (sph[k]["minimum"], sph[k]["maximum"]) for k in ("cfl", "force_factor", "max_time_step")}
+    out = {k: (sph[k]["minimum"], sph[k]["maximum"]) for k in STEP_KEYS + ("dfsph_cfl",)}
     for k in ("substeps", "iterations"):
         p = sph["pbf"]["properties"][k]
         out["pbf." + k] = (p["minimum"], p["maximum"])
@@ -75,13 +79,18 @@ def short(x):
     return float(f"{x:.6g}")
 
 
+def step_keys(row):
+    """The step's keys a row of WCSPH or DFSPH ran with: DFSPH's own Courant number too where its scene sets it."""
+    return STEP_KEYS + (("dfsph_cfl",) if "dfsph_cfl" in row else ())
+
+
 def settings(row):
     """The keys of the scene's "sph" object that give this row's setting."""
     s = {"solver": row["solver"]}
     if row["solver"] == "pbf":
         s["pbf"] = {"substeps": row["pbf_substeps"], "iterations": row["pbf_iterations"]}
     elif row["factor"] != 1:
-        for k in ("cfl", "force_factor", "max_time_step"):
+        for k in step_keys(row):
             s[k] = short(row[k])
     return s
 
@@ -91,7 +100,7 @@ def out_of_bounds(row, limits):
     if row["solver"] == "pbf":
         values = {"pbf.substeps": row.get("pbf_substeps"), "pbf.iterations": row.get("pbf_iterations")}
     else:
-        values = {k: row.get(k) for k in ("cfl", "force_factor", "max_time_step")}
+        values = {k: row.get(k) for k in step_keys(row)}
     for k, v in values.items():
         if v is None:
             return f"the row lacks {k}"

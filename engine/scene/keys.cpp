@@ -152,6 +152,8 @@ std::vector<Key> make_keys() {
                "WCSPH: α of Monaghan's artificial viscosity on approaching pairs, ν_α = α·c·Δx / 10 (docs/SPH.md (5a)); 0: none."),
         number("sph.max_particle_density_error", "", h.max_particle_density_error, 0.0, 1.0,
                "DFSPH: the density solve's bound η_p on any one particle's density error, a fraction of ρ0, beside the mean's η (docs/DFSPH.md (D6)); 0: none."),
+        number("sph.dfsph_cfl", "", h.dfsph_cfl, 0.0, 1.0,
+               "DFSPH: its own Courant number λ of the flow-speed step (docs/DFSPH.md (D8)) in place of `sph.cfl`, which WCSPH's acoustic step keeps; 0: `sph.cfl`."),
         object("sph.pbf", "PBF's settings (`\"solver\": \"pbf\"`, docs/PBF.md): a fixed number of substeps and iterations, so a frame's cost is known."),
         integer("sph.pbf.substeps", "", h.pbf.substeps, 1, 1000, "PBF: substeps a frame at the scene's particles.spacing, each of frame_dt / substeps (docs/PBF.md (P1)); another spacing (--spacing) scales them by the scene's spacing over it, rounded up (docs/PBF.md \"Resolution\")."),
         integer("sph.pbf.iterations", "", h.pbf.iterations, 1, 1000, "PBF: constraint iterations a substep, (P3)–(P6) each."),

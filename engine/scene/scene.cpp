@@ -454,6 +454,9 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.density_limit = float(p.number("density_limit"));
         h.speed_limit = float(p.number("speed_limit"));
         h.artificial_viscosity = float(p.number("artificial_viscosity"));
+        h.dfsph_cfl = float(p.number("dfsph_cfl"));
+        if (h.dfsph_cfl > 0.0f && h.dfsph_cfl < 0.01f)
+            p.fail("\"sph.dfsph_cfl\" = " + fmt(h.dfsph_cfl) + " must be 0 (DFSPH takes \"sph.cfl\") or in [0.01, 1]");
         {
             Reader b = p.object("pbf");
             PbfSettings& q = h.pbf;

@@ -63,6 +63,7 @@ struct SphSettings {
     float artificial_viscosity = 0.0f;   // WCSPH: alpha of eq. (5a), on approaching pairs only
     float speed_of_sound = 0.0f;    // c (m/s) of WCSPH; 0: 10 * sqrt(2 g H), H the fluid's height
     float cfl = 0.4f;               // eq. (7), (D8)
+    float dfsph_cfl = 0.0f;         // (D8): DFSPH's own Courant number in place of cfl; 0: cfl
     float force_factor = 0.25f;     // eq. (7), (D8)
     float max_time_step = 0.005f;   // (s): the largest step, also at rest (at most the frame)
     // DFSPH (docs/DFSPH.md):
@@ -94,6 +95,12 @@ struct SphSettings {
     float speed_limit = 0.0f;       // guard: |v| bound (m/s); 0: 5 * (sqrt(2 g H_tank) + initial speed)
     PbfSettings pbf;
     std::string why;                // sph.why: why these settings (a comment; nothing simulated reads it)
+
+    // The Courant number of the solver's step: DFSPH's flow-speed condition (D8) takes dfsph_cfl where
+    // set, WCSPH's acoustic condition (7) and every other case take cfl. The reference form lets the
+    // window's panel and the sweep change the one that is in force.
+    float courant() const { return solver == Solver::dfsph && dfsph_cfl > 0.0f ? dfsph_cfl : cfl; }
+    float& courant() { return solver == Solver::dfsph && dfsph_cfl > 0.0f ? dfsph_cfl : cfl; }
 };
 
 // Sub-particles (docs/METHOD.md §6; engine/turbulence/subparticles.h): particles whose ê reaches

@@ -125,7 +125,7 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     p.viscosity = s.sph.viscosity;
     p.sound_speed = c;
     p.spacing = dx;
-    p.cfl = s.sph.cfl;
+    p.cfl = s.sph.courant();   // (D8) DFSPH's own where the scene sets it, else eq. (7)'s
     p.force_factor = s.sph.force_factor;
     p.dt_max = std::min(s.sph.max_time_step, s.frame_dt);
     if (s.sph.solver == scene::Solver::pbf) {   // docs/PBF.md (P1): the fixed step, no CFL or force condition
@@ -175,7 +175,7 @@ GuardLimits guard_limits(const scene::Scene& s) {
     g.density_ratio = s.sph.density_limit;
     g.speed = s.sph.speed_limit > 0.0f ? s.sph.speed_limit : 5.0f * s.speed_estimate();
     // A stable dt a hundred times below the CFL step at the expected speed means the run has blown up.
-    g.dt_floor = 0.01f * s.sph.cfl * s.spacing / (s.sound_speed() + s.speed_estimate());
+    g.dt_floor = 0.01f * s.sph.courant() * s.spacing / (s.sound_speed() + s.speed_estimate());
     return g;
 }
 

@@ -402,6 +402,8 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/3"), Contains("sph.cfl = 1.2 is outside the scene key's bounds [0.01, 1]"));
     CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.5"), Contains("unstable: simulation unstable at frame 7"));
     CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1") == "eligible");
+    // DFSPH's own Courant number (sph.dfsph_cfl, which the dam break sets) is held to its key's bounds too.
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.2"), Contains("sph.dfsph_cfl = 1.1 is outside the scene key's bounds [0, 1]"));
     CHECK_THAT(r.out, Contains("merge into media/scenes/dam-break.json's \"sph\": {\"solver\": \"wcsph\", \"cfl\": 0.8,"));
 
     // The same scene at a spacing its file does not have: chosen, and said to need that spacing.

@@ -14,6 +14,7 @@
 #include "support/sph_rig.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -931,6 +932,55 @@ TEST_CASE("dfsph: the step the density solve's iterations allow (D8): the GPU's 
     const Step off = one_step(R"("shrink_step_above": 0)");
     CHECK(off.st.iteration_dt == off.dt_max);
     CHECK(off.p.iteration_dt_min == off.dt_max / 64.0f);   // the floor: a 64th of the largest step (D8)
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: sph.dfsph_cfl is the Courant number of DFSPH's step (D8); WCSPH's and PBF's steps keep theirs", "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A block moving at about 6 m/s: after one step the GPU has measured its fastest particle, and the
+    // next step's CFL term lambda dx / |v|_max (2-2.5 ms at dx = 0.03 m) is below the largest step of
+    // 5 ms and, with force_factor 1 and (D8) off, below every other bound, so it is the stable step.
+    std::vector<glm::vec4> x, v;
+    {
+        Rig probe;
+        block_state(rng, probe, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
+    }
+    for (glm::vec4& u : v) u += glm::vec4(6.0f, rng.uniform(-0.5f, 0.5f), 0.0f, 0.0f);
+    const std::vector<glm::vec2> warm(x.size(), glm::vec2(0.0f));
+    const std::string common = R"("force_factor": 1.0, "shrink_step_above": 0)";
+    auto stable_dt = [&](const std::string& sph, float lambda) {
+        Rig r(common + sph);
+        REQUIRE(r.fluid.params().cfl == lambda);
+        run_stages(r, x, v, warm, 1e-4f, 100, 100);
+        const float v_max = std::bit_cast<float>(r.step().max_speed);
+        r.timer.begin_frame();
+        r.sim.begin_frame(1);   // resets the frame's maxima, not the last step's |v|_max
+        r.fluid.choose_time_step();
+        r.sim.end_frame();
+        r.timer.end_frame();
+        const gpu::StepState st = r.step();
+        const double want = double(lambda) * double(r.fluid.params().spacing) / double(v_max);
+        INFO(sph << ": |v|_max " << v_max << " m/s, stable dt " << st.stable_dt << " s, want " << want << " s");
+        REQUIRE(want < 0.9 * double(r.fluid.params().dt_max));
+        // One float product and a division: within a few roundings.
+        CHECK(double(st.stable_dt) == Approx(want).epsilon(1e-6));
+        return double(st.stable_dt);
+    };
+    const double plain = stable_dt("", 0.4f);
+    const double own = stable_dt(R"(, "dfsph_cfl": 0.5)", 0.5f);
+    CHECK(own / plain == Approx(0.5 / 0.4).epsilon(1e-3));   // the same trajectory up to the step's choice
+    CHECK(stable_dt(R"(, "cfl": 0.3, "dfsph_cfl": 0.6)", 0.6f) > own);
+    // The other solvers keep sph.cfl (WCSPH's acoustic step, eq. (7)) or none (PBF's fixed step, (P1)).
+    const auto other = [](const std::string& solver) {
+        const ranryu::scene::Scene s = ranryu::scene::parse(
+            R"({"model": "sph", "sph": {"solver": ")" + solver + R"(", "cfl": 0.3, "dfsph_cfl": 0.6},
+                "particles": {"spacing": 0.05, "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]}]}})", "t");
+        return s.sph.courant();
+    };
+    CHECK(other("wcsph") == 0.3f);
+    CHECK(other("pbf") == 0.3f);
+    CHECK(other("dfsph") == 0.6f);
     ranryu::test::require_no_gl_errors();
 }
 

@@ -66,6 +66,22 @@ TEST_CASE("sph.why is a comment on the settings: kept as written, a string, and 
     for (const BundledScene& b : bundled()) CHECK(b.why == load(b.name).sph.why);
 }
 
+TEST_CASE("sph.dfsph_cfl: DFSPH's own Courant number, 0 for sph.cfl, refused between 0 and 0.01") {
+    const Scene plain = parse("{" + kBlock + ", \"model\": \"sph\"}", "t");
+    CHECK(plain.sph.dfsph_cfl == 0.0f);
+    CHECK(plain.sph.courant() == plain.sph.cfl);
+    Scene s = parse("{" + kBlock + ", \"model\": \"sph\", \"sph\": {\"dfsph_cfl\": 0.5}}", "t");
+    CHECK(s.sph.courant() == 0.5f);
+    s.sph.courant() = 0.45f;   // the window's panel writes the one in force
+    CHECK(s.sph.dfsph_cfl == 0.45f);
+    CHECK(s.sph.cfl == plain.sph.cfl);
+    s.sph.solver = Solver::wcsph;
+    CHECK(s.sph.courant() == plain.sph.cfl);
+    CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"dfsph_cfl\": 0.005}}"),
+               Catch::Contains("sph.dfsph_cfl") && Catch::Contains("must be 0"));
+    CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"dfsph_cfl\": 1.5}}"), Catch::Contains("sph.dfsph_cfl") && Catch::Contains("out of range"));
+}
+
 TEST_CASE("an unknown bundled name lists the bundled scenes") {
     try {
         load("no-such-scene");
