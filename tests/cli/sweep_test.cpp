@@ -59,6 +59,10 @@ TEST_CASE("sweep: a tiny sweep writes a row a run with every field, records the 
         keys.insert(row["key"].get<std::string>());
         for (const char* f : {"case", "solver", "spacing", "factor", "cfl", "status", "device", "date"}) CHECK(row.contains(f));
         CHECK(row["cfl"].get<double>() == Approx(0.4 * row["factor"].get<double>()).epsilon(1e-5));
+        // DFSPH's own Courant number, which the dam break sets (docs/DFSPH.md (D8)), scales too; WCSPH's rows
+        // do not carry it.
+        if (row["solver"] == "dfsph") CHECK(row["dfsph_cfl"].get<double>() == Approx(0.5 * row["factor"].get<double>()).epsilon(1e-5));
+        else CHECK_FALSE(row.contains("dfsph_cfl"));
         if (row["status"] == "unstable" && row["failure_cause"] == "energy gain") {
             // Ran to the end making energy: the sweep's own criterion (app/sweep.cpp), not the guard's.
             CHECK(row["key"].get<std::string>().ends_with("/10"));
