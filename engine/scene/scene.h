@@ -67,9 +67,9 @@ struct SphSettings {
     float force_factor = 0.25f;     // eq. (7), (D8)
     float max_time_step = 0.005f;   // (s): the largest step, also at rest (at most the frame)
     // DFSPH (docs/DFSPH.md):
-    float max_density_error = 1e-4f;      // eta of (D6), a fraction of rho0
+    float max_density_error = 1e-3f;      // eta of (D6), a fraction of rho0
     float max_divergence_error = 1e-3f;   // eta_v of (D6)
-    float max_particle_density_error = 0.0f;   // eta_p of (D6): no particle's error above it; 0: no such bound
+    float max_particle_density_error = 1e-2f;   // eta_p of (D6): no particle's error above it; 0: no such bound
     int min_iterations = 2;               // density solve
     int max_iterations = 100;             // density solve
     int max_divergence_iterations = 100;
