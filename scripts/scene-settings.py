@@ -80,8 +80,11 @@ def short(x):
 
 
 def step_keys(row):
-    """The step's keys a row of WCSPH or DFSPH ran with: DFSPH's own Courant number too where its scene sets it."""
-    return STEP_KEYS + (("dfsph_cfl",) if "dfsph_cfl" in row else ())
+    """The step's keys a row of WCSPH or DFSPH ran with: for DFSPH where its scene sets sph.dfsph_cfl,
+    that in place of cfl (which only WCSPH's step then reads)."""
+    if "dfsph_cfl" in row:
+        return ("dfsph_cfl",) + STEP_KEYS[1:]
+    return STEP_KEYS
 
 
 def settings(row):

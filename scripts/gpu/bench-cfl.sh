@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # On the GPU host, after setup-and-build.sh: DFSPH's time-step factor (the Courant number of docs/DFSPH.md
-# (D8), sph.cfl) on the dam break: for each spacing and factor, the whole pipeline (Fresnel surface at
+# (D8), sph.dfsph_cfl, which the dam break sets and WCSPH does not read) on the dam break: for each spacing and factor, the whole pipeline (Fresnel surface at
 # 1920x1080; substeps and iterations a frame, unconverged steps, GPU ms, fps, real-time factor) and the
 # surge front against Martin & Moyce at a/dx = 40. Usage:
 #     scripts/gpu/bench-cfl.sh "0.00317 0.002" "0.4 0.6 0.8" [frames] [warmup]
@@ -20,7 +20,7 @@ for f in $factors; do
   python3 - "$f" "$scenes/dam-break-cfl$f.json" <<'PY'
 import json, sys
 s = json.load(open("media/scenes/dam-break.json"))
-s.setdefault("sph", {})["cfl"] = float(sys.argv[1])
+s.setdefault("sph", {})["dfsph_cfl"] = float(sys.argv[1])
 json.dump(s, open(sys.argv[2], "w"))
 PY
   for dx in $spacings; do

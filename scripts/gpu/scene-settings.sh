@@ -7,7 +7,8 @@
 #     scripts/gpu/scene-settings.sh [seconds]        # default 10
 #     scripts/gpu/scene-settings.sh smoke            # a check of the script on llvmpipe: 0.1 s a row at spacing 0.04
 # The grid (one sweep a scene and solver, scene by scene, into one folder):
-#   DFSPH_FACTORS  default "1 1.5 2 2.5"  (2.5 is the largest a scene file can hold: sph.cfl <= 1)
+#   DFSPH_FACTORS  default "1 1.5 2 2.5"  (2.5 is the largest a scene file can hold: sph.cfl <= 1; 2 for
+#                  the dam break, whose sph.dfsph_cfl of 0.5 is DFSPH's Courant number)
 #   WCSPH_FACTORS  default "1 1.5 2 2.5"
 #   PBF_FACTORS    default "0.25 0.5 1 2" (16, 8, 4 and 2 substeps a frame of the scenes' 4 iterations)
 #   SOLVERS        default "pbf dfsph wcsph" (the order each scene runs them in)

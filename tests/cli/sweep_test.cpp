@@ -408,6 +408,8 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1") == "eligible");
     // DFSPH's own Courant number (sph.dfsph_cfl, which the dam break sets) is held to its key's bounds too.
     CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.2"), Contains("sph.dfsph_cfl = 1.1 is outside the scene key's bounds [0, 1]"));
+    // ... in place of sph.cfl, which the row's DFSPH step did not read (made up out of bounds here).
+    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1.2") == "eligible");
     CHECK_THAT(r.out, Contains("merge into media/scenes/dam-break.json's \"sph\": {\"solver\": \"wcsph\", \"cfl\": 0.8,"));
 
     // The same scene at a spacing its file does not have: chosen, and said to need that spacing.

@@ -974,16 +974,17 @@ TEST_CASE("dfsph: sph.dfsph_cfl is the Courant number of DFSPH's step (D8); WCSP
     const double own = stable_dt(R"(, "dfsph_cfl": 0.5)", 0.5f);
     CHECK(own / plain == Approx(0.5 / 0.4).epsilon(1e-3));   // the same trajectory up to the step's choice
     CHECK(stable_dt(R"(, "cfl": 0.3, "dfsph_cfl": 0.6)", 0.6f) > own);
-    // The other solvers keep sph.cfl (WCSPH's acoustic step, eq. (7)) or none (PBF's fixed step, (P1)).
-    const auto other = [](const std::string& solver) {
-        const ranryu::scene::Scene s = ranryu::scene::parse(
-            R"({"model": "sph", "sph": {"solver": ")" + solver + R"(", "cfl": 0.3, "dfsph_cfl": 0.6},
-                "particles": {"spacing": 0.05, "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]}]}})", "t");
-        return s.sph.courant();
+    // The other solvers' fluids keep sph.cfl (WCSPH's acoustic step, eq. (7)) or none (PBF's fixed
+    // step, (P1)) on a scene that sets both.
+    const auto fluid_cfl = [](const std::string& solver) {
+        const ranryu::test::SphRig r(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
+            "sph": {"solver": ")" + solver + R"(", "cfl": 0.3, "dfsph_cfl": 0.6},
+            "particles": {"spacing": 0.05, "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]}]}})", "dfsph_test");
+        return r.fluid.params().cfl;
     };
-    CHECK(other("wcsph") == 0.3f);
-    CHECK(other("pbf") == 0.3f);
-    CHECK(other("dfsph") == 0.6f);
+    CHECK(fluid_cfl("wcsph") == 0.3f);
+    CHECK(fluid_cfl("pbf") == 0.0f);
+    CHECK(fluid_cfl("dfsph") == 0.6f);
     ranryu::test::require_no_gl_errors();
 }
 
