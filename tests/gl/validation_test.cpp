@@ -344,7 +344,8 @@ TEST_CASE("validate: DFSPH's standing wave keeps the period of linear theory", "
     // layers at rest density (engine/validation/cases.cpp). T_linear = 2π/√(g k tanh kH) with k = π/L.
     // Bound on |T - T_linear| / T_linear: the depth SPH sees is uncertain by half a spacing at the floor
     // and at the surface, and dT/T = -(k sech^2(kH) / (2 tanh(kH))) dH = -3.5 /m x 0.0067 m = 2.3 %;
-    // the amplitude's second-order shift (k A)^2 = 0.5 %: 3 %. Measured on llvmpipe: 1.2 %. The mode
+    // the amplitude's second-order shift (k A)^2 = 0.5 %: 3 %. Measured on llvmpipe: 2.0 % (1.2 % before the
+    // defaults of 2026-11-29, eta = 0.1 % with eta_p = 1 %; docs/VALIDATION.md). The mode
     // must oscillate (at least four mean crossings after the first quarter period) and lose energy at
     // least as fast as the bulk's 2 nu k^2 (the walls' boundary layers and SPH's own dissipation add).
     const validation::StandingWaveResult r =
