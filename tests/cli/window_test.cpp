@@ -317,6 +317,18 @@ TEST_CASE("ranryu run --script: viscosity, the time-step factor and the turbulen
     CHECK(after > before * 1.4);   // a quarter of the Courant number: more, smaller substeps
     CHECK_THAT(live.result.out, !Contains("restart"));
 
+    // The dam break sets DFSPH's own Courant number (sph.dfsph_cfl 0.5, docs/DFSPH.md (D8)): the panel's
+    // cfl is that one, not sph.cfl, which DFSPH does not read there.
+    // 512 particles for 0.4 s, the column falling at 1-3 m/s: the CFL step, not the largest, binds.
+    const std::vector<std::string> dam = {"--scene", "dam-break", "--solver", "dfsph", "--spacing", "0.025", "--size", "160x120"};
+    TempDir dam_plain_dir, dam_live_dir;
+    const ScriptRun dam_plain = run_script(dam_plain_dir, "24 key escape\n", dam);
+    const ScriptRun dam_live = run_script(dam_live_dir, "0 panel cfl 0.1\n24 key escape\n", dam);
+    const double dam_before = substeps_per_frame(dam_plain.result.out), dam_after = substeps_per_frame(dam_live.result.out);
+    INFO(dam_plain.result.describe() << "\n" << dam_live.result.describe());
+    REQUIRE(dam_before > 0.0);
+    CHECK(dam_after > dam_before * 1.4);   // a fifth of the Courant number in force
+
     // The drop has no turbulence force: turning it on restarts the scene with it; off and on again,
     // and a new amplitude, are live.
     const ScriptRun t = run_script(turbulence_dir, "0 key t\n3 panel amplitude 20\n4 key t\n6 panel turbulence on\n8 key escape\n", drop);
