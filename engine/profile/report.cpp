@@ -1,9 +1,9 @@
 #include "profile/report.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <numeric>
@@ -54,9 +54,7 @@ void SimulationSummary::add(const gpu::StepState& r) {
     density_error += r.error.x;
     divergence_error += r.error.y;
     max_density_error = std::max(max_density_error, double(r.error.z));
-    float peak;
-    std::memcpy(&peak, &r.peak_error, sizeof peak);
-    peak_density_error = std::max(peak_density_error, double(peak));
+    peak_density_error = std::max(peak_density_error, double(std::bit_cast<float>(r.peak_error)));
     least_iteration_dt = frames == 1 ? double(r.iteration_dt) : std::min(least_iteration_dt, double(r.iteration_dt));
 }
 
@@ -240,11 +238,7 @@ std::string record_csv_header() {
 }
 
 std::string record_csv_row(const gpu::StepState& r) {
-    auto f = [](std::uint32_t bits) {
-        float x;
-        std::memcpy(&x, &bits, sizeof x);
-        return x;
-    };
+    auto f = [](std::uint32_t bits) { return std::bit_cast<float>(bits); };
     char line[512];
     std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u,%.7g,%u,%u,%.7g\n", r.frame, double(r.time),
                   r.frame_substeps, double(r.frame_min_dt), double(f(r.frame_max_speed)), double(f(r.frame_max_density)),
