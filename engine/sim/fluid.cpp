@@ -102,10 +102,6 @@ std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size
     return b;
 }
 
-namespace {
-
-}  // namespace
-
 gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t boundary) {
     gpu::SphParams p{};
     const float dx = s.spacing, h = kernel_support(dx), rho0 = s.sph.rest_density, c = s.sound_speed();

@@ -1,19 +1,11 @@
 #include "sim/guard.h"
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 
 namespace ranryu::sim {
-namespace {
-float from_bits(std::uint32_t b) {
-    float f;
-    std::memcpy(&f, &b, sizeof f);
-    return f;
-}
-}  // namespace
-
 std::string Instability::detail() const {
     // NaN and escape have no value to compare: they name the particle only.
     char where[96] = "";
@@ -48,7 +40,7 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
         i.particle = r.escaped_index;
         return i;
     }
-    if (const float d = from_bits(r.frame_max_density); !(d <= limits.density_ratio)) {
+    if (const float d = std::bit_cast<float>(r.frame_max_density); !(d <= limits.density_ratio)) {
         i.criterion = "density rho/rho0 beyond its bound";
         i.particle = r.density_index;
         i.position = glm::vec3(r.density_position.x, r.density_position.y, r.density_position.z);
@@ -56,7 +48,7 @@ std::optional<Instability> check(const gpu::StepState& r, const GuardLimits& lim
         i.limit = limits.density_ratio;
         return i;
     }
-    if (const float v = from_bits(r.frame_max_speed); !(v <= limits.speed)) {
+    if (const float v = std::bit_cast<float>(r.frame_max_speed); !(v <= limits.speed)) {
         i.criterion = "speed |v| (m/s) beyond its bound";
         i.particle = r.speed_index;
         i.position = glm::vec3(r.speed_position.x, r.speed_position.y, r.speed_position.z);

@@ -1,6 +1,7 @@
 #include "validation/cases.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -43,12 +44,6 @@ std::optional<double> interpolate(const std::vector<std::pair<double, double>>& 
     const auto lo = hi - 1;
     const double w = (t - lo->first) / std::max(hi->first - lo->first, 1e-12);
     return lo->second + w * (hi->second - lo->second);
-}
-
-float bits_to_float(std::uint32_t b) {
-    float f;
-    std::memcpy(&f, &b, sizeof f);
-    return f;
 }
 
 // A pipeline that simulates and draws nothing: the frame loop of every command, without a view.
@@ -131,7 +126,7 @@ public:
         });
     }
     void record(const gpu::StepState& s) {
-        stats_.max_density_deviation = std::max(stats_.max_density_deviation, double(bits_to_float(s.frame_max_density)) - 1.0);
+        stats_.max_density_deviation = std::max(stats_.max_density_deviation, double(std::bit_cast<float>(s.frame_max_density)) - 1.0);
         stats_.simulated_seconds = double(s.time);
     }
     RunStats end() {
@@ -229,7 +224,7 @@ DamBreakResult dam_break(const scene::Scene& scene, const shader::FileSource& sh
     StatsTally tally(scene, pipeline);
     fluid.set_record_sink([&](const gpu::StepState& s) {
         tally.record(s);
-        const double front = double(origin_x) + bits_to_float(s.front);
+        const double front = double(origin_x) + std::bit_cast<float>(s.front);
         r.simulated.emplace_back(double(s.time) * time_scale, (front - r.wall) / r.a);
         r.steps += s.frame_substeps;
     });

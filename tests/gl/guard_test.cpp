@@ -195,6 +195,30 @@ TEST_CASE("guard: check() names each criterion and passes a sound record", "[gua
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("guard: the dt floor is a hundredth of the stable step at the scene's expected speed, with the Courant number "
+          "of the solver in force", "[guard]") {
+    // guard_limits(): dt_floor = 0.01 C dx / (c + v) with C the solver's Courant number (sph.dfsph_cfl for
+    // DFSPH where set, docs/DFSPH.md (D8); sph.cfl otherwise), c WCSPH's sound speed (0 for DFSPH) and v
+    // the scene's speed estimate. The dam break sets cfl 0.4 and dfsph_cfl 0.5: a floor computed from
+    // sph.cfl for DFSPH reads 0.8 of it.
+    ranryu::scene::Scene s = ranryu::scene::load("dam-break");
+    REQUIRE(s.sph.cfl > 0.0f);
+    REQUIRE(s.sph.dfsph_cfl > 0.0f);
+    REQUIRE(s.sph.dfsph_cfl != s.sph.cfl);
+    const double v = double(s.speed_estimate()), dx = double(s.spacing);
+    auto floor_of = [&](ranryu::scene::Solver solver) {
+        s.sph.solver = solver;
+        return double(ranryu::sim::guard_limits(s).dt_floor);
+    };
+    const double dfsph = floor_of(ranryu::scene::Solver::dfsph), wcsph = floor_of(ranryu::scene::Solver::wcsph);
+    const double c = double(s.sound_speed());   // the solver is WCSPH here
+    REQUIRE(c > 0.0);
+    CHECK(std::abs(dfsph - 0.01 * double(s.sph.dfsph_cfl) * dx / v) <= 1e-6 * dfsph);
+    CHECK(std::abs(wcsph - 0.01 * double(s.sph.cfl) * dx / (c + v)) <= 1e-6 * wcsph);
+    s.sph.dfsph_cfl = 0.0f;   // unset: DFSPH falls back to sph.cfl
+    CHECK(std::abs(floor_of(ranryu::scene::Solver::dfsph) - 0.01 * double(s.sph.cfl) * dx / v) <= 1e-6 * dfsph);
+}
+
 TEST_CASE("guard: a density or speed past its bound stops the run when it persists, at once past twice it", "[guard]") {
     // Guard::observe() over a run's records in frame order (sim/guard.h): a frame past a bound and
     // the next within it is a spike; `persist` frames in a row past one stop the run, reported from
