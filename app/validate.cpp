@@ -74,8 +74,8 @@ int validate(const Options& o) {
         const double settle = o.settle.value_or(1.0f);
         std::printf("hydrostatic: H = %.3f m, spacing %.4f m, %zu particles, averaged over %.4g-%.4g s%s\n", r.height, r.spacing, r.particles,
                     settle, settle + r.average_seconds, o.relax ? " after the relaxed start" : " from the lattice");
-        std::printf("%8s %12s %12s %8s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count");
-        for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d\n", l.z, l.pressure, l.reference, l.particles);
+        std::printf("%8s %12s %12s %8s %10s %10s\n", "z (m)", "p sim (Pa)", "rho g (H-z)", "count", "rms (m/s)", "vertical");
+        for (const auto& l : r.layers) std::printf("%8.4f %12.2f %12.2f %8d %10.4f %10.4f\n", l.z, l.pressure, l.reference, l.particles, l.rms_speed, l.rms_vertical);
         std::printf("pressure error in the interior (a kernel support from floor and surface): max %.4f of rho0 g H; spurious speed: max %.4f m/s, rms %.4f m/s\n",
                     r.max_error, r.max_speed, r.rms_speed);
         std::printf("rms speed averaged over the %.4g s: %.4f m/s\n", r.average_seconds, r.mean_rms_speed);
@@ -97,7 +97,7 @@ int validate(const Options& o) {
                     relax.rms_speed, r.relaxed ? "reached" : "NOT reached");
         }
         nlohmann::json layers = nlohmann::json::array();
-        for (const auto& l : r.layers) layers.push_back({{"z", l.z}, {"pressure", l.pressure}, {"reference", l.reference}, {"particles", l.particles}});
+        for (const auto& l : r.layers) layers.push_back({{"z", l.z}, {"pressure", l.pressure}, {"reference", l.reference}, {"particles", l.particles}, {"rms_speed", l.rms_speed}, {"rms_vertical", l.rms_vertical}});
         nlohmann::json windows = nlohmann::json::array();
         for (const auto& w : r.windows)
             windows.push_back({{"start", w.start}, {"max_error_over_rho_g_H", w.max_error}, {"floor_error_over_rho_g_H", w.floor_error}});

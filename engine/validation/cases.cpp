@@ -325,10 +325,11 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
     const int layers = int(std::ceil(r.height / dx)) + 2;
     // A profile's sums: pressure and particles per layer, over all particles and over the core.
     struct Sums {
-        std::vector<double> sum, core_sum;
+        std::vector<double> sum, core_sum, speed2, vertical2;
         std::vector<long> n, core_n;
         explicit Sums(int layers)
-            : sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0), n(std::size_t(layers), 0), core_n(std::size_t(layers), 0) {}
+            : sum(std::size_t(layers), 0.0), core_sum(std::size_t(layers), 0.0), speed2(std::size_t(layers), 0.0), vertical2(std::size_t(layers), 0.0), n(std::size_t(layers), 0),
+              core_n(std::size_t(layers), 0) {}
     };
     Sums all(layers), window(layers);
     const double support = sim::kernel_support(scene.spacing);
@@ -345,6 +346,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
             l.pressure = s.sum[std::size_t(k)] / double(s.n[std::size_t(k)]);
             l.reference = rho0 * g * std::max(r.height - (l.z - scene.tank_min.y), 0.0);
             l.particles = int(s.n[std::size_t(k)] / frames);
+            l.rms_speed = std::sqrt(s.speed2[std::size_t(k)] / double(s.n[std::size_t(k)]));
+            l.rms_vertical = std::sqrt(s.vertical2[std::size_t(k)] / double(s.n[std::size_t(k)]));
             if (out) out->push_back(l);
             // The hydrostatic law is compared in the interior: from one kernel support above the floor
             // (whose boundary term carries the bottom layer at about twice the pressure, docs/SPH.md
@@ -386,6 +389,8 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
                                     const bool core = in_core(x);
                                     for (Sums* t : {&all, &window}) {
                                         t->sum[std::size_t(k)] += s.densities[i].y, ++t->n[std::size_t(k)];
+                                        t->speed2[std::size_t(k)] += double(glm::dot(glm::vec3(s.velocities[i]), glm::vec3(s.velocities[i])));
+                                        t->vertical2[std::size_t(k)] += double(s.velocities[i].y) * double(s.velocities[i].y);
                                         if (core) t->core_sum[std::size_t(k)] += s.densities[i].y, ++t->core_n[std::size_t(k)];
                                     }
                                 }

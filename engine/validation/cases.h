@@ -80,7 +80,9 @@ Relaxation hydrostatic_relaxation(const scene::Scene& scene);
 struct HydrostaticResult {
     double height = 0.0, spacing = 0.0, reference_scale = 0.0;   // H (the lattice's depth, whole layers), dx, rho0 g H
     std::size_t particles = 0;
-    struct Layer { double z, pressure, reference; int particles; };
+    // A layer one spacing thick: its mean pressure, the reference at its centre, its particles a frame,
+    // and their rms speed and its vertical part over the average (where the column's motion lives).
+    struct Layer { double z, pressure, reference; int particles; double rms_speed, rms_vertical; };
     std::vector<Layer> layers;
     double max_error = 0.0;   // max |p - p_ref| / (rho0 g H) in the interior: a kernel support from floor and surface
     // The same over pairs of neighbouring layers pooled (both ways of pairing), two spacings thick: a

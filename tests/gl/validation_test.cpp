@@ -254,6 +254,18 @@ TEST_CASE("validate: the tank's average in half-second windows: each window's pr
     CHECK(r.pair_error <= r.max_error * (1.0 + 1e-12));
     // The windows are not one profile repeated: the column moves (docs/VALIDATION.md).
     CHECK(r.windows[0].max_error != r.windows[1].max_error);
+    // Each layer's rms speed over the average, and its vertical part: pooled over the layers (weighted by
+    // their particles) the root of the mean square speed over the average, at least the mean of the
+    // frames' rms speeds (Jensen's inequality; 2 % for the layers' whole particles a frame, rounded).
+    double square = 0.0, particles = 0.0;
+    for (const auto& l : r.layers) {
+        INFO("layer at " << l.z << " m: rms " << l.rms_speed << ", vertical " << l.rms_vertical);
+        CHECK(l.rms_speed > 0.0);
+        CHECK(l.rms_vertical > 0.0);
+        CHECK(l.rms_vertical <= l.rms_speed * (1.0 + 1e-12));
+        square += double(l.particles) * l.rms_speed * l.rms_speed, particles += double(l.particles);
+    }
+    CHECK(std::sqrt(square / particles) >= r.mean_rms_speed * (1.0 - 0.02));
     test::require_no_gl_errors();
 }
 
