@@ -616,6 +616,84 @@ TEST_CASE("dfsph: the density solve reaches its bound, the GPU stops iterating o
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("dfsph: Density.y is the frame's pressure so far, the dt-weighted mean of its steps' (kappa + kappa_v) rho^2, "
+          "started afresh each frame", "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // docs/DFSPH.md "The pressure a frame". A compressed block (pitch 0.99, displaced up to 0.15 spacing)
+    // from no pressure: two steps in one frame, then a third in the next. After each step the particle's
+    // step pressure is p = (kappa + kappa_v) rho^2 (Warm holds the step's kappa and kappa_v, Density.x its
+    // density). FramePressure holds (sum p dt, sum dt) over the frame's steps, carried with the particle
+    // through the second step's reorder, so across particles sum f.x after the second step is sum f.x
+    // after the first plus sum p2 dt2 (a sum over particles does not depend on their order), and
+    // Density.y is f.x / f.y. The frame's two steps' pressures differ, so a Density.y that kept the last
+    // step's fails, as does one that summed across frames.
+    Rig rig;
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.0f), 0.99f, 0.15f, 0.0f, x, v);
+    auto& d = rig.dfsph();
+    d.set_issued_iterations(100, 100);
+    rig.fluid.upload_state(x, v);
+    d.upload_warm_start(std::vector<glm::vec2>(x.size(), glm::vec2(0.0f)));
+    struct After {
+        std::vector<glm::vec2> frame;   // (sum p dt, sum dt)
+        std::vector<double> p;          // this step's (kappa + kappa_v) rho^2
+        std::vector<glm::vec4> density;
+        double dt;
+    };
+    auto step = [&](float dt) {
+        rig.fluid.set_fixed_dt(dt);
+        rig.fluid.choose_time_step();
+        rig.fluid.rebuild_grid();
+        d.compute_density(rig.fluid);
+        d.solve_divergence(rig.fluid);
+        d.predict_density(rig.fluid);
+        d.solve_density(rig.fluid);
+        d.integrate(rig.fluid);
+        After a{d.frame_pressure().read<glm::vec2>(rig.fluid.count()), {}, rig.read(rig.fluid.densities()), double(rig.step().dt)};
+        const std::vector<glm::vec2> w = rig.warm();
+        for (std::size_t i = 0; i < w.size(); ++i)
+            a.p.push_back((double(w[i].x) + double(w[i].y)) * double(a.density[i].x) * double(a.density[i].x));
+        return a;
+    };
+    rig.timer.begin_frame();
+    rig.sim.begin_frame(0);
+    const After first = step(1e-3f), second = step(1.5e-3f);
+    rig.sim.end_frame();
+    rig.timer.end_frame();
+    rig.timer.begin_frame();
+    rig.sim.begin_frame(1);
+    const After third = step(1e-3f);
+    rig.sim.end_frame();
+    rig.timer.end_frame();
+    rig.finish();
+    REQUIRE(first.dt > 0.0);
+    REQUIRE(second.dt > 0.0);
+    const std::size_t n = x.size();
+    double sum_first = 0.0, sum_second = 0.0, sum_step = 0.0, scale = 0.0, moved = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        // A frame's first step: (p dt, dt), Density.y = p; the next frame's first step starts afresh.
+        for (const After* a : {&first, &third}) {
+            CHECK(std::abs(double(a->frame[i].y) - a->dt) <= 1e-6 * a->dt);
+            CHECK(std::abs(double(a->frame[i].x) - a->p[i] * a->dt) <= 1e-5 * (std::abs(a->p[i]) * a->dt + 1e-3));
+            CHECK(std::abs(double(a->density[i].y) - a->p[i]) <= 1e-5 * (std::abs(a->p[i]) + 1e-3));
+        }
+        CHECK(std::abs(double(second.frame[i].y) - (first.dt + second.dt)) <= 1e-6 * (first.dt + second.dt));
+        CHECK(std::abs(double(second.density[i].y) - double(second.frame[i].x) / double(second.frame[i].y)) <=
+              1e-6 * (std::abs(double(second.density[i].y)) + 1e-3));
+        sum_first += double(first.frame[i].x), sum_second += double(second.frame[i].x), sum_step += second.p[i] * second.dt;
+        scale += std::abs(first.p[i]) * first.dt + std::abs(second.p[i]) * second.dt;
+        moved += std::abs(double(second.density[i].y) - second.p[i]);
+    }
+    INFO("sum p dt: first step " << sum_first << ", after the second " << sum_second << ", the second's own " << sum_step);
+    CHECK(std::abs(sum_second - (sum_first + sum_step)) <= 1e-5 * scale);
+    // The weighted mean is not the last step's pressure: the two steps' pressures differ.
+    double spread = 0.0;
+    for (std::size_t i = 0; i < n; ++i) spread += std::abs(second.p[i]);
+    CHECK(moved > 1e-3 * spread);
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("dfsph: the complementarity error (D6) keeps the density solve going while particles carry pressure below rho0",
           "[dfsph]") {
     ranryu::test::Random rng;

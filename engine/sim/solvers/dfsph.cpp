@@ -13,6 +13,7 @@ namespace ranryu::sim {
 namespace {
 
 constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
+constexpr std::uint32_t kFramePressureWords = 2;   // the carried (sum p dt, sum dt) of the frame's steps
 constexpr std::size_t kCorrectionBytes = 2 * sizeof(glm::vec4);   // (D11)'s L_i, glsl/sim/dfsph/dfsph.glsl
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
@@ -101,7 +102,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
       fluid_(fluid),
-      warm_(fluid.carry("Warm", kWarmWords, initial_warm_start(scene))) {
+      warm_(fluid.carry("Warm", kWarmWords, initial_warm_start(scene))),
+      frame_pressure_(fluid.carry("FramePressure", kFramePressureWords, std::vector<std::uint32_t>(kFramePressureWords, 0u))) {
     if (accelerate_.local_size()[0] != correct_.local_size()[0])
         throw Error("DFSPH: the accelerate and correct passes must share a workgroup size (one indirect dispatch serves both)");
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
@@ -179,7 +181,7 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
     const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
-                             Fluid::carried_bytes(count, kWarmWords);
+                             Fluid::carried_bytes(count, kWarmWords) + Fluid::carried_bytes(count, kFramePressureWords);
     if (!rows || boundary == 0) return base;
     // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_, row_masks_; rows_state_ and its marks
     return base + boundary * (3 * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
@@ -187,6 +189,7 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
 }
 
 const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
+const gl::Buffer& Dfsph::frame_pressure() const { return fluid_.carried(frame_pressure_); }
 
 void Dfsph::upload_warm_start(const std::vector<glm::vec2>& kappa) {
     if (kappa.size() != fluid_.count()) throw Error("Dfsph::upload_warm_start: expected " + std::to_string(fluid_.count()) + " pairs");

@@ -95,6 +95,7 @@ public:
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }
     const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
+    const gl::Buffer& frame_pressure() const;   // vec2: (sum p dt, sum dt) over this frame's steps so far
     // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
     // rebuild_grid() moves them with the particles).
     void upload_warm_start(const std::vector<glm::vec2>& kappa);
@@ -134,6 +135,7 @@ private:
     gl::Buffer boundary_list_, boundary_row_, boundary_wall_, rows_state_, row_masks_;
     Fluid& fluid_;
     int warm_;
+    int frame_pressure_;   // (sum p dt, sum dt) over the frame's steps: docs/DFSPH.md "The pressure a frame"
     std::uint64_t boundary_generation_ = 0;   // Fluid::boundary_generation() the kept kappa_b belong to
     std::uint64_t wall_generation_ = ~std::uint64_t(0);   // ... and boundary_wall_ (none yet)
 };

@@ -4,7 +4,10 @@
 // then the last-resort projection of docs/SPH.md (8) and the guard's records (motion.glsl). The new
 // positions and velocities go to the fluid's other buffers (NextPositions, NextVelocities: this pass
 // reads its neighbours' current positions); the Fluid swaps them after. kappa is kept in Warm.x for
-// the next step's warm start, and the step's pressure p_i = (kappa_i + kappa_v,i) rho_i^2 in Density.y.
+// the next step's warm start. The step's pressure is p_i = (kappa_i + kappa_v,i) rho_i^2; Density.y
+// holds the frame's pressure so far (docs/DFSPH.md "The pressure a frame"): the mean of its steps' p_i
+// weighted by their dt, sum p dt / sum dt, kept in FramePressure (carried with the particle) and started
+// afresh at the frame's first step. After a frame's last step it is the frame's pressure.
 #include "dfsph.glsl"
 
 layout(local_size_x = 256) in;
@@ -15,6 +18,7 @@ layout(std430) writeonly buffer NextVelocities { vec4 next_velocity[]; };
 layout(std430) buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer Warm { vec2 warm[]; };
+layout(std430) buffer FramePressure { vec2 frame_pressure[]; };   // (sum p dt, sum dt) over the frame's steps so far
 #ifdef RANRYU_GRADIENT_CORRECTION
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
 #endif
@@ -48,7 +52,10 @@ void main() {
         next_velocity[i] = vec4(v, velocity[i].w);
         vec2 w = vec2(kappa_i_, warm[i].y);
         warm[i] = w;
-        density[i].y = (w.x + w.y) * d.x * d.x;
+        float p = (w.x + w.y) * d.x * d.x;
+        vec2 f = (step.frame_substeps <= 1u ? vec2(0.0) : frame_pressure[i]) + vec2(p * step.dt, step.dt);
+        frame_pressure[i] = f;
+        density[i].y = f.y > 0.0 ? f.x / f.y : p;
         bits = record_particle(i, x, v);
     }
     record_maxima(bits, i);
