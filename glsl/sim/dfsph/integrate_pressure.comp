@@ -19,6 +19,8 @@ layout(std430) buffer Density { vec4 density[]; };
 layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer Warm { vec2 warm[]; };
 layout(std430) buffer FramePressure { vec2 frame_pressure[]; };   // (sum p dt, sum dt) over the frame's steps so far
+// sum dt is the particle's own, not the frame's elapsed time: a particle the emitter pours in mid-frame
+// averages over the steps it ran.
 #ifdef RANRYU_GRADIENT_CORRECTION
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
 #endif
