@@ -277,6 +277,56 @@ int check_wall_density(const ranryu::test::SphRig& rig, const ranryu::gl::Buffer
     return seen;
 }
 
+// One l1-Jacobi update of (D9)'s rows in double, from the GPU's own velocities v_in (v_n for the
+// divergence solve, v* for the density solve) and pressure accelerations a_in, each row b starting from
+// start[b] (0 where b is no row): kappa_b ← max(kappa_b + omega_b r_b / (dt² D_b), 0). With each row's
+// bound on the float evaluation: the change dt² Σ m a_j·∇W_bj carries (terms + c) u of its magnitude sum;
+// D_b and s_b their own relative (terms + c) u; the update's few operations 4 u. What the rounding of
+// r_bj itself (a few ulps: the positions' own rounding is about 3 u of r at these sizes) does to ∇W_bj,
+// |∇W(r (1 + 8u)) − ∇W(r)| in units of u, is added: relative to ∇W it grows without bound as r → h,
+// where ∇W ∝ (1 − r/h)², so a row whose neighbours all lie near the support's edge carries far more
+// than (terms + c) u of its sums.
+struct RowUpdate {
+    std::vector<double> kappa_b, bound;
+};
+RowUpdate row_update(df::Solve which, const std::vector<dvec3>& xs, const std::vector<glm::vec4>& v_in,
+                     const std::vector<glm::vec4>& a_in, const std::vector<double>& u, const std::vector<dvec3>& xb,
+                     const std::vector<double>& psi, const ref::Params& p, double omega_b, double dt,
+                     const std::vector<bool>& rows, const std::vector<double>& start) {
+    const std::size_t n = xs.size(), nb = xb.size();
+    const df::Rows r = df::row_sources(which, xs, d3(v_in), u, xb, psi, p, dt);
+    std::vector<dvec3> a(n);
+    for (std::size_t i = 0; i < n; ++i) a[i] = d3(a_in[i]);
+    RowUpdate out{start, std::vector<double>(nb, 0.0)};
+    df::correct_rows(xs, a, r, xb, p, omega_b, dt, out.kappa_b);
+    const ref::CubicKernel k{p.h};
+    const double dt2 = dt * dt;
+    for (std::size_t b = 0; b < nb; ++b) {
+        if (!rows[b]) continue;
+        double size = 0.0, source_size = 0.0, edge = 0.0, source_edge = 0.0, diagonal_edge = 0.0;
+        int terms = 0;
+        for (std::size_t j = 0; j < n; ++j) {
+            const dvec3 d = xb[b] - xs[j];
+            const double distance = glm::length(d);
+            if (distance >= p.h) continue;
+            const double g = glm::length(k.gradW(d)), e = glm::length(k.gradW(d * (1.0 + 8.0 * kU)) - k.gradW(d)) / kU;
+            size += p.mass * glm::length(a[j]) * g;
+            source_size += p.mass * (k.W(distance) + dt * glm::length(d3(v_in[j])) * g);
+            edge += p.mass * glm::length(a[j]) * e;
+            source_edge += p.mass * dt * glm::length(d3(v_in[j])) * e;
+            diagonal_edge += double(psi[b]) * u[j] * e;
+            ++terms;
+        }
+        source_size += which == df::Solve::density ? 2.0 * p.rest_density : 0.0;
+        const double inv = r.diagonal[b] > 0.0 ? omega_b / (r.diagonal[b] * dt2) : 0.0;
+        const double residual = dt2 * size + std::abs(r.source[b]);
+        const double diagonal_error = r.diagonal[b] > 0.0 ? kU * diagonal_edge / r.diagonal[b] : 0.0;
+        out.bound[b] = inv * ((terms + 27.0 + kC) * kU * (dt2 * size + source_size) + kU * (dt2 * edge + source_edge)) +
+                       inv * residual * ((terms + kC) * kU * 2.0 + diagonal_error) + 4.0 * kU * out.kappa_b[b];
+    }
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accelerations and divergence start match the reference",
@@ -811,6 +861,35 @@ TEST_CASE("dfsph: the peak bound (D6) keeps the density solve going until no par
     ranryu::test::require_no_gl_errors();
 }
 
+namespace {
+// The compressed, moving block (about 1.15 rho0) in the corner of floor and two walls, one step from a
+// random warm start, the density solve cut at 1, 2 and 3 iterations: kappa^1, kappa^2 and kappa^3 of
+// one solve (llvmpipe runs the passes deterministically: the same input, the same kappa), each in a
+// fresh rig of the sph keys (a rig's second step would not start from the same time step), the
+// divergence solve alike (one iteration). `density`: the third run's density SolveState.
+struct ChebyshevCuts {
+    Stages s1, s2, s3;
+    gpu::SolveState density{};
+};
+ChebyshevCuts chebyshev_cuts(ranryu::test::Random& rng, const std::string& sph) {
+    std::vector<glm::vec4> x, v;
+    block_state(rng, Rig(sph), glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
+    std::vector<glm::vec2> warm(x.size());
+    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    ChebyshevCuts c;
+    auto cut_at = [&](int iterations) {
+        Rig r(sph);
+        Stages st = run_stages(r, x, v, warm, 4e-4f, iterations, 1);
+        if (iterations == 3) std::memcpy(&c.density, r.dfsph().solve_states().read<std::uint8_t>(sizeof c.density).data(), sizeof c.density);
+        return st;
+    };
+    c.s1 = cut_at(1);
+    c.s2 = cut_at(2);
+    c.s3 = cut_at(3);
+    return c;
+}
+}  // namespace
+
 TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference, and saves iterations", "[dfsph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
@@ -824,19 +903,9 @@ TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference
     Rig rig(sph);
     const double rho = double(rig.dfsph().params().chebyshev);
     REQUIRE(rho == Approx(0.95));
-    std::vector<glm::vec4> x, v;
-    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
-    std::vector<glm::vec2> warm(x.size());
-    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
-    // A fresh rig for each (a rig's second step would not start from the same time step).
-    gpu::SolveState density{};
-    auto cut_at = [&](int iterations) {
-        Rig r(sph);
-        Stages st = run_stages(r, x, v, warm, 4e-4f, iterations, 1);   // the divergence solve alike in all three
-        if (iterations == 3) std::memcpy(&density, r.dfsph().solve_states().read<std::uint8_t>(sizeof density).data(), sizeof density);
-        return st;
-    };
-    const Stages s1 = cut_at(1), s2 = cut_at(2), s3 = cut_at(3);
+    const ChebyshevCuts cuts = chebyshev_cuts(rng, sph);
+    const Stages &s1 = cuts.s1, &s2 = cuts.s2, &s3 = cuts.s3;
+    const gpu::SolveState& density = cuts.density;
     REQUIRE(s1.x == s3.x);
     REQUIRE(s1.kappa_v == s3.kappa_v);
     REQUIRE(s1.dt == s3.dt);
@@ -881,6 +950,51 @@ TEST_CASE("dfsph: the density solve's Chebyshev step (D10) matches the reference
                         fast = iterations(R"("chebyshev": 0.95, "boundary_rows": false)" + tight);
     INFO("from no pressure to eta: " << plain << " iterations plain, " << fast << " accelerated");
     CHECK(2 * fast <= plain);   // measured 17 against 59 (with the boundary rows 40 against 77)
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: the boundary rows take the density solve's Chebyshev step (D10) with the fluid", "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // The compressed block in the corner of floor and two walls, one step from a random warm start, the
+    // density solve cut at 1, 2 and 3 iterations (as the test above, with the rows of (D9)). The rows and
+    // the fluid are one iteration: from k = 2 on a row's kappa_b^3 = max(w (J_b − kappa_b^1) + kappa_b^1, 0),
+    // w = 2/(2 − rho^2), J_b the rows' l1-Jacobi update from the GPU's own kappa_b^2 and a(kappa^2)
+    // (row_update(), its bound times w), plus a few roundings of the combination.
+    const std::string sph = R"("boundary_rows": true, "chebyshev": 0.95)";
+    Rig rig(sph);
+    const double rho = double(rig.dfsph().params().chebyshev), omega_b = double(rig.dfsph().params().boundary_relaxation);
+    REQUIRE(rho == Approx(0.95));
+    const ChebyshevCuts cuts = chebyshev_cuts(rng, sph);
+    const Stages &s1 = cuts.s1, &s2 = cuts.s2, &s3 = cuts.s3;
+    const gpu::SolveState& density = cuts.density;
+    REQUIRE(s1.x == s3.x);
+    REQUIRE(s1.dt == s3.dt);
+    REQUIRE(density.iterations == 3u);   // the third iteration ran: the solve had not converged
+    REQUIRE(s1.v_after_divergence == s3.v_after_divergence);
+    REQUIRE(s1.kappa_b0 == s3.kappa_b0);   // the density solves' rows start alike
+
+    const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s3);
+    const std::vector<bool> rows = df::boundary_rows(xs, xb, p);
+    const std::vector<double> u = df::spreads(xs, xb, psi, p);
+    const RowUpdate jacobi = row_update(df::Solve::density, xs, s3.v_after_divergence, s3.last_accel, u, xb, psi, p, omega_b, dt, rows,
+                                        s2.kappa_b);
+    const double w = 2.0 / (2.0 - rho * rho);
+    std::size_t checked = 0, accelerated = 0;
+    for (std::size_t b = 0; b < xb.size(); ++b) {
+        if (!rows[b]) continue;
+        const double before = s1.kappa_b[b], j = jacobi.kappa_b[b];
+        const double want = std::max(w * (j - before) + before, 0.0);
+        const double bound = w * jacobi.bound[b] + 4.0 * kU * (want + w * (j + before) + before);
+        INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": kappa_b^1 " << before << ", kappa_b^2 "
+                    << s2.kappa_b[b] << ", J " << j << ", kappa_b^3 " << s3.kappa_b[b] << " want " << want << " bound " << bound);
+        CHECK(std::abs(s3.kappa_b[b] - want) <= bound);
+        ++checked;
+        if (std::abs(want - j) > 10.0 * bound) ++accelerated;
+    }
+    INFO(accelerated << " of " << checked << " rows moved by the weight beyond their bound");
+    CHECK(checked > 100);
+    CHECK(accelerated > checked / 10);   // the weight changed kappa_b: not a plain l1-Jacobi step
     ranryu::test::require_no_gl_errors();
 }
 
@@ -1207,8 +1321,7 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         std::vector<double> psi;
         rig.boundary(xb, psi);
         const std::vector<dvec3> xs = d3(xs4);
-        const ref::CubicKernel k{p.h};
-        const double omega_b = double(d.params().boundary_relaxation), dt2 = double(dt) * double(dt);
+        const double omega_b = double(d.params().boundary_relaxation);
 
         // The list: exactly the boundary particles within h of the fluid, each once, none fresh (a first step).
         const std::vector<bool> want_rows = df::boundary_rows(xs, xb, p);
@@ -1238,51 +1351,22 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         const Magnitudes m = magnitudes(xs, xb, psi, p);
         for (std::size_t i = 0; i < n; ++i) CHECK(std::abs(double(accel[i].w) - u[i]) <= (2.0 * m.terms[i] + kC) * kU * u[i]);
 
-        // One update of the rows from the GPU's own accelerations: the divergence solve starts every row from
-        // no pressure, the density solve from its kept kappa_b (here the hydrostatic start of (D9), or none
-        // where the prepare pass dropped it), as the GPU's prepare pass left it. Bound: the change
-        // dt² Σ m a_j·∇W_bj carries (terms + c) u of its magnitude sum; D_b and s_b their own relative
-        // (terms + c) u; the update's few operations 4 u.
+        // One update of the rows from the GPU's own accelerations (row_update() above, its bound): the
+        // divergence solve starts every row from no pressure, the density solve from its kept kappa_b (here
+        // the hydrostatic start of (D9), or none where the prepare pass dropped it), as the GPU's prepare
+        // pass left it.
         auto check_rows = [&](df::Solve which, const std::vector<glm::vec4>& v_in, const std::vector<glm::vec4>& a_in,
                               const std::vector<float>& got, std::size_t offset, const std::vector<float>& start) {
-            const df::Rows r = df::row_sources(which, xs, d3(v_in), u, xb, psi, p, double(dt));
-            std::vector<dvec3> a(n);
-            for (std::size_t i = 0; i < n; ++i) a[i] = d3(a_in[i]);
             std::vector<double> kb(nb, 0.0);
             for (std::size_t b = 0; b < nb; ++b) kb[b] = want_rows[b] ? double(start[n + 2 * b + offset]) : 0.0;
-            df::correct_rows(xs, a, r, xb, p, omega_b, double(dt), kb);
+            const RowUpdate want = row_update(which, xs, v_in, a_in, u, xb, psi, p, omega_b, double(dt), want_rows, kb);
             int pushed = 0;
             for (std::size_t b = 0; b < nb; ++b) {
                 if (!want_rows[b]) continue;
-                double size = 0.0, source_size = 0.0;
-                // What the rounding of r_bj itself (a few ulps: the positions' own rounding is about 3 u of
-                // r at these sizes) does to ∇W_bj: |∇W(r (1 + 8u)) − ∇W(r)|, in units of u. Relative to
-                // ∇W it grows without bound as r → h, where ∇W ∝ (1 − r/h)², so a row whose neighbours
-                // all lie near the support's edge carries far more than (terms + c) u of its sums.
-                double edge = 0.0, source_edge = 0.0, diagonal_edge = 0.0;
-                int terms = 0;
-                for (std::size_t j = 0; j < n; ++j) {
-                    const dvec3 d = xb[b] - xs[j];
-                    const double distance = glm::length(d);
-                    if (distance >= p.h) continue;
-                    const double g = glm::length(k.gradW(d)), e = glm::length(k.gradW(d * (1.0 + 8.0 * kU)) - k.gradW(d)) / kU;
-                    size += p.mass * glm::length(a[j]) * g;
-                    source_size += p.mass * (k.W(distance) + double(dt) * glm::length(d3(v_in[j])) * g);
-                    edge += p.mass * glm::length(a[j]) * e;
-                    source_edge += p.mass * double(dt) * glm::length(d3(v_in[j])) * e;
-                    diagonal_edge += double(psi[b]) * u[j] * e;
-                    ++terms;
-                }
-                source_size += which == df::Solve::density ? 2.0 * p.rest_density : 0.0;
-                const double inv = r.diagonal[b] > 0.0 ? omega_b / (r.diagonal[b] * dt2) : 0.0;
-                const double residual = dt2 * size + std::abs(r.source[b]);
-                const double diagonal_error = r.diagonal[b] > 0.0 ? kU * diagonal_edge / r.diagonal[b] : 0.0;
-                const double bound = inv * ((terms + 27.0 + kC) * kU * (dt2 * size + source_size) + kU * (dt2 * edge + source_edge)) +
-                                     inv * residual * ((terms + kC) * kU * 2.0 + diagonal_error) + 4.0 * kU * kb[b];
                 const double gpu_kb = double(got[n + 2 * b + offset]);
-                INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": got " << gpu_kb << " want " << kb[b]);
-                CHECK(std::abs(gpu_kb - kb[b]) <= bound);
-                pushed += kb[b] > 0.0;
+                INFO("row " << b << " at " << xb[b].x << " " << xb[b].y << " " << xb[b].z << ": got " << gpu_kb << " want " << want.kappa_b[b]);
+                CHECK(std::abs(gpu_kb - want.kappa_b[b]) <= want.bound[b]);
+                pushed += want.kappa_b[b] > 0.0;
             }
             return pushed;
         };

@@ -154,8 +154,9 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
     // (D11)'s L_i after the accelerations, two vec4 a particle, when on (glsl/sim/dfsph/dfsph.glsl).
     pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
-    // (D10)'s previous iterates; one float, bound but never read, when it is off.
-    kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
+    // (D10)'s previous iterates, the fluid's then (D9)'s rows' (kappa_b of the density solve, by
+    // boundary particle); one float, bound but never read, when it is off.
+    kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n + nb : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
         if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128)
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
@@ -183,8 +184,9 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
                              Fluid::carried_bytes(count, kWarmWords) + Fluid::carried_bytes(count, kFramePressureWords);
     if (!rows || boundary == 0) return base;
-    // kappa_'s boundary part, boundary_list_, boundary_row_, boundary_wall_, row_masks_; rows_state_ and its marks
-    return base + boundary * (3 * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
+    // kappa_'s boundary part, kappa_previous_'s with (D10), boundary_list_, boundary_row_, boundary_wall_,
+    // row_masks_; rows_state_ and its marks
+    return base + boundary * ((chebyshev ? 4 : 3) * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
 }
 

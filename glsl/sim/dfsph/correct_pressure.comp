@@ -27,7 +27,9 @@
 // update of the same iteration: the density change the fluid's pressure accelerations make at the
 // (immovable) boundary particle over the step,
 //     delta_b = dt^2 Σ_j m (0 − a_j)·gradW_bj,
-// the residual r_b = delta_b − s_b, and kappa_b ← max(kappa_b + omega_b r_b / (dt^2 D_b), 0).
+// the residual r_b = delta_b − s_b, and the l1-Jacobi update J_b = max(kappa_b + omega_b r_b / (dt^2 D_b), 0),
+// which the density solve accelerates with the fluid's weight (D10): kappa_b ← max(w_k (J_b − kappa_b^(k−1))
+// + kappa_b^(k−1), 0) from k = kChebyshevStart on, kappa_b^(k−1) kept after the fluid's in KappaPrevious.
 // The two read the same accelerations and write different kappa, so one dispatch serves both (and
 // one barrier, where two passes took two); the rows add nothing to the error, which is the fluid's.
 // A density solve that ends sets the step the next ones may take from its iterations (D8).
@@ -39,7 +41,7 @@ layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) buffer Kappa { float kappa[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 layout(std430) coherent buffer Solve { SolveState solve; };
-layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1)
+layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle
 
 #include "../fluid/neighbours.glsl"
 
@@ -58,7 +60,14 @@ void correct_row(uint k) {
     vec2 rw = row[k];
     float dt2 = step.dt * step.dt;
     float residual = dt2 * row_change_ - rw.x;
-    KAPPA_B(b, s) = max(KAPPA_B(b, s) + dfsph.boundary_relaxation * residual * rw.y / dt2, 0.0);
+    float kappa_b = KAPPA_B(b, s);
+    float next = max(kappa_b + dfsph.boundary_relaxation * residual * rw.y / dt2, 0.0);
+    if (s == 0u && dfsph.chebyshev > 0.0) {   // (D10), as the fluid's: the rows and the fluid are one iteration
+        float before = kappa_previous[sph.particle_count + b];
+        kappa_previous[sph.particle_count + b] = kappa_b;
+        if (solve.iterations >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
+    }
+    KAPPA_B(b, s) = next;
 }
 #endif
 
