@@ -202,7 +202,7 @@ TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, wi
     // (12 layers), 1.92 % / 4.31 % / 0.004 m/s at 0.0125 m (20 layers: there the floor layer reads high,
     // also on the H200, 3.58 %), 0.67 % / 0.31 % / 0.0035 m/s at 0.01 m (25 layers); on the H200 1.01 /
     // 2.23 % at 0.00625 m and 1.02 / 1.08 % at 0.003125 m. Before the rows took the step the column moved
-    // five to seven times faster (0.054 and 0.019 m/s at 0.02 and 0.01 m) and the floor's layers
+    // 3.5 and 5.4 times faster (0.054 and 0.019 m/s at 0.02 and 0.01 m) and the floor's layers
     // alternated (+5.6, -3.5, +2.1 % at 0.003125 m). Here the halving pair 0.02 and 0.01 m: issue 11's
     // 1 % interior and 2 % floor layer at 0.01 m, at 0.02 m 2 % and 2.5 %, the error at 0.01 m no larger
     // than at 0.02 m in either, and the column still: its rms speed over the averaged half second at most
