@@ -41,7 +41,17 @@ layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) buffer Kappa { float kappa[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 layout(std430) coherent buffer Solve { SolveState solve; };
-layout(std430) buffer KappaPrevious { float kappa_previous[]; };   // the density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle
+// The density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle.
+layout(std430) buffer KappaPrevious { float kappa_previous[]; };
+
+// (D10)'s step for the unknown at `slot` of KappaPrevious: keeps the iterate this iteration started
+// from (kappa) for the next, and from k = kChebyshevStart on returns max(w_k (J − kappa^(k−1)) +
+// kappa^(k−1), 0) for the Jacobi update J, otherwise J.
+float chebyshev_step(uint slot, float kappa, float jacobi) {
+    float before = kappa_previous[slot];
+    kappa_previous[slot] = kappa;
+    return solve.iterations >= kChebyshevStart ? max(solve.weight * (jacobi - before) + before, 0.0) : jacobi;
+}
 
 #include "../fluid/neighbours.glsl"
 
@@ -62,11 +72,8 @@ void correct_row(uint k) {
     float residual = dt2 * row_change_ - rw.x;
     float kappa_b = KAPPA_B(b, s);
     float next = max(kappa_b + dfsph.boundary_relaxation * residual * rw.y / dt2, 0.0);
-    if (s == 0u && dfsph.chebyshev > 0.0) {   // (D10), as the fluid's: the rows and the fluid are one iteration
-        float before = kappa_previous[sph.particle_count + b];
-        kappa_previous[sph.particle_count + b] = kappa_b;
-        if (solve.iterations >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
-    }
+    // (D10), as the fluid's: the rows and the fluid are one iteration
+    if (s == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(sph.particle_count + b, kappa_b, next);
     KAPPA_B(b, s) = next;
 }
 #endif
@@ -130,11 +137,7 @@ void main() {
         uint k = solve.iterations;
         float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
         float next = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
-        if (solve.solve == 0u && dfsph.chebyshev > 0.0) {   // (D10): the density solve, when on
-            float before = kappa_previous[i];
-            kappa_previous[i] = kappa_i;
-            if (k >= kChebyshevStart) next = max(solve.weight * (next - before) + before, 0.0);
-        }
+        if (solve.solve == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(i, kappa_i, next);   // (D10): the density solve, when on
         kappa[i] = next;
         bool held = solve.solve == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
         error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
