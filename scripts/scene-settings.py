@@ -3,7 +3,7 @@
 the cheapest setting that held together for the whole run with little compression (the rule of
 docs/SWEEP.md "Choosing a scene's settings", stated again below). Standard library only.
 
-    scripts/scene-settings.py SWEEP [SWEEP ...] [--max-compression 0.01] [--seconds 10] [--json FILE]
+    scripts/scene-settings.py SWEEP [SWEEP ...] [--at-scale SWEEP ...] [--max-compression 0.01] [--seconds 10] [--json FILE]
 
 A SWEEP is a sweep.json or the folder `ranryu sweep --out` wrote it to; several (shards) are merged,
 a row seen twice counting once. Only the scene cases' rows (case "scene:NAME") are read. For each
@@ -19,7 +19,11 @@ The rule. A row is sound when
      iteration, as the guard reads them: its compression counts like the others').
 A row is eligible when it is sound, every row of the same scene, spacing and solver at a smaller
 time-step factor is sound too (a stable setting above an unstable one is luck, not a margin), and a
-scene file can hold its settings (each within the bounds of media/scenes/scene.schema.json).
+scene file can hold its settings (each within the bounds of media/scenes/scene.schema.json), and,
+with --at-scale, the same scene, solver and factor is sound at every other spacing those sweeps hold
+for the scene too (the sizes the scene is run at, e.g. about 250k and 1M particles): a row with no
+such row at one of them is not eligible either ("not run at ..."). A step that holds at a scene's few
+thousand particles need not at a million (docs/SWEEP.md "The scene settings again, on the H200").
 The chosen row is the eligible row of least cost: gpu_ms_per_simulated_second where every row of the
 scene and spacing was timed on a GPU (not llvmpipe, softpipe or swrast, and a positive time), else
 steps per simulated second (timings from a software renderer say nothing of a GPU); ties go to the
@@ -147,12 +151,42 @@ def label(row):
     return f"{row['solver']} x{row['factor']:g}"
 
 
-def choose(rows, seconds, max_compression, limits, scenes_dir):
-    """Per (scene case, spacing): the verdict on every row and the chosen one."""
+def at_scale_verdict(row, scale, seconds, max_compression):
+    """Why the row's setting (its solver and factor) does not hold at the scene's other sizes of the
+    --at-scale rows `scale` ({spacing: {(solver, factor): row}}), or None."""
+    for spacing, at in sorted(scale.items(), reverse=True):
+        if abs(spacing - row["spacing"]) <= 1e-6 * spacing:
+            continue
+        other = at.get((row["solver"], row["factor"]))
+        if other is None:
+            return f"not run at {spacing:g} m (the --at-scale rows' spacing for this scene)"
+        why_not = soundness(other, seconds, max_compression)
+        if why_not is not None:
+            return f"at {spacing:g} m ({other.get('particles', '?')} particles): {why_not}"
+    return None
+
+
+def scale_spacings(row, scale):
+    """The --at-scale sizes a chosen row held at, for its "why": "0.00454 m (244088 particles)", ..."""
+    out = []
+    for spacing, at in sorted(scale.items(), reverse=True):
+        other = at.get((row["solver"], row["factor"]))
+        if other is not None and abs(spacing - row["spacing"]) > 1e-6 * spacing:
+            out.append(f"{spacing:g} m ({other.get('particles', '?')} particles)")
+    return out
+
+
+def choose(rows, seconds, max_compression, limits, scenes_dir, scale_rows=()):
+    """Per (scene case, spacing): the verdict on every row and the chosen one. scale_rows: the
+    --at-scale rows, each scene's other sizes its rows must hold at too."""
     groups = {}
     for r in rows:
         if str(r["case"]).startswith("scene:"):
             groups.setdefault((r["case"], r["spacing"]), []).append(r)
+    scales = {}
+    for r in scale_rows:
+        if str(r["case"]).startswith("scene:"):
+            scales.setdefault(r["case"], {}).setdefault(r["spacing"], {})[(r["solver"], r["factor"])] = r
     results = []
     for (case, spacing), mine in sorted(groups.items()):
         # Timed on a GPU: no row ran on a software renderer, and every row that ran to the end has a time.
@@ -177,6 +211,8 @@ def choose(rows, seconds, max_compression, limits, scenes_dir):
                     why_not = f"a smaller factor, x{min(o['factor'] for o in worse):g}, is not sound"
             if why_not is None:
                 why_not = out_of_bounds(r, limits)
+            if why_not is None:
+                why_not = at_scale_verdict(r, scales.get(case, {}), seconds, max_compression)
             verdicts[r["key"]] = why_not
         eligible = sorted((r for r in mine if verdicts[r["key"]] is None),
                           key=lambda r: (cost(r), r.get("max_density_deviation", 0), r["key"]))
@@ -184,6 +220,7 @@ def choose(rows, seconds, max_compression, limits, scenes_dir):
         scene = case[len("scene:"):]
         own = own_spacing(scene, scenes_dir)
         result = {"case": case, "scene": scene, "spacing": spacing, "cost_measure": measure, "scene_spacing": own,
+                  "at_scale": sorted((x for x in scales.get(case, {}) if abs(x - spacing) > 1e-6 * x), reverse=True),
                   "own_spacing": own is None or abs(own - spacing) <= 1e-6 * own,
                   "rows": [{"key": r["key"], "setting": label(r), "cost": cost(r) if r["status"] == "stable" else None,
                             "eligible": verdicts[r["key"]] is None, "why_not": verdicts[r["key"]]}
@@ -202,6 +239,9 @@ def choose(rows, seconds, max_compression, limits, scenes_dir):
                 why += f" against {num(cost(runner_up))} for {label(runner_up)}"
             elif len(mine) > 1:
                 why += ", the only one eligible"
+            held = scale_spacings(chosen, scales.get(case, {}))
+            if held:
+                why += f", and that held as well at {' and '.join(held)}"
             why += " (the rule: docs/SWEEP.md, Choosing a scene's settings)."
             s["why"] = why
             result.update({"chosen": chosen["key"], "setting": label(chosen), "cost": cost(chosen),
@@ -217,6 +257,9 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap = OneLineParser(description=__doc__.splitlines()[0])
     ap.add_argument("sweeps", nargs="+", help="sweep.json files of ranryu sweep, or the folders holding them")
+    ap.add_argument("--at-scale", nargs="+", action="extend", default=[], metavar="SWEEP",
+                    help="sweeps of the same scene cases at other spacings (the sizes the scenes are run at): "
+                         "a setting is eligible only if it is sound there too")
     ap.add_argument("--max-compression", type=float, default=0.01,
                     help="the largest mean compression allowed in any frame, a fraction of rho0 (default 0.01: 1 %%)")
     ap.add_argument("--seconds", type=float, default=10.0, help="the simulated seconds a row must have run (default 10)")
@@ -230,11 +273,13 @@ def main():
         fail(f"--max-compression {a.max_compression:g}: expected a fraction in (0, 1)")
     if not a.seconds > 0:
         fail(f"--seconds {a.seconds:g}: expected a positive time")
-    results = choose(load(a.sweeps), a.seconds, a.max_compression, bounds(a.schema), a.scenes)
+    results = choose(load(a.sweeps), a.seconds, a.max_compression, bounds(a.schema), a.scenes,
+                     load(a.at_scale) if a.at_scale else ())
     if not results:
         fail("no scene case's rows in " + ", ".join(a.sweeps) + " (run ranryu sweep --cases scenes)")
     for r in results:
-        print(f"{r['scene']} at spacing {r['spacing']:g} (cost: {r['cost_measure']}):")
+        scale = f"; each setting checked at {', '.join(f'{x:g}' for x in r['at_scale'])} m as well" if r["at_scale"] else ""
+        print(f"{r['scene']} at spacing {r['spacing']:g} (cost: {r['cost_measure']}{scale}):")
         unit = "GPU ms" if r["cost_measure"] == "gpu_ms_per_simulated_second" else "steps"
         if r["chosen"]:
             print(f"  chosen: {r['setting']}, {num(r['cost'])} {unit} a simulated second, largest mean compression "

@@ -16,6 +16,10 @@
 # running at the deadline is stopped (the rows done stay), and the rule is applied to the rows
 # there are; the missing ones are listed. RESUME_FROM=FILE (a sweep.json that came back from an
 # earlier call) is copied in first, so that its rows are not run again (the sweep resumes).
+# AT_SCALE="DIR ..." (sweeps of the same scene cases at the sizes the scenes are run at, e.g.
+#     ranryu sweep --cases scene:drop --spacings 0.00454,0.00286 --seconds 10 --out DIR
+# at about 250k and 1M particles, scripts/gpu/scene-at.py giving the spacings) makes the rule choose
+# only settings that are sound there too (scene-settings.py --at-scale).
 # Writes to $OUT (or ./bench-out), six files: sweep.json and sweep.csv (the rows), sweep.log (every
 # sweep's output), scene-settings.txt and scene-settings.json (the choices, with the keys to merge
 # into each scene file's "sph" in media/scenes/), and summary.txt (the grid, the time taken and
@@ -54,7 +58,8 @@ for scene in $scenes; do
   done
 done
 took=$(( $(date +%s) - start ))
-python3 scripts/scene-settings.py "$out" --seconds "$seconds" --json "$out/scene-settings.json" > "$out/scene-settings.txt" 2>&1
+python3 scripts/scene-settings.py "$out" ${AT_SCALE:+--at-scale $AT_SCALE} --seconds "$seconds" --json "$out/scene-settings.json" \
+  > "$out/scene-settings.txt" 2>&1
 rc=$?
 {
   echo "scripts/gpu/scene-settings.sh: $seconds s a row, scenes: $(echo $scenes), solvers: $solvers"

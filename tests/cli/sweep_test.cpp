@@ -435,8 +435,16 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     // ... unless the rule is asked for 2 seconds.
     const Result two = run({"/usr/bin/python3", script.string(), rows.string(), "--seconds", "2", "--json", (dir / "two.json").string()});
     REQUIRE(two.exit_code == 0);
-    for (const auto& s : nlohmann::json::parse(read_file(dir / "two.json"))["scenes"])
-        if (s["scene"] == "drop") CHECK(s["chosen"] == "scene:drop/wcsph/0.015/1");
+    // The choices file's chosen key for a scene and spacing ("absent" where the file has no such scene),
+    // read from a named json: a loop over a temporary's ["scenes"] would walk freed memory.
+    auto chosen_in = [&](const fs::path& file, const std::string& scene, double spacing) {
+        const auto choices = nlohmann::json::parse(read_file(file));
+        for (const auto& s : choices["scenes"])
+            if (s["scene"] == scene && s["spacing"] == spacing)
+                return s["chosen"].is_null() ? std::string("none") : s["chosen"].get<std::string>();
+        return std::string("absent");
+    };
+    CHECK(chosen_in(dir / "two.json", "drop", 0.015) == "scene:drop/wcsph/0.015/1");
 
     // A row timed on llvmpipe makes the tank at rest's costs steps: DFSPH's fewer steps win over
     // WCSPH's smaller (software) time.
@@ -449,8 +457,7 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     const Result strict = run({"/usr/bin/python3", script.string(), rows.string(), "--max-compression", "0.001", "--json",
                                (dir / "strict.json").string()});
     REQUIRE(strict.exit_code == 0);
-    for (const auto& s : nlohmann::json::parse(read_file(dir / "strict.json"))["scenes"])
-        if (s["scene"] == "dam-break" && s["spacing"] == 0.0125) CHECK(s["chosen"] == "scene:dam-break/dfsph/0.0125/2");
+    CHECK(chosen_in(dir / "strict.json", "dam-break", 0.0125) == "scene:dam-break/dfsph/0.0125/2");
 
     // Bad input: one line on stderr naming it, exit code 2.
     write_file(dir / "foreign.json", "{\"not\": \"a sweep\"}");
@@ -470,6 +477,67 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
         CHECK(b.exit_code == 2);
         CHECK(lines(b.err).size() == 1);
         CHECK_THAT(b.err, Contains(says));
+    }
+}
+
+TEST_CASE("scene-settings.py --at-scale: a setting is chosen only where it is sound at the scene's other sizes too",
+          "[sweep][scenes][script]") {
+    // tests/data/sweeps/scene-settings-at-scale.json: the dam break of scene-settings.json at two
+    // larger spacings, rows made up so that each clause of --at-scale decides one setting.
+    TempDir dir;
+    const fs::path script = source_dir() / "scripts" / "scene-settings.py";
+    const fs::path rows = kData / "sweeps" / "scene-settings.json";
+    const fs::path scale = kData / "sweeps" / "scene-settings-at-scale.json";
+    const Result r = run({"/usr/bin/python3", script.string(), rows.string(), "--at-scale", scale.string(), "--json",
+                          (dir / "choices.json").string()});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    const auto j = nlohmann::json::parse(read_file(dir / "choices.json"));
+    std::map<std::string, nlohmann::json> by;
+    for (const auto& s : j["scenes"]) {
+        char key[120];
+        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
+        by[key] = s;
+    }
+    REQUIRE(by.size() == 5);   // the larger sizes' rows are checks, not scenes of their own
+    auto verdict = [](const nlohmann::json& scene, const std::string& key) {
+        for (const auto& row : scene["rows"])
+            if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
+        return std::string("absent");
+    };
+    const nlohmann::json& dam = by.at("dam-break@0.0125");
+    INFO(dam.dump(1));
+    CHECK(dam["at_scale"] == nlohmann::json::array({0.003, 0.002}));
+    // WCSPH x2, the choice without --at-scale, is unstable at 0.003 m: DFSPH x2, sound at both sizes, is chosen.
+    CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/2"),
+               Contains("at 0.003 m (246078 particles): unstable: simulation unstable at frame 40"));
+    CHECK(dam["chosen"] == "scene:dam-break/dfsph/0.0125/2");
+    CHECK_THAT(dam["sph"]["why"].get<std::string>(),
+               Contains("held as well at 0.003 m (246078 particles) and 0.002 m (1000000 particles)"));
+    // A setting missing at one size is not eligible; one that compresses past the bound there neither.
+    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1.2") == "not run at 0.003 m (the --at-scale rows' spacing for this scene)");
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/1"), Contains("at 0.002 m (1000000 particles): mean compression reached 2 %"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/1"), Contains("not run at 0.003 m"));
+    // The clauses before it still decide first.
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.2"), Contains("outside the scene key's bounds"));
+    CHECK_THAT(r.out, Contains("each setting checked at 0.003, 0.002 m as well"));
+    // The same scene's other spacing is held to the larger sizes too: DFSPH x1 compresses at 1M, so no choice.
+    CHECK(by.at("dam-break@0.00625")["chosen"].is_null());
+    // Scenes without rows at other sizes choose as before.
+    CHECK(by.at("turbulent-jet@0.025")["chosen"] == "scene:turbulent-jet/pbf/0.025/1");
+    CHECK(by.at("turbulent-jet@0.025")["at_scale"].empty());
+
+    // Bad input there: one line naming it, exit code 2.
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"--at-scale", (dir / "missing.json").string()},
+                                                 std::vector<std::string>{"--at-scale"}}) {
+        std::vector<std::string> argv = {"/usr/bin/python3", script.string(), rows.string()};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const Result b = run(argv);
+        INFO(b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(lines(b.err).size() == 1);
+        CHECK_THAT(b.err, Contains("--at-scale") || Contains("missing.json"));
     }
 }
 
