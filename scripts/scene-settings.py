@@ -3,7 +3,8 @@
 the cheapest setting that held together for the whole run with little compression (the rule of
 docs/SWEEP.md "Choosing a scene's settings", stated again below). Standard library only.
 
-    scripts/scene-settings.py SWEEP [SWEEP ...] [--at-scale SWEEP ...] [--max-compression 0.01] [--seconds 10] [--json FILE]
+    scripts/scene-settings.py SWEEP [SWEEP ...] [--at-scale SWEEP ...] [--max-compression 0.01]
+                              [--max-density 1.3] [--seconds 10] [--json FILE]
 
 A SWEEP is a sweep.json or the folder `ranryu sweep --out` wrote it to; several (shards) are merged,
 a row seen twice counting once. Only the scene cases' rows (case "scene:NAME") are read. For each
@@ -16,7 +17,9 @@ The rule. A row is sound when
   2. it ran at least --seconds of simulated time (its "seconds" and its "simulated_seconds");
   3. its mean_density_deviation_peak, the largest over its frames of the mean over particles of
      max(rho/rho0 - 1, 0), is at most --max-compression (PBF's densities are those after its last
-     iteration, as the guard reads them: its compression counts like the others').
+     iteration, as the guard reads them: its compression counts like the others');
+  4. its largest density in any frame, 1 + max_density_deviation, is at most --max-density (default
+     1.3 rho0: a margin of 0.2 rho0 to the guard's bound of 1.5, which a scene must never reach).
 A row is eligible when it is sound, every row of the same scene, spacing and solver at a smaller
 time-step factor is sound too (a stable setting above an unstable one is luck, not a margin), and a
 scene file can hold its settings (each within the bounds of media/scenes/scene.schema.json), and,
@@ -34,6 +37,7 @@ import argparse
 import json
 import os
 import sys
+from collections import namedtuple
 
 import sweep_rows  # scripts/sweep_rows.py, beside this file
 
@@ -117,8 +121,13 @@ def out_of_bounds(row, limits):
     return None
 
 
-def soundness(row, seconds, max_compression):
-    """Why the row is not sound (rules 1-3), or None."""
+# The thresholds of rules 2-4: simulated seconds, mean compression and largest density (a fraction, rho0).
+Rule = namedtuple("Rule", "seconds max_compression max_density")
+
+
+def soundness(row, rule):
+    """Why the row is not sound (rules 1-4), or None."""
+    seconds, max_compression = rule.seconds, rule.max_compression
     if row["status"] != "stable":
         return f"unstable: {row.get('failure_message') or row.get('failure_cause') or '?'}"
     if row.get("seconds", 0) < seconds * (1 - 1e-6) or row.get("simulated_seconds", 0) < seconds * 0.999:
@@ -128,6 +137,9 @@ def soundness(row, seconds, max_compression):
         return "no mean_density_deviation_peak (not a scene case's row)"
     if peak > max_compression:
         return f"mean compression reached {100 * peak:.3g} % (t = {row.get('mean_density_deviation_peak_time', 0):.2f} s) > {100 * max_compression:g} %"
+    largest = 1 + row.get("max_density_deviation", 0)
+    if largest > rule.max_density:
+        return f"largest density {largest:.3g} rho0 > {rule.max_density:g} rho0"
     return None
 
 
@@ -151,7 +163,7 @@ def label(row):
     return f"{row['solver']} x{row['factor']:g}"
 
 
-def at_scale_verdict(row, scale, seconds, max_compression):
+def at_scale_verdict(row, scale, rule):
     """Why the row's setting (its solver and factor) does not hold at the scene's other sizes of the
     --at-scale rows `scale` ({spacing: {(solver, factor): row}}), or None."""
     for spacing, at in sorted(scale.items(), reverse=True):
@@ -160,7 +172,7 @@ def at_scale_verdict(row, scale, seconds, max_compression):
         other = at.get((row["solver"], row["factor"]))
         if other is None:
             return f"not run at {spacing:g} m (the --at-scale rows' spacing for this scene)"
-        why_not = soundness(other, seconds, max_compression)
+        why_not = soundness(other, rule)
         if why_not is not None:
             return f"at {spacing:g} m ({other.get('particles', '?')} particles): {why_not}"
     return None
@@ -176,7 +188,7 @@ def scale_spacings(row, scale):
     return out
 
 
-def choose(rows, seconds, max_compression, limits, scenes_dir, scale_rows=()):
+def choose(rows, rule, limits, scenes_dir, scale_rows=()):
     """Per (scene case, spacing): the verdict on every row and the chosen one. scale_rows: the
     --at-scale rows, each scene's other sizes its rows must hold at too."""
     groups = {}
@@ -203,16 +215,16 @@ def choose(rows, seconds, max_compression, limits, scenes_dir, scale_rows=()):
 
         verdicts = {}
         for r in mine:
-            why_not = soundness(r, seconds, max_compression)
+            why_not = soundness(r, rule)
             if why_not is None:
                 worse = [o for o in mine if o["solver"] == r["solver"] and o["factor"] < r["factor"] and
-                         soundness(o, seconds, max_compression) is not None]
+                         soundness(o, rule) is not None]
                 if worse:
                     why_not = f"a smaller factor, x{min(o['factor'] for o in worse):g}, is not sound"
             if why_not is None:
                 why_not = out_of_bounds(r, limits)
             if why_not is None:
-                why_not = at_scale_verdict(r, scales.get(case, {}), seconds, max_compression)
+                why_not = at_scale_verdict(r, scales.get(case, {}), rule)
             verdicts[r["key"]] = why_not
         eligible = sorted((r for r in mine if verdicts[r["key"]] is None),
                           key=lambda r: (cost(r), r.get("max_density_deviation", 0), r["key"]))
@@ -232,8 +244,9 @@ def choose(rows, seconds, max_compression, limits, scenes_dir, scale_rows=()):
             device = str(chosen.get("device", "?")).split(" | ")[0]
             tried = f"the cheapest of the {len(mine)} settings tried that ran" if len(mine) > 1 else "the only setting tried; it ran"
             why = (f"Chosen by scripts/scene-settings.py from ranryu sweep rows ({device}, {str(chosen.get('date', '?'))[:10]}, "
-                   f"spacing {spacing:g}): {tried} {seconds:g} s stable with a mean "
-                   f"compression of at most {100 * max_compression:g} % in every frame (here {100 * chosen['mean_density_deviation_peak']:.2g} %), "
+                   f"spacing {spacing:g}): {tried} {rule.seconds:g} s stable with a mean "
+                   f"compression of at most {100 * rule.max_compression:g} % in every frame (here {100 * chosen['mean_density_deviation_peak']:.2g} %) "
+                   f"and no density above {rule.max_density:g} rho0, "
                    f"{num(cost(chosen))} {unit} a simulated second")
             if runner_up:
                 why += f" against {num(cost(runner_up))} for {label(runner_up)}"
@@ -262,6 +275,8 @@ def main():
                          "a setting is eligible only if it is sound there too")
     ap.add_argument("--max-compression", type=float, default=0.01,
                     help="the largest mean compression allowed in any frame, a fraction of rho0 (default 0.01: 1 %%)")
+    ap.add_argument("--max-density", type=float, default=1.3,
+                    help="the largest density allowed in any frame, in rho0 (default 1.3: 0.2 below the guard's 1.5)")
     ap.add_argument("--seconds", type=float, default=10.0, help="the simulated seconds a row must have run (default 10)")
     ap.add_argument("--schema", default=os.path.join(here, "..", "media", "scenes", "scene.schema.json"),
                     help="the scene schema, for the bounds of the keys a choice sets")
@@ -273,7 +288,9 @@ def main():
         fail(f"--max-compression {a.max_compression:g}: expected a fraction in (0, 1)")
     if not a.seconds > 0:
         fail(f"--seconds {a.seconds:g}: expected a positive time")
-    results = choose(load(a.sweeps), a.seconds, a.max_compression, bounds(a.schema), a.scenes,
+    if not a.max_density > 1:
+        fail(f"--max-density {a.max_density:g}: expected a density above 1 (in rho0)")
+    results = choose(load(a.sweeps), Rule(a.seconds, a.max_compression, a.max_density), bounds(a.schema), a.scenes,
                      load(a.at_scale) if a.at_scale else ())
     if not results:
         fail("no scene case's rows in " + ", ".join(a.sweeps) + " (run ranryu sweep --cases scenes)")
@@ -297,7 +314,8 @@ def main():
     if a.json:
         try:
             with open(a.json, "w") as f:
-                json.dump({"max_compression": a.max_compression, "seconds": a.seconds, "scenes": results}, f, indent=1, ensure_ascii=False)
+                json.dump({"max_compression": a.max_compression, "max_density": a.max_density, "seconds": a.seconds,
+                           "scenes": results}, f, indent=1, ensure_ascii=False)
                 f.write("\n")
         except OSError as e:
             fail(f"--json {a.json}: {e}")

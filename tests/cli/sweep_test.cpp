@@ -453,6 +453,14 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     CHECK(tank["chosen"] == "scene:hydrostatic/dfsph/0.0125/1");
     CHECK_THAT(tank["sph"]["why"].get<std::string>(), Contains("250 steps a simulated second against 5000 for wcsph x1"));
 
+    // The largest density is held to --max-density (1.3 rho0 by default): at 1.055 rho0 WCSPH x2 (its
+    // densest frame 1.06 rho0 in the made-up row) is out, and DFSPH x2 (1.05) is chosen.
+    CHECK(j["max_density"] == 1.3);
+    const Result margin = run({"/usr/bin/python3", script.string(), rows.string(), "--max-density", "1.055", "--json",
+                               (dir / "margin.json").string()});
+    REQUIRE(margin.exit_code == 0);
+    CHECK(chosen_in(dir / "margin.json", "dam-break", 0.0125) == "scene:dam-break/dfsph/0.0125/2");
+
     // A stricter bound on the compression moves the dam break's choice to DFSPH.
     const Result strict = run({"/usr/bin/python3", script.string(), rows.string(), "--max-compression", "0.001", "--json",
                                (dir / "strict.json").string()});
@@ -468,6 +476,7 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
         {{(dir / "no-scenes.json").string()}, "no scene case's rows"},
         {{rows.string(), "--max-compression", "2"}, "--max-compression 2"},
         {{rows.string(), "--seconds", "x"}, "--seconds"},
+        {{rows.string(), "--max-density", "0.9"}, "--max-density 0.9"},
     };
     for (const auto& [args, says] : bad) {
         std::vector<std::string> argv = {"/usr/bin/python3", script.string()};
@@ -515,10 +524,12 @@ TEST_CASE("scene-settings.py --at-scale: a setting is chosen only where it is so
     CHECK(dam["chosen"] == "scene:dam-break/dfsph/0.0125/2");
     CHECK_THAT(dam["sph"]["why"].get<std::string>(),
                Contains("held as well at 0.003 m (246078 particles) and 0.002 m (1000000 particles)"));
-    // A setting missing at one size is not eligible; one that compresses past the bound there neither.
-    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/1.2") == "not run at 0.003 m (the --at-scale rows' spacing for this scene)");
+    // A setting missing at one size is not eligible; one that compresses past the bound there, or
+    // comes within 0.2 rho0 of the guard's bound (--max-density, 1.3 by default), neither.
+    CHECK(verdict(dam, "scene:dam-break/wcsph/0.0125/1") == "not run at 0.003 m (the --at-scale rows' spacing for this scene)");
     CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/1"), Contains("at 0.002 m (1000000 particles): mean compression reached 2 %"));
-    CHECK_THAT(verdict(dam, "scene:dam-break/wcsph/0.0125/1"), Contains("not run at 0.003 m"));
+    CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/1.2"),
+               Contains("at 0.002 m (1000000 particles): largest density 1.35 rho0 > 1.3 rho0"));
     // The clauses before it still decide first.
     CHECK_THAT(verdict(dam, "scene:dam-break/dfsph/0.0125/2.2"), Contains("outside the scene key's bounds"));
     CHECK_THAT(r.out, Contains("each setting checked at 0.003, 0.002 m as well"));
