@@ -25,7 +25,8 @@ time-step factor is sound too (a stable setting above an unstable one is luck, n
 scene file can hold its settings (each within the bounds of media/scenes/scene.schema.json), and,
 with --at-scale, the same scene, solver and factor is sound at every other spacing those sweeps hold
 for the scene too (the sizes the scene is run at, e.g. about 250k and 1M particles): a row with no
-such row at one of them is not eligible either ("not run at ..."). A step that holds at a scene's few
+such row at one of them is not eligible either ("not run at ..."; a scene with no rows there at all is
+chosen as without them, and said to be unchecked). A step that holds at a scene's few
 thousand particles need not at a million (docs/SWEEP.md "The scene settings again, on the H200").
 The chosen row is the eligible row of least cost: gpu_ms_per_simulated_second where every row of the
 scene and spacing was timed on a GPU (not llvmpipe, softpipe or swrast, and a positive time), else
@@ -137,7 +138,9 @@ def soundness(row, rule):
         return "no mean_density_deviation_peak (not a scene case's row)"
     if peak > max_compression:
         return f"mean compression reached {100 * peak:.3g} % (t = {row.get('mean_density_deviation_peak_time', 0):.2f} s) > {100 * max_compression:g} %"
-    largest = 1 + row.get("max_density_deviation", 0)
+    if row.get("max_density_deviation") is None:
+        return "no max_density_deviation (not a scene case's row)"
+    largest = 1 + row["max_density_deviation"]
     if largest > rule.max_density:
         return f"largest density {largest:.3g} rho0 > {rule.max_density:g} rho0"
     return None
@@ -163,13 +166,18 @@ def label(row):
     return f"{row['solver']} x{row['factor']:g}"
 
 
+def setting_key(row):
+    """A row's setting across spacings: its solver and factor (rounded, as sweeps may store it through a float)."""
+    return row["solver"], round(float(row["factor"]), 6)
+
+
 def at_scale_verdict(row, scale, rule):
     """Why the row's setting (its solver and factor) does not hold at the scene's other sizes of the
     --at-scale rows `scale` ({spacing: {(solver, factor): row}}), or None."""
     for spacing, at in sorted(scale.items(), reverse=True):
         if abs(spacing - row["spacing"]) <= 1e-6 * spacing:
             continue
-        other = at.get((row["solver"], row["factor"]))
+        other = at.get(setting_key(row))
         if other is None:
             return f"not run at {spacing:g} m (the --at-scale rows' spacing for this scene)"
         why_not = soundness(other, rule)
@@ -182,7 +190,7 @@ def scale_spacings(row, scale):
     """The --at-scale sizes a chosen row held at, for its "why": "0.00454 m (244088 particles)", ..."""
     out = []
     for spacing, at in sorted(scale.items(), reverse=True):
-        other = at.get((row["solver"], row["factor"]))
+        other = at.get(setting_key(row))
         if other is not None and abs(spacing - row["spacing"]) > 1e-6 * spacing:
             out.append(f"{spacing:g} m ({other.get('particles', '?')} particles)")
     return out
@@ -198,7 +206,7 @@ def choose(rows, rule, limits, scenes_dir, scale_rows=()):
     scales = {}
     for r in scale_rows:
         if str(r["case"]).startswith("scene:"):
-            scales.setdefault(r["case"], {}).setdefault(r["spacing"], {})[(r["solver"], r["factor"])] = r
+            scales.setdefault(r["case"], {}).setdefault(r["spacing"], {})[setting_key(r)] = r
     results = []
     for (case, spacing), mine in sorted(groups.items()):
         # Timed on a GPU: no row ran on a software renderer, and every row that ran to the end has a time.
@@ -296,6 +304,8 @@ def main():
         fail("no scene case's rows in " + ", ".join(a.sweeps) + " (run ranryu sweep --cases scenes)")
     for r in results:
         scale = f"; each setting checked at {', '.join(f'{x:g}' for x in r['at_scale'])} m as well" if r["at_scale"] else ""
+        if a.at_scale and not r["at_scale"]:
+            scale = "; not checked at other sizes: --at-scale holds no rows of this scene"
         print(f"{r['scene']} at spacing {r['spacing']:g} (cost: {r['cost_measure']}{scale}):")
         unit = "GPU ms" if r["cost_measure"] == "gpu_ms_per_simulated_second" else "steps"
         if r["chosen"]:

@@ -535,9 +535,13 @@ TEST_CASE("scene-settings.py --at-scale: a setting is chosen only where it is so
     CHECK_THAT(r.out, Contains("each setting checked at 0.003, 0.002 m as well"));
     // The same scene's other spacing is held to the larger sizes too: DFSPH x1 compresses at 1M, so no choice.
     CHECK(by.at("dam-break@0.00625")["chosen"].is_null());
-    // Scenes without rows at other sizes choose as before.
+    // The scale rows' own-spacing row (made up unstable) is not a larger size and does not count, and
+    // the 1M row of DFSPH x2, its factor stored as 2.0000000001, is that factor's.
+    CHECK(verdict(dam, "scene:dam-break/dfsph/0.0125/2") == "eligible");
+    // Scenes without rows at other sizes choose as before, and the printout says they were not checked.
     CHECK(by.at("turbulent-jet@0.025")["chosen"] == "scene:turbulent-jet/pbf/0.025/1");
     CHECK(by.at("turbulent-jet@0.025")["at_scale"].empty());
+    CHECK_THAT(r.out, Contains("turbulent-jet at spacing 0.025 (cost: gpu_ms_per_simulated_second; not checked at other sizes"));
 
     // Bad input there: one line naming it, exit code 2.
     for (const std::vector<std::string>& args : {std::vector<std::string>{"--at-scale", (dir / "missing.json").string()},
