@@ -37,6 +37,24 @@ std::vector<std::string> lines(const std::string& text) {
     return out;
 }
 
+// scene-settings.py --json's "scenes", keyed "scene@spacing" (e.g. "dam-break@0.0125").
+std::map<std::string, nlohmann::json> choices_by_scene(const nlohmann::json& choices) {
+    std::map<std::string, nlohmann::json> by;
+    for (const auto& s : choices["scenes"]) {
+        char key[120];
+        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
+        by[key] = s;
+    }
+    return by;
+}
+
+// The rule's verdict on one row of a scene's choice: "eligible", why not, or "absent".
+std::string verdict(const nlohmann::json& scene, const std::string& key) {
+    for (const auto& row : scene["rows"])
+        if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
+    return "absent";
+}
+
 }  // namespace
 
 TEST_CASE("sweep: a tiny sweep writes a row a run with every field, records the unstable one with its cause, and resumes",
@@ -372,19 +390,9 @@ TEST_CASE("scene-settings.py: from a sweep's scene rows, each scene's cheapest e
     const auto j = nlohmann::json::parse(read_file(dir / "choices.json"));
     CHECK(j["max_compression"] == 0.01);
     CHECK(j["seconds"] == 10.0);
-    std::map<std::string, nlohmann::json> by;
-    for (const auto& s : j["scenes"]) {
-        char key[120];
-        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
-        by[key] = s;
-    }
+    const std::map<std::string, nlohmann::json> by = choices_by_scene(j);
     // The validation case's row is not a scene's: four scenes, the dam break at two spacings.
     REQUIRE(by.size() == 5);
-    auto verdict = [](const nlohmann::json& scene, const std::string& key) {
-        for (const auto& row : scene["rows"])
-            if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
-        return std::string("absent");
-    };
 
     // The dam break: the cheaper rows fail one clause each, and wcsph x2 is chosen by its GPU time.
     const nlohmann::json& dam = by.at("dam-break@0.0125");
@@ -503,18 +511,8 @@ TEST_CASE("scene-settings.py --at-scale: a setting is chosen only where it is so
     REQUIRE(r.exit_code == 0);
     CHECK(r.err.empty());
     const auto j = nlohmann::json::parse(read_file(dir / "choices.json"));
-    std::map<std::string, nlohmann::json> by;
-    for (const auto& s : j["scenes"]) {
-        char key[120];
-        std::snprintf(key, sizeof key, "%s@%g", s["scene"].get<std::string>().c_str(), s["spacing"].get<double>());
-        by[key] = s;
-    }
+    const std::map<std::string, nlohmann::json> by = choices_by_scene(j);
     REQUIRE(by.size() == 5);   // the larger sizes' rows are checks, not scenes of their own
-    auto verdict = [](const nlohmann::json& scene, const std::string& key) {
-        for (const auto& row : scene["rows"])
-            if (row["key"] == key) return row["why_not"].is_null() ? std::string("eligible") : row["why_not"].get<std::string>();
-        return std::string("absent");
-    };
     const nlohmann::json& dam = by.at("dam-break@0.0125");
     INFO(dam.dump(1));
     CHECK(dam["at_scale"] == nlohmann::json::array({0.003, 0.002}));
