@@ -303,8 +303,8 @@ TEST_CASE("sweep: a scene case runs the bundled scene for --seconds with its com
     CHECK_THAT(rows["scene:dam-break/wcsph/0.025/1"]["energy_check"].get<std::string>(), Contains("gain above 1 %"));
     CHECK(rows["scene:dam-break/wcsph/0.025/1"]["energy_drift"].get<double>() < 0.0);
     CHECK_THAT(rows["scene:turbulent-jet/pbf/0.04/1"]["energy_check"].get<std::string>(), Contains("turbulence force"));
-    // The jet's 2 substeps at its own 0.025 m are ceil(2 · 0.025 / 0.04) = 2 at 0.04 m (docs/PBF.md "Resolution").
-    CHECK(rows["scene:turbulent-jet/pbf/0.04/1"]["pbf_substeps"] == 2);
+    // The jet's 4 substeps at its own 0.025 m are ceil(4 · 0.025 / 0.04) = 3 at 0.04 m (docs/PBF.md "Resolution").
+    CHECK(rows["scene:turbulent-jet/pbf/0.04/1"]["pbf_substeps"] == 3);
     const std::vector<std::string> csv = lines(read_file(out / "sweep.csv"));
     REQUIRE(csv.size() == 4);
     CHECK_THAT(csv[0], Contains("seconds,mean_density_deviation_peak"));
