@@ -44,7 +44,8 @@ for n in ${COUNTS:-246078 1000000}; do
     f=$o/db-$v-$n
     timeout 200 "$B" profile --scene "$o/scene-$n.json" --spacing "$dx" --shading particles --size 640x360 \
       --frames "$frames" --warmup "$warmup" --shader-dir "$work/$v" > "$f.txt" 2>&1
-    echo "== $v $n ($dx): rc $?"
+    rc=$?   # N is the count asked for; the spacing's lattice holds the count the profile names
+    echo "== $v $n ($dx, $(grep -m1 -oE '[0-9]+ particles' "$f.txt")): rc $rc"
     grep -E "$passes" "$f.txt" | grep -v "^why its settings"
   done
 done
