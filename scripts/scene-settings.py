@@ -171,13 +171,17 @@ def setting_key(row):
     return row["solver"], round(float(row["factor"]), 6)
 
 
-def at_scale_verdict(row, scale, rule):
-    """Why the row's setting (its solver and factor) does not hold at the scene's other sizes of the
-    --at-scale rows `scale` ({spacing: {(solver, factor): row}}), or None."""
+def other_sizes(row, scale):
+    """(spacing, the row's setting there or None) for each spacing of the --at-scale rows `scale`
+    ({spacing: {(solver, factor): row}}) other than the row's own, coarsest first."""
     for spacing, at in sorted(scale.items(), reverse=True):
-        if abs(spacing - row["spacing"]) <= 1e-6 * spacing:
-            continue
-        other = at.get(setting_key(row))
+        if abs(spacing - row["spacing"]) > 1e-6 * spacing:
+            yield spacing, at.get(setting_key(row))
+
+
+def at_scale_verdict(row, scale, rule):
+    """Why the row's setting (its solver and factor) does not hold at the scene's other sizes, or None."""
+    for spacing, other in other_sizes(row, scale):
         if other is None:
             return f"not run at {spacing:g} m (the --at-scale rows' spacing for this scene)"
         why_not = soundness(other, rule)
@@ -188,12 +192,8 @@ def at_scale_verdict(row, scale, rule):
 
 def scale_spacings(row, scale):
     """The --at-scale sizes a chosen row held at, for its "why": "0.00454 m (244088 particles)", ..."""
-    out = []
-    for spacing, at in sorted(scale.items(), reverse=True):
-        other = at.get(setting_key(row))
-        if other is not None and abs(spacing - row["spacing"]) > 1e-6 * spacing:
-            out.append(f"{spacing:g} m ({other.get('particles', '?')} particles)")
-    return out
+    return [f"{spacing:g} m ({other.get('particles', '?')} particles)" for spacing, other in other_sizes(row, scale)
+            if other is not None]
 
 
 def choose(rows, rule, limits, scenes_dir, scale_rows=()):
