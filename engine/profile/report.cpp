@@ -234,17 +234,18 @@ std::string to_csv(const Report& r) {
 std::string record_csv_header() {
     return "frame,time,substeps,min_dt,max_speed,max_density,iterations,divergence_iterations,most_iterations,"
            "most_divergence_iterations,unconverged,unconverged_divergence,error,divergence_error,max_error,nan,escaped,iteration_dt,"
-           "issued,issued_divergence,peak_error\n";
+           "issued,issued_divergence,peak_error,fastest_x,fastest_y,fastest_z,densest_x,densest_y,densest_z\n";
 }
 
 std::string record_csv_row(const gpu::StepState& r) {
     auto f = [](std::uint32_t bits) { return std::bit_cast<float>(bits); };
-    char line[512];
-    std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u,%.7g,%u,%u,%.7g\n", r.frame, double(r.time),
+    char line[768];
+    std::snprintf(line, sizeof line, "%u,%.7g,%u,%.7g,%.7g,%.7g,%u,%u,%u,%u,%u,%u,%.7g,%.7g,%.7g,%u,%u,%.7g,%u,%u,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g\n", r.frame, double(r.time),
                   r.frame_substeps, double(r.frame_min_dt), double(f(r.frame_max_speed)), double(f(r.frame_max_density)),
                   r.iterations.x, r.iterations.y, r.iterations.z, r.iterations.w, r.unconverged.x, r.unconverged.y,
                   double(r.error.x), double(r.error.y), double(r.error.z), r.nan_count, r.escaped_count, double(r.iteration_dt),
-                  r.issued, r.issued_divergence, double(f(r.peak_error)));
+                  r.issued, r.issued_divergence, double(f(r.peak_error)), double(r.speed_position.x), double(r.speed_position.y),
+                  double(r.speed_position.z), double(r.density_position.x), double(r.density_position.y), double(r.density_position.z));
     return line;
 }
 

@@ -81,7 +81,8 @@ nlohmann::json to_json(const Report& r);
 std::string to_csv(const Report& r);
 
 // One StepState record as a CSV row (and the header naming its columns): the frame, simulated time,
-// steps, the smallest stable dt, largest speed and density, solver iterations and errors, guard counts.
+// steps, the smallest stable dt, largest speed and density, solver iterations and errors, guard counts,
+// and where the frame's fastest and densest particles were (fastest_x..z, densest_x..z, m).
 std::string record_csv_header();
 std::string record_csv_row(const gpu::StepState& r);
 

@@ -1,6 +1,7 @@
 // ranryu profile: the timing table on stdout, and the same report as --json and --csv files.
 // llvmpipe's timer queries read about 0, so timings are only checked to be numbers >= 0.
 #include <catch2/catch.hpp>
+#include <glm/glm.hpp>
 
 #include <map>
 #include <regex>
@@ -347,7 +348,9 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
     // (each at least what ran), its least_iteration_dt the least of the rows' iteration_dt
     // (docs/DFSPH.md (D8)), within the scene's largest step of 5 ms; each row's peak_error (the largest
     // particle error a density solve stopped with, (D6)) is at least its largest mean error, and the
-    // summary's is the rows' largest.
+    // summary's is the rows' largest. Where each frame's fastest and densest particles were lies in the
+    // tank (media/scenes/hydrostatic.json: [0, 0.3] x [0, 0.4] x [0, 0.1] m), the densest in the column,
+    // below its top at 0.25 m (a spacing's margin), and off the origin (what begin_frame resets them to).
     TempDir tmp;
     const Result r = run_ranryu(tmp.path(), {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025", "--size",
                                              "64x48", "--shading", "particles", "--frames", "12", "--warmup", "0", "--records",
@@ -365,6 +368,11 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
     };
     const std::size_t steps_at = column("substeps"), iterations_at = column("iterations"), dt_at = column("iteration_dt"),
                       issued_at = column("issued"), peak_at = column("peak_error"), mean_at = column("max_error");
+    const std::size_t fastest_at = column("fastest_x"), densest_at = column("densest_x");
+    REQUIRE(column("fastest_y") == fastest_at + 1);
+    REQUIRE(column("fastest_z") == fastest_at + 2);
+    REQUIRE(column("densest_y") == densest_at + 1);
+    REQUIRE(column("densest_z") == densest_at + 2);
     double steps = 0.0, iterations = 0.0, issued = 0.0, least = 1.0, peak = 0.0;
     for (std::size_t k = 1; k < csv.size(); ++k) {
         REQUIRE(csv[k].size() == head.size());
@@ -378,6 +386,16 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
         least = std::min(least, dt);
         CHECK(std::stod(csv[k][peak_at]) >= std::stod(csv[k][mean_at]));
         peak = std::max(peak, std::stod(csv[k][peak_at]));
+        const glm::dvec3 fastest(std::stod(csv[k][fastest_at]), std::stod(csv[k][fastest_at + 1]), std::stod(csv[k][fastest_at + 2]));
+        const glm::dvec3 densest(std::stod(csv[k][densest_at]), std::stod(csv[k][densest_at + 1]), std::stod(csv[k][densest_at + 2]));
+        INFO("frame " << k - 1 << ": fastest at " << fastest.x << ", " << fastest.y << ", " << fastest.z << "; densest at " << densest.x
+                      << ", " << densest.y << ", " << densest.z);
+        CHECK(glm::all(glm::greaterThanEqual(fastest, glm::dvec3(0.0))));
+        CHECK(glm::all(glm::lessThanEqual(fastest, glm::dvec3(0.3, 0.4, 0.1))));
+        CHECK(glm::all(glm::greaterThanEqual(densest, glm::dvec3(0.0))));
+        CHECK(glm::all(glm::lessThanEqual(densest, glm::dvec3(0.3, 0.25 + 0.025, 0.1))));
+        CHECK(glm::length(fastest) > 0.0);
+        CHECK(glm::length(densest) > 0.0);
     }
     CHECK(peak > 0.0);
     const nlohmann::json s = nlohmann::json::parse(read_file(tmp / "report.json"))["simulation"];
