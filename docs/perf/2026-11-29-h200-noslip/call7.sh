@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Prepared, not run: the session's device time was spent (docs/PERFORMANCE.md "The dam break's no-slip walls", its last lead). scratch/visc/glsl is glsl/ with visc.patch applied.
-# Call 7 (the tree of 898e050, the no-slip walls shipped): DFSPH's force condition on gravity alone, the
+# Call 7 (the tree of 450f67c, the no-slip walls shipped): DFSPH's force condition on gravity alone, the
 # viscous terms out of |a|_max (visc.patch), the dam break for ten seconds at 250k and 1M.
 set -u
 scripts/gpu/setup-and-build.sh ranryu > $OUT/build.txt 2>&1 || { tail -30 $OUT/build.txt; exit 1; }
