@@ -1079,6 +1079,39 @@ TEST_CASE("dfsph: the iteration cap: the scene's most until a record, then learn
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("dfsph: the iteration cap: a plan of fewer, longer steps than its record's scales the record's need up",
+          "[dfsph]") {
+    // The 8x8x8 block at rest on the floor at 1 ms steps (17 a frame), then at 4 ms (4 a frame): the
+    // first frame at 4 ms is planned from a record of 1 ms steps, whose need it scales by 17/4
+    // (iterations_at_plan()), above what any record so far needed.
+    Rig rig(R"("max_iterations": 60)");
+    auto& d = rig.dfsph();
+    std::vector<gpu::StepState> records;
+    rig.fluid.set_record_sink([&](const gpu::StepState& r) { records.push_back(r); });
+    rig.fluid.set_fixed_dt(1e-3f);
+    std::uint64_t f = 0;
+    for (; f < 6; ++f) rig.frame(f);
+    rig.finish();
+    rig.fluid.set_fixed_dt(4e-3f);
+    rig.frame(f++);
+    const std::optional<gpu::StepState>& planned_from = rig.fluid.planning_record();
+    REQUIRE(planned_from);
+    const int planned = rig.fluid.substeps_this_frame();
+    REQUIRE(planned_from->frame_substeps == 17u);
+    REQUIRE(planned == 4);
+    std::uint32_t window = 0;   // the records the solver has taken in, the planning record the newest
+    for (const gpu::StepState& r : records)
+        if (r.frame <= planned_from->frame) window = std::max(window, r.iterations.z);
+    const std::uint32_t scaled = ranryu::sim::iterations_at_plan(planned_from->iterations.z, 17u, planned);
+    INFO("the planning record (frame " << planned_from->frame << "): most " << planned_from->iterations.z
+                                       << " a step; the window's most " << window << "; scaled " << scaled);
+    REQUIRE(planned_from->unconverged.x == 0u);
+    REQUIRE(scaled > window);
+    CHECK(std::uint32_t(d.issued_iterations()) == ranryu::sim::next_iteration_cap(scaled, false, rig.scene.sph.min_iterations, 60));
+    rig.finish();
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("dfsph: the step the density solve's iterations allow (D8): the GPU's rule against next_iteration_dt(), each branch",
           "[dfsph]") {
     ranryu::test::Random rng;

@@ -5,6 +5,7 @@
 
 #include "sim/solvers/dfsph.h"
 
+using ranryu::sim::iterations_at_plan;
 using ranryu::sim::next_iteration_cap;
 using ranryu::sim::next_iteration_dt;
 
@@ -23,6 +24,18 @@ TEST_CASE("dfsph iteration cap: a step stopped at the cap sends it to the scene'
     CHECK(next_iteration_cap(3, true, 2, 100) == 100u);
     CHECK(next_iteration_cap(7, true, 2, 60) == 60u);
     CHECK(next_iteration_cap(0, true, 1, 1) == 1u);
+}
+
+TEST_CASE("dfsph iteration cap: a record's need scaled to a plan of fewer, longer steps, never down", "[dfsph][unit]") {
+    // The dam break's first records at 1M: 59 substeps a frame on the scene's estimate, 4 iterations at
+    // most, then a plan of 12 substeps at the records' step: 4 * 59 / 12 = 19.7.
+    CHECK(iterations_at_plan(4, 59, 12) == 20u);
+    CHECK(next_iteration_cap(iterations_at_plan(4, 59, 12), false, 2, 100) == 32u);   // not 8
+    CHECK(iterations_at_plan(10, 12, 12) == 10u);   // the same steps
+    CHECK(iterations_at_plan(10, 8, 12) == 10u);    // shorter steps: no fewer
+    CHECK(iterations_at_plan(10, 13, 12) == 11u);   // ceil(10.83)
+    CHECK(iterations_at_plan(10, 13, 0) == 10u);    // no plan
+    CHECK(iterations_at_plan(4000000000u, 1000, 1) == 1000000u);   // bounded
 }
 
 TEST_CASE("dfsph iteration step: 0.9 times the stable step above the band, 1.1 times below, the same within, clamped", "[dfsph][unit]") {

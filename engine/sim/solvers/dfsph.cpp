@@ -70,6 +70,11 @@ std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, 
     return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
 }
 
+std::uint32_t iterations_at_plan(std::uint32_t most, std::uint32_t record_substeps, int planned) {
+    if (planned <= 0 || record_substeps <= std::uint32_t(planned)) return most;
+    return std::uint32_t(std::min(std::ceil(double(most) * double(record_substeps) / double(planned)), 1e6));
+}
+
 float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t shrink_above, std::uint32_t grow_below, float least,
                         float most) {
     const float f = iterations > shrink_above ? 0.9f : iterations < grow_below ? 1.1f : 1.0f;
@@ -233,7 +238,10 @@ void Dfsph::begin_frame(Fluid& fluid) {
     if (fixed_caps_ || !r || r->frame_substeps == 0) return;
     recent_[recent_next_] = glm::uvec2(r->iterations.z, r->iterations.w);
     recent_next_ = (recent_next_ + 1) % recent_.size();
-    glm::uvec2 needed(0u);
+    // The newest record's need at this frame's steps (the window's older records as they were).
+    const int planned = fluid.substeps_this_frame();
+    glm::uvec2 needed(iterations_at_plan(r->iterations.z, r->frame_substeps, planned),
+                      iterations_at_plan(r->iterations.w, r->frame_substeps, planned));
     for (const glm::uvec2& k : recent_) needed = glm::max(needed, k);
     const std::uint32_t cap = next_iteration_cap(needed.x, r->unconverged.x > 0, least_, most_);
     const std::uint32_t cap_v = next_iteration_cap(needed.y, r->unconverged.y > 0, 1, most_divergence_);

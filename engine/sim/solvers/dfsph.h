@@ -30,7 +30,7 @@
 // CPU issues a cap of iterations a solve each step (next_iteration_cap()), learnt from the records that
 // come back frames late, one a frame (Fluid::planning_record()): the scene's maximum until the first
 // and after any step stopped at the cap, otherwise 1.5 times the most one step needed over the last
-// records, plus two. Iterations run
+// records (the newest scaled to a plan of longer steps, iterations_at_plan()), plus two. Iterations run
 // and the errors reached come back in StepState; a step that stops at its cap is counted there, and
 // profile reports it.
 #include <array>
@@ -53,6 +53,14 @@ namespace ranryu::sim {
 // frames late, and a step cut short leaves its excess to the next as a kick, so the cap goes to the
 // maximum at once, and comes back down with the records.
 std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most);
+
+// The most iterations a step of this frame needs, from a record's `most` at its `record_substeps` a
+// frame, when this frame plans `planned` substeps: fewer, longer steps than the record's need
+// proportionally more (ceil(most · record_substeps / planned)); more, shorter ones no fewer. A solve's
+// iterations grow about in proportion to its step (docs/DFSPH.md (D8): 15.5 a step at 0.8 ms, 59 at
+// 3.3 ms), and a plan lengthens its steps most at once when its first frames' estimate gives way to
+// the records' step ("The iteration cap").
+std::uint32_t iterations_at_plan(std::uint32_t most, std::uint32_t record_substeps, int planned);
 
 // The step the density solve's iterations allow (docs/DFSPH.md (D8)), the CPU's mirror of the GPU's
 // next_iteration_dt() (glsl/sim/dfsph/dfsph.glsl), which the residual pass applies when a density solve
