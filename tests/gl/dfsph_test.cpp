@@ -1099,15 +1099,21 @@ TEST_CASE("dfsph: the iteration cap: a plan of fewer, longer steps than its reco
     const int planned = rig.fluid.substeps_this_frame();
     REQUIRE(planned_from->frame_substeps == 17u);
     REQUIRE(planned == 4);
-    std::uint32_t window = 0;   // the records the solver has taken in, the planning record the newest
+    glm::uvec2 window(0u);   // the records the solver has taken in, the planning record the newest
     for (const gpu::StepState& r : records)
-        if (r.frame <= planned_from->frame) window = std::max(window, r.iterations.z);
+        if (r.frame <= planned_from->frame) window = glm::max(window, glm::uvec2(r.iterations.z, r.iterations.w));
     const std::uint32_t scaled = ranryu::sim::iterations_at_plan(planned_from->iterations.z, 17u, planned);
+    const std::uint32_t scaled_v = ranryu::sim::iterations_at_plan(planned_from->iterations.w, 17u, planned);
     INFO("the planning record (frame " << planned_from->frame << "): most " << planned_from->iterations.z
-                                       << " a step; the window's most " << window << "; scaled " << scaled);
+                                       << " a step; the window's most " << window.x << "; scaled " << scaled);
     REQUIRE(planned_from->unconverged.x == 0u);
-    REQUIRE(scaled > window);
-    CHECK(std::uint32_t(d.issued_iterations()) == ranryu::sim::next_iteration_cap(scaled, false, rig.scene.sph.min_iterations, 60));
+    REQUIRE(planned_from->unconverged.y == 0u);
+    const auto cap = [&](std::uint32_t needed) { return ranryu::sim::next_iteration_cap(needed, false, rig.scene.sph.min_iterations, 60); };
+    REQUIRE(cap(scaled) > cap(window.x));   // the scaling shows in the cap
+    CHECK(std::uint32_t(d.issued_iterations()) == cap(scaled));
+    const int most_v = rig.scene.sph.max_divergence_iterations;
+    CHECK(std::uint32_t(d.issued_divergence_iterations()) ==
+          ranryu::sim::next_iteration_cap(std::max(scaled_v, window.y), false, 1, most_v));
     rig.finish();
     ranryu::test::require_no_gl_errors();
 }

@@ -35,6 +35,8 @@ TEST_CASE("dfsph iteration cap: a record's need scaled to a plan of fewer, longe
     CHECK(iterations_at_plan(10, 8, 12) == 10u);    // shorter steps: no fewer
     CHECK(iterations_at_plan(10, 13, 12) == 11u);   // ceil(10.83)
     CHECK(iterations_at_plan(10, 13, 0) == 10u);    // no plan
+    CHECK(iterations_at_plan(10, 13, -3) == 10u);
+    CHECK(iterations_at_plan(12, 6, 4) == 18u);     // exact: no rounding up
     CHECK(iterations_at_plan(4000000000u, 1000, 1) == 1000000u);   // bounded
 }
 

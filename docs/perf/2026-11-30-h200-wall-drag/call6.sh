@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Call 6: are the settled pool's floor spikes paired particles? The dam break at 246k to frame 425, as
-# shipped and with the drag out of the force condition (call 3's tree: 16c079e with call 1's glsl, copied to
-# scratch/glsl-dragout), its particles exported there; scratch/pairs.py is this folder's pairs.py.
+# shipped and with the drag out of the force condition (call 3's tree: 16c079e with scratch/glsl-dragout),
+# its particles exported there. Run make-shaders.sh first (scratch/glsl-dragout, scratch/pairs.py).
 set -u
 scripts/gpu/setup-and-build.sh ranryu > $OUT/build.txt 2>&1 || { tail -30 $OUT/build.txt; exit 1; }
 . scripts/gpu/env.sh x

@@ -56,10 +56,12 @@ std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, 
 
 // The most iterations a step of this frame needs, from a record's `most` at its `record_substeps` a
 // frame, when this frame plans `planned` substeps: fewer, longer steps than the record's need
-// proportionally more (ceil(most · record_substeps / planned)); more, shorter ones no fewer. A solve's
-// iterations grow about in proportion to its step (docs/DFSPH.md (D8): 15.5 a step at 0.8 ms, 59 at
-// 3.3 ms), and a plan lengthens its steps most at once when its first frames' estimate gives way to
-// the records' step ("The iteration cap").
+// proportionally more (ceil(most · record_substeps / planned), at most 10^6); more, shorter ones no
+// fewer; `planned` <= 0: `most`. A solve's iterations grow about in proportion to its step
+// (docs/DFSPH.md (D8): 15.5 a step at 0.8 ms, 59 at 3.3 ms, the density solve), and a plan lengthens
+// its steps most at once when its first frames' estimate gives way to the records' step
+// (docs/DFSPH.md "The iteration cap"). begin_frame() scales the newest record's need, of both solves,
+// and takes the window's older records as they were.
 std::uint32_t iterations_at_plan(std::uint32_t most, std::uint32_t record_substeps, int planned);
 
 // The step the density solve's iterations allow (docs/DFSPH.md (D8)), the CPU's mirror of the GPU's
