@@ -160,6 +160,7 @@ struct Stages {
     std::vector<glm::vec4> x, v, density, accel, kappa_v0_accel, v_after_divergence, predict, last_accel, x_end, v_end, density_end;
     std::vector<float> kappa_v0, kappa_v, kappa0, kappa;
     std::vector<glm::vec2> warm;   // sorted, as the density pass read it
+    std::vector<glm::vec2> warm_end;   // as the step leaves it for the next: (kappa, dt kappa_v)
     std::vector<glm::vec4> correction;   // (D11)'s L_i, two vec4 a particle, with sph.gradient_correction
     // With the boundary rows of (D9): kappa_b of each boundary particle after the divergence solve (its
     // kappa_v,b), after the density solve's start and after the density solve; empty without rows.
@@ -214,6 +215,7 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     s.x_end = rig.read(rig.fluid.positions());
     s.v_end = rig.read(rig.fluid.velocities());
     s.density_end = rig.read(rig.fluid.densities());
+    s.warm_end = rig.warm();
     s.dt = rig.step().dt;
     rig.sim.end_frame();
     rig.timer.end_frame();
@@ -354,7 +356,7 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
     const df::Factors f = df::factors(xs, xb, psi, p, set);
     const std::vector<dvec3> a_np = df::nonpressure_accelerations(xs, vs, xb, psi, p, set);
     std::vector<double> kv0(xs.size());
-    for (std::size_t i = 0; i < xs.size(); ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y);
+    for (std::size_t i = 0; i < xs.size(); ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y) / double(s.dt);   // Warm.y: dt' kappa_v'
     const std::vector<dvec3> a_p = df::pressure_accelerations(xs, kv0, xb, psi, p, set);
     const std::vector<double> rate = df::density_rates(xs, vs, xb, psi, p, set);
     const double dt = double(s.dt), h = p.h;
@@ -396,6 +398,12 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
     // the compressed blocks full of neighbours but some at their faces.
     if (corner == glm::vec3(0.0f)) CHECK(walls > 100);
     CHECK(deficient < int(xs.size()));
+    // What the step leaves for the next one's warm starts: the density solve's kappa, and the divergence
+    // solve's impulse dt kappa_v (D5), which the next step divides by its own dt.
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        CHECK(s.warm_end[i].x == s.kappa[i]);
+        CHECK(std::abs(double(s.warm_end[i].y) - dt * double(s.kappa_v[i])) <= 2.0 * kU * dt * std::abs(double(s.kappa_v[i])));
+    }
     ranryu::test::require_no_gl_errors();
 }
 
@@ -496,7 +504,7 @@ TEST_CASE("dfsph: the gradient correction (D11): the density pass's L_i, and eac
     };
     // compute_density.comp: the divergence solve's start, from κ_v^0 = w κ_v (the rows' κ_v,b start at 0).
     std::vector<double> kv0(n);
-    for (std::size_t i = 0; i < n; ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y);
+    for (std::size_t i = 0; i < n; ++i) kv0[i] = set.divergence_warm_start * double(s.warm[i].y) / double(s.dt);
     const std::vector<dvec3> a_v0 = df::pressure_accelerations(xs, kv0, xb, psi, p, set);
     const std::vector<double> e_v0 = corrected_bound(s.kappa_v0, {}, a_v0);
     const std::vector<dvec3> want_v0 = df::corrected(c, a_v0);
@@ -703,7 +711,7 @@ TEST_CASE("dfsph: Density.y is the frame's pressure so far, the dt-weighted mean
         After a{d.frame_pressure().read<glm::vec2>(rig.fluid.count()), {}, rig.read(rig.fluid.densities()), double(rig.step().dt)};
         const std::vector<glm::vec2> w = rig.warm();
         for (std::size_t i = 0; i < w.size(); ++i)
-            a.p.push_back((double(w[i].x) + double(w[i].y)) * double(a.density[i].x) * double(a.density[i].x));
+            a.p.push_back((double(w[i].x) + double(w[i].y) / a.dt) * double(a.density[i].x) * double(a.density[i].x));   // Warm: (kappa, dt kappa_v)
         return a;
     };
     rig.timer.begin_frame();

@@ -3,7 +3,7 @@
 //   rho_i (docs/SPH.md (2)), factor_i = 1/D_i (D2), the flags and neighbour masks (density_walk.glsl);
 //   the non-pressure accelerations a_i (D7) on the step's start velocities, into Accelerations;
 //   with RANRYU_DIVERGENCE_SOLVE, the divergence solve's start: the source s_i of (D5), the warm start
-//   kappa_v,i = w·kappa_v of the last step (Warm.y), and its pressure accelerations (D3), the first
+//   kappa_v,i = w·(dt' kappa_v')/dt of the last step's (Warm.y, its impulse), and its pressure accelerations (D3), the first
 //   iteration's first half.
 // Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
 // Accelerations[i].w = u_i of (D9), for the boundary rows' diagonals.
@@ -39,7 +39,7 @@ uint epoch_;
 #include "../fluid/density_walk.glsl"
 
 vec3 xi_, vi_, grad_fluid_, grad_wall_, viscous_, viscous_wall_, pressure_;
-float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_, spread_;
+float fluid_sum_, wall_sum_, squares_, rate_, kappa_i_, spread_, warm_v_;
 vec3 moment_diagonal_, moment_off_;   // (D11): m_k (x_k − x_i) ⊗ gradW_ik summed, (xx, yy, zz), (xy, xz, yz)
 
 // (D11): (x_k − x_i) ⊗ gradW_ik = −d ⊗ g for d = x_i − x_k, g = gradW_ik (symmetric: g ∥ d), weighted w.
@@ -78,7 +78,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
     viscous_ += (sph.mass / sph.rest_density) * dot(vi_ - vj, d) / (r2 + 0.01 * sph.h * sph.h) * g;
     add_moment(sph.mass, d, g);
 #ifdef RANRYU_DIVERGENCE_SOLVE
-    pressure_ -= sph.mass * (kappa_i_ + dfsph.warm_start_divergence * warm[j].y) * g;
+    pressure_ -= sph.mass * (kappa_i_ + warm_v_ * warm[j].y) * g;
 #endif
 }
 
@@ -115,7 +115,8 @@ void main() {
         epoch_ = rows.epoch;
 #endif
 #ifdef RANRYU_DIVERGENCE_SOLVE
-        kappa_i_ = dfsph.warm_start_divergence * warm[i].y;
+        warm_v_ = step.dt > 0.0 ? dfsph.warm_start_divergence / step.dt : 0.0;   // (D5): Warm.y is dt' kappa_v'
+        kappa_i_ = warm_v_ * warm[i].y;
 #endif
         uint count;
         uint flags = walk_neighbours(i, xi_, count);

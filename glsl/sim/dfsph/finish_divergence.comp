@@ -2,7 +2,8 @@
 // The divergence solve's end and the non-pressure step (docs/DFSPH.md "A step"), in place:
 //     v_i ← v_i + dt (a^p_i(kappa_v) + a_i),
 // a^p of the solve's final kappa_v (D3) and a_i the non-pressure accelerations (D7, and what the
-// step's hooks added). kappa_v is kept in Warm.y for the next step's warm start. Without
+// step's hooks added). dt·kappa_v is kept in Warm.y for the next step's warm start (D5): the solve's
+// impulse, which does not depend on the step as kappa_v (∝ 1/dt) does. Without
 // RANRYU_DIVERGENCE_SOLVE: v_i ← v_i + dt a_i, and Warm.y = 0.
 #include "dfsph.glsl"
 
@@ -38,5 +39,5 @@ void main() {
     a += CORRECTED(i, a_);   // (D11)
 #endif
     velocity[i].xyz += step.dt * a;
-    warm[i].y = kappa_v;
+    warm[i].y = step.dt * kappa_v;
 }

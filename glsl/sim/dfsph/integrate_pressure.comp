@@ -52,9 +52,9 @@ void main() {
         keep_in_tank(x0, x, v);
         next_position[i] = vec4(x, position[i].w);
         next_velocity[i] = vec4(v, velocity[i].w);
-        vec2 w = vec2(kappa_i_, warm[i].y);
+        vec2 w = vec2(kappa_i_, warm[i].y);   // (kappa, dt kappa_v): finish_divergence.comp
         warm[i] = w;
-        float p = (w.x + w.y) * d.x * d.x;
+        float p = (w.x + (step.dt > 0.0 ? w.y / step.dt : 0.0)) * d.x * d.x;
         vec2 f = (step.frame_substeps <= 1u ? vec2(0.0) : frame_pressure[i]) + vec2(p * step.dt, step.dt);
         frame_pressure[i] = f;
         density[i].y = f.y > 0.0 ? f.x / f.y : p;
