@@ -81,8 +81,9 @@ int validate(const Options& o) {
         std::printf("rms speed averaged over the %.4g s: %.4f m/s\n", r.average_seconds, r.mean_rms_speed);
         std::printf("floor layer: %.4f of rho0 g H; away from the side walls (a kernel support): interior %.4f, floor layer %.4f\n",
                     r.floor_error, r.core_error, r.core_floor_error);
-        std::printf("interior over pairs of layers (two spacings thick, a layer-to-layer alternation cancelled): max %.4f of rho0 g H\n",
-                    r.pair_error);
+        std::printf("interior over pairs of layers (two spacings thick, a layer-to-layer alternation cancelled): max %.4f of rho0 g H; "
+                    "the floor's pair (the floor layer and the next): %.4f\n",
+                    r.pair_error, r.floor_pair_error);
         std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
                     static_cast<unsigned long long>(r.steps), r.seconds);
         if (r.windows.size() > 1) {
@@ -109,6 +110,7 @@ int validate(const Options& o) {
                   {"core_error_over_rho_g_H", r.core_error},
                   {"core_floor_error_over_rho_g_H", r.core_floor_error},
                   {"pair_error_over_rho_g_H", r.pair_error},
+                  {"floor_pair_error_over_rho_g_H", r.floor_pair_error},
                   {"max_speed", r.max_speed},
                   {"rms_speed", r.rms_speed},
                   {"mean_rms_speed", r.mean_rms_speed},

@@ -375,6 +375,12 @@ HydrostaticResult hydrostatic(const scene::Scene& scene, const shader::FileSourc
             const double p = (s.sum[a] + s.sum[b]) / n;
             into.pair_error = std::max(into.pair_error, std::abs(p - rho0 * g * (r.height - z)) / r.reference_scale);
         }
+        // The floor's pair, layers 0 and 1, the same way.
+        if (layers > 1 && s.n[0] && s.n[1]) {
+            const double n = double(s.n[0] + s.n[1]);
+            const double z = (double(s.n[0]) * 0.5 + double(s.n[1]) * 1.5) * dx / n;
+            into.floor_pair_error = std::abs((s.sum[0] + s.sum[1]) / n - rho0 * g * (r.height - z)) / r.reference_scale;
+        }
     };
     Speeds end;   // of the last frame
     int seen = 0, in_window = 0;

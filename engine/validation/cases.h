@@ -90,6 +90,10 @@ struct HydrostaticResult {
     // there. Each pair's error is a weighted mean of its layers', so it is at most max_error.
     double pair_error = 0.0;
     double floor_error = 0.0;   // |p - p_ref| / (rho0 g H) of the layer on the floor
+    // The floor layer and the one above it pooled, against the reference at their particles' mean height:
+    // the layer-to-layer alternation's phase, which puts the floor's excess in one layer or the other from
+    // run to run, cancelled (docs/VALIDATION.md "The floor layer's two states, and the tank's 4 ms step").
+    double floor_pair_error = 0.0;
     // The same as max_error over the particles more than a kernel support from the side walls too (the
     // layers' core), and the floor layer's core: what the walls' boundary term does not reach.
     double core_error = 0.0, core_floor_error = 0.0;

@@ -243,8 +243,9 @@ TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, it
     // second): the interior 1.0-1.8 % of rho0 g H at 0.02 m and 0.4-1.1 % at 0.01 m; the floor layer
     // either near the reference (0.2-0.5 %) or half a spacing of head above it (+0.5 rho0 g dx: 1.7-3.0 %
     // at 0.01 m), which of the two the settling decides, as a change of rounding does (the divergence
-    // warm start's impulse turned 0.3 % at 0.01 m into 2.1 %, the same physics). So issue 11's 2 % floor
-    // bound at 0.01 m is not a property of the method here and is not asserted; what is: the interior
+    // warm start's impulse turned 0.3 % at 0.01 m into 2.1 %, the same physics: the layer alternation's
+    // phase puts the excess in the floor layer or the next). So issue 11's 2 % floor bound at 0.01 m is
+    // asserted over the floor's pair, where the phase cancels, not for the single layer; also: the interior
     // within 2 % at both spacings and no larger at 0.01 m than at 0.02 m beyond the scatter between runs
     // (check_columns' 0.02), the floor layer within one spacing of head (rho0 g dx, the offset the floor's
     // force balance asks for, docs/VALIDATION.md "What is left at the floor": 1/12 and 1/24 of rho0 g H),
@@ -269,6 +270,11 @@ TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, it
     CHECK(coarse.max_error <= 0.02);
     CHECK(fine.max_error <= 0.02);
     CHECK(fine.floor_error <= fine_head);
+    // Over the floor's pair (the floor layer and the next, the alternation's phase cancelled) the two
+    // states read 0.5 and 0.9 % of rho0 g H at 0.01 m: issue 11's 2 % there, and 2.5 % at 0.02 m.
+    INFO("the floor's pair: " << coarse.floor_pair_error << " then " << fine.floor_pair_error);
+    CHECK(coarse.floor_pair_error <= 0.025);
+    CHECK(fine.floor_pair_error <= 0.02);
     CHECK(coarse.mean_rms_speed <= 0.025);   // the rms speed over the averaged second
     CHECK(fine.mean_rms_speed <= 0.01);
     test::require_no_gl_errors();
@@ -302,6 +308,14 @@ TEST_CASE("validate: the tank's average in half-second windows: each window's pr
     // linear in z, taken at the pair's mean height), so at most the largest layer's.
     CHECK(r.pair_error > 0.0);
     CHECK(r.pair_error <= r.max_error * (1.0 + 1e-12));
+    // The floor's pair the same way: at most the larger of its two layers' errors, and not both at once
+    // zero.
+    REQUIRE(r.layers.size() >= 2);
+    const double e0 = std::abs(r.layers[0].pressure - r.layers[0].reference) / r.reference_scale,
+                 e1 = std::abs(r.layers[1].pressure - r.layers[1].reference) / r.reference_scale;
+    CHECK(r.floor_error == Approx(e0).epsilon(1e-12));
+    CHECK(r.floor_pair_error > 0.0);
+    CHECK(r.floor_pair_error <= std::max(e0, e1) * (1.0 + 1e-12));
     // The windows are not one profile repeated: the column moves (docs/VALIDATION.md).
     CHECK(r.windows[0].max_error != r.windows[1].max_error);
     // Each layer's rms speed over the average, and its vertical part: pooled over the layers (weighted by
