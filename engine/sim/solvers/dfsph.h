@@ -104,7 +104,7 @@ public:
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }
-    const gl::Buffer& warm_start() const;                                 // vec2: (kappa, kappa_v) of the last step
+    const gl::Buffer& warm_start() const;                                 // vec2: (kappa, dt kappa_v) of the last step
     const gl::Buffer& frame_pressure() const;   // vec2: (sum p dt, sum dt) over this frame's steps so far
     // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
     // rebuild_grid() moves them with the particles).

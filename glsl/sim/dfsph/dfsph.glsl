@@ -7,7 +7,9 @@
 //                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start; then,
 //                     with RANRYU_GRADIENT_CORRECTION, two vec4 per particle: L_i of (D11)
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
-//                     density solve, kappa_v of the last divergence solve), the warm starts of (D6)
+//                     density solve, dt·kappa_v of the last divergence solve: its impulse, which the
+//                     next step divides by its own dt, docs/DFSPH.md below its table), the warm starts
+//                     of (D6)
 //     Solve           SolveState of the solve under way (shared/bindings.h); the Dfsph opens it (a copy
 //                     of its initial state) before the pass that computes the solve's source
 #include "../fluid/fluid.glsl"
