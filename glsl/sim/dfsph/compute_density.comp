@@ -3,8 +3,8 @@
 //   rho_i (docs/SPH.md (2)), factor_i = 1/D_i (D2), the flags and neighbour masks (density_walk.glsl);
 //   the non-pressure accelerations a_i (D7) on the step's start velocities, into Accelerations;
 //   with RANRYU_DIVERGENCE_SOLVE, the divergence solve's start: the source s_i of (D5), the warm start
-//   kappa_v,i = w·(dt' kappa_v')/dt of the last step's (Warm.y, its impulse), and its pressure accelerations (D3), the first
-//   iteration's first half.
+//   kappa_v,i = w·(dt' kappa_v')/dt of the last step's (Warm.y, its impulse), and its pressure
+//   accelerations (D3), the first iteration's first half.
 // Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
 // Accelerations[i].w = u_i of (D9), for the boundary rows' diagonals.
 // With RANRYU_BOUNDARY_ROWS, every boundary particle within h of a fluid particle becomes a row of this
