@@ -137,6 +137,8 @@ std::vector<Key> make_keys() {
                 "DFSPH: the density solve's error also counts a particle that carries pressure below ρ0 (|r_i| where κ_i > 0, docs/DFSPH.md (D6)); false: the excess over ρ0 only."),
         boolean("sph.gradient_correction", h.gradient_correction,
                 "DFSPH: each pressure acceleration is multiplied by the particle's kernel-gradient correction L_i, so a linear pressure field is differentiated exactly whatever the packing (docs/DFSPH.md (D11)); false: the plain SPH gradient."),
+        number("sph.pressure_stabilisation", "", h.pressure_stabilisation, 0.0, 0.5,
+               "DFSPH: γ of the density solve's pressure stabilisation (docs/DFSPH.md (D12)): its residual and diagonal blend in a compact Laplacian of κ, which sees the layer-to-layer alternation (D3) cannot; 0: off."),
         number("sph.boundary_viscosity", "m²/s", h.boundary_viscosity, 0.0, 10.0,
                "DFSPH: the walls' viscosity ν_b (docs/DFSPH.md (D7)); 0: free-slip walls."),
         string("sph.neighbour_keys", h.morton ? "morton" : "linear", {"linear", "morton"}, "The neighbour grid's cell order."),

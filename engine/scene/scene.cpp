@@ -446,6 +446,7 @@ Scene parse(const std::string& text, const std::string& origin) {
         h.chebyshev = float(p.number("chebyshev"));
         h.complementarity_error = p.boolean("complementarity_error");
         h.gradient_correction = p.boolean("gradient_correction");
+        h.pressure_stabilisation = float(p.number("pressure_stabilisation"));
         h.boundary_viscosity = float(p.number("boundary_viscosity"));
         h.morton = p.string("neighbour_keys") == "morton";
         h.sort = p.string("sort");

@@ -82,6 +82,7 @@ struct SphSettings {
     float chebyshev = 0.98f;              // rho of (D10)'s Chebyshev acceleration; 0: plain relaxed Jacobi
     bool complementarity_error = false;   // (D6): the density solve's error counts |r_i| where kappa_i > 0
     bool gradient_correction = false;     // (D11): pressure accelerations times the kernel-gradient correction L_i
+    float pressure_stabilisation = 0.0f;  // gamma of (D12): the density solve's blend of the compact Laplacian; 0: off
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
     float boundary_relaxation = 1.0f;     // omega_b of (D9)

@@ -185,8 +185,10 @@ RANRYU_STRUCT(DfsphParams) {
     uint grow_step_below;        // (D8): one of fewer lets it grow
     float iteration_dt_min;      // (D8): the least step the iterations may ask for (s)
     float eta_peak;              // density solve: bound on the largest particle's error e_i/rho0 (D6); 0: none
+    float stabilisation;         // gamma of (D12): the density solve's blend of the compact Laplacian; 0: off
+    uint pad0, pad1, pad2;
 }
-RANRYU_STRUCT_END(DfsphParams, 80)
+RANRYU_STRUCT_END(DfsphParams, 96)
 
 // One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
 // bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual

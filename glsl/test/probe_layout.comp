@@ -98,6 +98,7 @@ void main() {
     put(dfsph.error_scale); put(dfsph.deficient_neighbours); put(dfsph.boundary_viscosity); put(dfsph.groups);
     put(dfsph.warm_start_divergence); put(dfsph.boundary_relaxation); put(dfsph.chebyshev); put(dfsph.complementarity_error);
     put(dfsph.shrink_step_above); put(dfsph.grow_step_below); put(dfsph.iteration_dt_min); put(dfsph.eta_peak);
+    put(dfsph.stabilisation); put(dfsph.pad0); put(dfsph.pad1); put(dfsph.pad2);
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
     put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);

@@ -75,6 +75,7 @@ struct Rig : ranryu::test::SphRig {
         s.divergence_warm_start = double(p.warm_start_divergence);
         s.deficient_neighbours = int(p.deficient_neighbours);
         s.boundary_viscosity = double(p.boundary_viscosity);
+        s.stabilisation = double(p.stabilisation);
         return s;
     }
     std::vector<float> read_floats(const ranryu::gl::Buffer& b) const { return b.read<float>(fluid.count()); }
@@ -99,8 +100,15 @@ Magnitudes magnitudes(const std::vector<dvec3>& x, const std::vector<dvec3>& xb,
     return m;
 }
 
+// c_ij of (D12): −2(x_ij·∇W_ij)/(|x_ij|² + 0.01h²), d = x_i − x_j.
+double compact_weight(const dvec3& d, const ref::CubicKernel& k) {
+    return -2.0 * glm::dot(d, k.gradW(d)) / (glm::dot(d, d) + 0.01 * k.h * k.h);
+}
+
 // One relaxed Jacobi update (D6) of the GPU's passes, recomputed in double from the GPU's own κ and
-// a(κ) of the stage before it, with the bound of the GPU's float rounding.
+// a(κ) of the stage before it, with the bound of the GPU's float rounding. With gamma > 0 the density
+// solve's pressure stabilisation (D12): the compact Laplacian of the same κ blended into the change and
+// the diagonal (df::compact_laplacian), its sum bounded as the change's, (terms + c) u of its magnitude.
 struct JacobiUpdate {
     const std::vector<dvec3>& xs;
     const std::vector<dvec3>& xb;
@@ -110,6 +118,7 @@ struct JacobiUpdate {
     const df::Factors& f;
     const Magnitudes& m;
     double dt;
+    double gamma = 0.0;
 
     // The bound of a(κ) as the GPU computes it from κ.
     std::vector<double> accel_bound(const std::vector<float>& kappa) const {
@@ -127,8 +136,9 @@ struct JacobiUpdate {
         const ref::CubicKernel k{p.h};
         std::vector<double> out(n);
         bound.assign(n, 0.0);
+        const df::Compact compact = gamma > 0.0 ? df::compact_laplacian(xs, std::vector<double>(kappa_in.begin(), kappa_in.end()), xb, psi, p) : df::Compact{};
         for (std::size_t i = 0; i < n; ++i) {
-            double change = 0.0, size = 0.0, carried = 0.0;
+            double change = 0.0, size = 0.0, carried = 0.0, compact_size = 0.0;
             for (std::size_t j = 0; j < n; ++j) {
                 if (j == i || glm::length(xs[i] - xs[j]) >= p.h) continue;
                 const dvec3 g = k.gradW(xs[i] - xs[j]);
@@ -143,13 +153,28 @@ struct JacobiUpdate {
                 size += psi[b] * glm::length(d3(accel_in[i])) * glm::length(g);
                 carried += psi[b] * a_err[i] * glm::length(g);
             }
+            double factor = f.factor[i];
+            if (gamma > 0.0) {   // (D12)
+                const double ki = std::abs(double(kappa_in[i]));
+                for (std::size_t j = 0; j < n; ++j)
+                    if (j != i && glm::length(xs[i] - xs[j]) < p.h)
+                        compact_size += p.rest_density * p.mass * compact_weight(xs[i] - xs[j], k) * (std::abs(double(kappa_in[j])) + ki);
+                for (std::size_t b = 0; b < xb.size(); ++b)
+                    if (glm::length(xs[i] - xb[b]) < p.h) compact_size += p.rest_density * psi[b] * compact_weight(xs[i] - xb[b], k) * ki;
+                change = (1.0 - gamma) * change + gamma * compact.change[i];
+                size *= 1.0 - gamma;
+                carried *= 1.0 - gamma;
+                const double blended = (1.0 - gamma) / f.factor[i] + gamma * compact.diagonal[i];
+                factor = f.factor[i] > 0.0 && blended > 0.0 ? 1.0 / blended : 0.0;
+            }
             const double w = double(accel_in[i].w), source = w;
             const double residual = dt * dt * change - source;
             const double start = first && w > 0.01 * p.rest_density ? 0.0 : double(kappa_in[i]);
-            out[i] = std::max(start + set.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            out[i] = std::max(start + set.relaxation * residual * factor / (dt * dt), 0.0);
             const double terms = double(m.terms[i]) + kC;
-            bound[i] = set.relaxation * f.factor[i] * (terms * kU * size + carried) + 4.0 * kU * (std::abs(out[i]) + std::abs(start)) +
-                       set.relaxation * std::abs(residual) * f.factor[i] / (dt * dt) * (terms * kU * 3.0);
+            bound[i] = set.relaxation * factor * (terms * kU * (size + gamma * compact_size) + carried) +
+                       4.0 * kU * (std::abs(out[i]) + std::abs(start)) +
+                       set.relaxation * std::abs(residual) * factor / (dt * dt) * (terms * kU * 3.0);
         }
         return out;
     }
@@ -565,16 +590,24 @@ TEST_CASE("dfsph: the gradient correction (D11): the density pass's L_i, and eac
     ranryu::test::require_no_gl_errors();
 }
 
+namespace {
+// The block of block_state() at pitch 0.95 (compressed) and moving, from a random warm start (kappa,
+// dt kappa_v), run one step of one iteration a solve: the state the one-iteration tests compare.
+Stages one_iteration(ranryu::test::Random& rng, Rig& rig) {
+    std::vector<glm::vec4> x, v;
+    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
+    std::vector<glm::vec2> warm(x.size());
+    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
+    return run_stages(rig, x, v, warm, 4e-4f, 1);
+}
+}  // namespace
+
 TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and the integration match the reference", "[dfsph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     // The fluid's rows with Akinci's boundary term; the boundary rows of (D9) have their own test below.
     Rig rig(R"("boundary_rows": false)");
-    std::vector<glm::vec4> x, v;
-    block_state(rng, rig, glm::vec3(0.0f), 0.95f, 0.15f, 0.3f, x, v);
-    std::vector<glm::vec2> warm(x.size());
-    for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
-    const Stages s = run_stages(rig, x, v, warm, 4e-4f, 1);
+    const Stages s = one_iteration(rng, rig);
 
     const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
 
@@ -633,6 +666,42 @@ TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and t
         CHECK(std::abs(double(s.density_end[i].y) - pressure) <= 8.0 * kU * pressure);
     }
     CHECK(checked > n / 2);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("dfsph: the pressure stabilisation (D12): the density solve's first iteration, the compact Laplacian blended into its "
+          "change and diagonal, matches the reference",
+          "[dfsph]") {
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // As the test above, with gamma = 0.25 (the tank at rest's) and no Chebyshev step; the compact sum
+    // is the prediction pass's (Density.y) of the warm start kappa^0, the update the residual pass's.
+    Rig rig(R"("boundary_rows": false, "chebyshev": 0, "pressure_stabilisation": 0.25)");
+    REQUIRE(double(rig.dfsph().params().stabilisation) == Approx(0.25));
+    const Stages s = one_iteration(rng, rig);
+    const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
+    REQUIRE(set.stabilisation == Approx(0.25));
+    const JacobiUpdate plain{xs, xb, psi, p, set, f, m, dt};
+    const JacobiUpdate stabilised{xs, xb, psi, p, set, f, m, dt, set.stabilisation};
+    const std::vector<double> a0_err = plain.accel_bound(s.kappa0);
+    std::vector<double> bound, plain_bound;
+    const std::vector<double> want = stabilised(s.kappa0, s.predict, a0_err, true, bound);
+    const std::vector<double> without = plain(s.kappa0, s.predict, a0_err, true, plain_bound);
+    std::size_t blended = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        INFO("particle " << i << ": kappa^1 " << s.kappa[i] << " want " << want[i] << " bound " << bound[i] << ", without (D12) " << without[i]);
+        CHECK(std::abs(double(s.kappa[i]) - want[i]) <= bound[i]);
+        if (std::abs(want[i] - without[i]) > 10.0 * (bound[i] + plain_bound[i])) ++blended;
+    }
+    // The blend moved most particles' kappa beyond both bounds: a pass that left it out would fail above.
+    INFO(blended << " of " << n << " particles moved by the blend");
+    CHECK(blended > n / 2);
+    // The integration's step pressure is the solve's kappa: Density.y, which held the compact sum during
+    // the solve, is the frame's pressure again after it.
+    for (std::size_t i = 0; i < n; ++i) {
+        const double pressure = (double(s.kappa[i]) + double(s.kappa_v[i])) * double(s.density[i].x) * double(s.density[i].x);
+        CHECK(std::abs(double(s.density_end[i].y) - pressure) <= 8.0 * kU * pressure);
+    }
     ranryu::test::require_no_gl_errors();
 }
 

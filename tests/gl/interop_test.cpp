@@ -177,6 +177,10 @@ const std::map<std::string, Member>& cpp_members() {
         {"dfsph.grow_step_below", {offsetof(gpu::DfsphParams, grow_step_below), GL_UNSIGNED_INT}},
         {"dfsph.iteration_dt_min", {offsetof(gpu::DfsphParams, iteration_dt_min), GL_FLOAT}},
         {"dfsph.eta_peak", {offsetof(gpu::DfsphParams, eta_peak), GL_FLOAT}},
+        {"dfsph.stabilisation", {offsetof(gpu::DfsphParams, stabilisation), GL_FLOAT}},
+        {"dfsph.pad0", {offsetof(gpu::DfsphParams, pad0), GL_UNSIGNED_INT}},
+        {"dfsph.pad1", {offsetof(gpu::DfsphParams, pad1), GL_UNSIGNED_INT}},
+        {"dfsph.pad2", {offsetof(gpu::DfsphParams, pad2), GL_UNSIGNED_INT}},
 
         {"solve.dispatch", {offsetof(gpu::SolveState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"solve.iterations", {offsetof(gpu::SolveState, iterations), GL_UNSIGNED_INT}},
@@ -478,6 +482,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     dp.grow_step_below = d.u();
     dp.iteration_dt_min = d.f();
     dp.eta_peak = d.f();
+    dp.stabilisation = d.f();
+    for (std::uint32_t* u : {&dp.pad0, &dp.pad1, &dp.pad2}) *u = d.u();
 
     gpu::SolveState ss{};
     ss.dispatch = d.u4();
@@ -539,6 +545,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(dp.boundary_viscosity); expect.put(dp.groups); expect.put(dp.warm_start_divergence);
     expect.put(dp.boundary_relaxation); expect.put(dp.chebyshev); expect.put(dp.complementarity_error);
     expect.put(dp.shrink_step_above); expect.put(dp.grow_step_below); expect.put(dp.iteration_dt_min); expect.put(dp.eta_peak);
+    expect.put(dp.stabilisation); expect.put(dp.pad0); expect.put(dp.pad1); expect.put(dp.pad2);
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);

@@ -195,6 +195,7 @@ scene::Scene with_plain_solve(scene::Scene s) {
     // With (D11) a frame from rest does not come to rest (docs/VALIDATION.md "The gradient correction,
     // and half-second windows").
     s.sph.gradient_correction = false;
+    s.sph.pressure_stabilisation = 0.0f;   // (D12): the plain solve's own matrix
     return s;
 }
 
@@ -229,53 +230,45 @@ TEST_CASE("validate: DFSPH tank at rest with the plain solve against rho0 g (H -
     test::require_no_gl_errors();
 }
 
-TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, its interior within 2 % of rho0 g H and its floor "
-          "layer within a spacing of head at 0.02 and 0.01 m, the interior's error not growing as dx halves",
+TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, its interior within 1 % of rho0 g H at 0.0125 "
+          "and 0.01 m and not growing as dx shrinks, its floor layer within a spacing of head and the floor's pair within 2 %",
           "[validation]") {
     test::context();
     // media/scenes/hydrostatic.json sets DFSPH's density solve to start from three quarters of the last
     // step's pressure (sph.warm_start 0.75) with (D10)'s Chebyshev acceleration (0.98), which the boundary
-    // rows take with the fluid (docs/DFSPH.md (D10)), and caps the step at 4 ms (sph.max_time_step: at
-    // 4.17 ms the 0.02 m column was still settling a second later). The pressure compared is each
-    // frame's dt-weighted mean of its steps' (docs/DFSPH.md "The pressure a frame"), averaged over 1 s
-    // after 1 s settled. What holds from run to run (docs/VALIDATION.md "The floor layer's two states, and
-    // the tank's 4 ms step";
-    // llvmpipe, `ranryu validate hydrostatic --solver dfsph --spacing DX --average 1.5`, windows of half a
-    // second): the interior 1.0-1.8 % of rho0 g H at 0.02 m and 0.4-1.1 % at 0.01 m; the floor layer
-    // either near the reference (0.2-0.5 %) or half a spacing of head above it (+0.5 rho0 g dx: 1.7-3.0 %
-    // at 0.01 m), which of the two the settling decides, as a change of rounding does (the divergence
-    // warm start's impulse turned 0.3 % at 0.01 m into 2.1 %, the same physics: the layer alternation's
-    // phase puts the excess in the floor layer or the next). So issue 11's 2 % floor bound at 0.01 m is
-    // asserted over the floor's pair, where the phase cancels, not for the single layer; also: the interior
-    // within 2 % at both spacings and no larger at 0.01 m than at 0.02 m (0.4-1.1 % against 1.0-1.8 %
-    // over the runs' half seconds), the floor layer within one spacing of head (rho0 g dx, the offset the floor's
-    // force balance asks for, docs/VALIDATION.md "What is left at the floor": 1/12 and 1/24 of rho0 g H),
-    // and the column still: its rms speed over the averaged second at most 0.025 m/s at 0.02 m and 0.01
-    // m/s at 0.01 m (before the rows took the Chebyshev step it moved at 0.054 and 0.019 m/s).
+    // rows take with the fluid (docs/DFSPH.md (D10)), caps the step at 4 ms (sph.max_time_step: at 4.17
+    // ms the 0.02 m column was still settling a second later), and blends a quarter of a compact
+    // Laplacian into the solve's residual (sph.pressure_stabilisation, docs/DFSPH.md (D12)), which
+    // determines the layer-to-layer alternation (D3) leaves free. With it the interior holds issue 11's 1 %
+    // of rho0 g H in every run measured from 0.0125 to 0.003125 m (docs/VALIDATION.md "The layers'
+    // alternation stabilised": 0.42-0.91 %; without it 0.95-2.0 % at 0.0125 and 0.01 m on llvmpipe); at
+    // 0.02 m (12 layers) it reads 1.35-1.49 %, hence these spacings. The floor layer reads 0.3-2.6 %, in
+    // most runs within issue 11's 2 % but not in all (this test's run at 0.01 m: 2.56 %, +0.64 spacings
+    // of head), so the 2 % is asserted over the floor's pair (the floor layer and the next), and the
+    // single layer within one spacing of head. The pressure compared is each frame's dt-weighted mean of
+    // its steps' (docs/DFSPH.md "The pressure a frame"), averaged over 1 s after 1 s settled (after half a
+    // second the column has not yet built its pressure at depth from the lattice start).
     const auto& shaders = shader::FileSource::embedded();
-    const scene::Scene coarse_scene = case_scene("hydrostatic", 0.02f, scene::Solver::dfsph);
+    const scene::Scene coarse_scene = case_scene("hydrostatic", 0.0125f, scene::Solver::dfsph);
     REQUIRE(coarse_scene.sph.warm_start == 0.75f);
     REQUIRE(coarse_scene.sph.chebyshev == 0.98f);
     REQUIRE(coarse_scene.sph.boundary_rows);
     REQUIRE(coarse_scene.sph.max_time_step == 0.004f);
-    // The CLI's settling time, 1 s: after half a second the column has not yet built its pressure at
-    // depth from the lattice start (interior 4.8 %, floor layer 4.4 % at 0.0125 m, 2026-11-28).
+    REQUIRE(coarse_scene.sph.pressure_stabilisation == 0.25f);
     const validation::HydrostaticResult coarse = validation::hydrostatic(coarse_scene, shaders, 1.0, validation::Relaxation{}, nullptr, 1.0);
     const validation::HydrostaticResult fine =
         validation::hydrostatic(case_scene("hydrostatic", 0.01f, scene::Solver::dfsph), shaders, 1.0, validation::Relaxation{}, nullptr, 1.0);
     const double coarse_head = coarse.spacing / coarse.height, fine_head = fine.spacing / fine.height;   // rho0 g dx over rho0 g H
     INFO("a spacing of head: " << coarse_head << " and " << fine_head << " of rho0 g H");
-    // The floor layer's two states lie half a spacing of head apart: its reading may move by a spacing
-    // of head at 0.01 m between the spacings.
     check_columns(coarse, fine, coarse_head, 0.05, fine_head);
-    CHECK(coarse.max_error <= 0.02);
-    CHECK(fine.max_error <= 0.02);
-    CHECK(fine.max_error <= coarse.max_error);   // issue 11's error not growing as dx halves
     CHECK(fine.floor_error <= fine_head);
-    // Over the floor's pair (the floor layer and the next, the alternation's phase cancelled) the two
-    // states read 0.5 and 0.9 % of rho0 g H at 0.01 m: issue 11's 2 % there, and 2.5 % at 0.02 m.
+    // Issue 11's interior bound, not growing beyond the runs' scatter as dx shrinks (the half-second
+    // windows of the runs above move by 0.2-0.4 % of rho0 g H).
+    CHECK(coarse.max_error <= 0.01);
+    CHECK(fine.max_error <= 0.01);
+    CHECK(fine.max_error <= coarse.max_error + 0.003);
     INFO("the floor's pair: " << coarse.floor_pair_error << " then " << fine.floor_pair_error);
-    CHECK(coarse.floor_pair_error <= 0.025);
+    CHECK(coarse.floor_pair_error <= 0.02);
     CHECK(fine.floor_pair_error <= 0.02);
     CHECK(coarse.mean_rms_speed <= 0.025);   // the rms speed over the averaged second
     CHECK(fine.mean_rms_speed <= 0.01);

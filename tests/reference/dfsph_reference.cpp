@@ -144,16 +144,25 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
         if (r.iterations == 2) weight = 2.0 / (2.0 - rho2);
         else if (r.iterations > 2) weight = 4.0 / (4.0 - rho2 * weight);
         const std::vector<dvec3> a = pressure_accelerations(x, kappa, boundary, psi, params, s);
+        // (D12): the density solve blends in the compact Laplacian's change and diagonal by γ.
+        const double gamma = which == Solve::density ? s.stabilisation : 0.0;
+        const Compact compact = gamma > 0.0 ? compact_laplacian(x, kappa, boundary, psi, params) : Compact{};
         double error = 0.0;
         for (size_t i = 0; i < n; ++i) {
             double change = 0.0;   // δρ_i = dt²[Σ_j m(a_i − a_j)·∇W_ij + γΣ_b ψ_b a_i·∇W_ib]
             for (size_t j = 0; j < n; ++j) change += params.mass * glm::dot(a[i] - a[j], kernel.gradW(x[i] - x[j]));
             for (size_t b = 0; b < boundary.size(); ++b)
                 change += s.boundary_factor * psi[b] * glm::dot(a[i], kernel.gradW(x[i] - boundary[b]));
+            double factor = f.factor[i];
+            if (gamma > 0.0) {
+                change = (1.0 - gamma) * change + gamma * compact.change[i];
+                const double blended = (1.0 - gamma) / f.factor[i] + gamma * compact.diagonal[i];
+                factor = f.factor[i] > 0.0 && blended > 0.0 ? 1.0 / blended : 0.0;
+            }
             change *= dt * dt;
             const double residual = change - r.source[i];
             const double start = r.iterations == 0 && drop[i] ? 0.0 : kappa[i];
-            double next = std::max(start + s.relaxation * residual * f.factor[i] / (dt * dt), 0.0);
+            double next = std::max(start + s.relaxation * residual * factor / (dt * dt), 0.0);
             if (chebyshev && r.iterations >= 2) next = std::max(weight * (next - previous[i]) + previous[i], 0.0);
             previous[i] = start;
             kappa[i] = next;
@@ -168,6 +177,29 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     const std::vector<dvec3> a = pressure_accelerations(x, kappa, boundary, psi, params, s);
     for (size_t i = 0; i < n; ++i) v[i] += dt * a[i];
     return r;
+}
+
+Compact compact_laplacian(const std::vector<dvec3>& x, const std::vector<double>& kappa, const std::vector<dvec3>& boundary,
+                          const std::vector<double>& psi, const Params& params) {
+    const CubicKernel kernel{params.h};
+    const double rho0 = params.rest_density, eps = 0.01 * params.h * params.h;
+    auto weight = [&](const dvec3& d) { return -2.0 * glm::dot(d, kernel.gradW(d)) / (glm::dot(d, d) + eps); };
+    Compact c{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
+    for (size_t i = 0; i < x.size(); ++i) {
+        for (size_t j = 0; j < x.size(); ++j) {
+            if (j == i || glm::length(x[i] - x[j]) >= params.h) continue;
+            const double w = params.mass * weight(x[i] - x[j]);
+            c.change[i] += rho0 * w * (kappa[j] - kappa[i]);
+            c.diagonal[i] += rho0 * w;
+        }
+        for (size_t b = 0; b < boundary.size(); ++b) {
+            if (glm::length(x[i] - boundary[b]) >= params.h) continue;
+            const double w = psi[b] * weight(x[i] - boundary[b]);
+            c.change[i] -= rho0 * w * kappa[i];
+            c.diagonal[i] += rho0 * w;
+        }
+    }
+    return c;
 }
 
 std::vector<double> spreads(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const std::vector<double>& psi,

@@ -34,6 +34,7 @@ struct Settings {
     double divergence_warm_start = 0.5;   // likewise, the divergence solve
     int deficient_neighbours = 20;     // (D5): fewer neighbours (fluid and boundary, within h) than this: no divergence correction
     double boundary_viscosity = 0.0;   // ν_b of (D7) (m²/s); 0: free-slip walls
+    double stabilisation = 0.0;        // γ of (D12): the density solve's blend of the compact Laplacian; 0: off
 };
 
 // (D2): the Jacobi diagonal D_i = |A_i + γB_i|² + Σ_j m²|∇W_ij|², with
@@ -79,6 +80,15 @@ std::vector<glm::dvec3> nonpressure_accelerations(const std::vector<glm::dvec3>&
                                                   const Settings& s);
 
 enum class Solve { divergence, density };
+
+// (D12): the compact Laplacian's density change per dt², l_i = ρ0 Σ_j m(κ_j − κ_i)c_ij + ρ0 Σ_b ψ_b(0 − κ_i)c_ib
+// (the boundary's κ_b = 0: Akinci's term), and its diagonal C_i = ρ0 (Σ_j m c_ij + Σ_b ψ_b c_ib), with
+// c_ij = −2(x_ij·∇W_ij)/(|x_ij|² + 0.01h²).
+struct Compact {
+    std::vector<double> change, diagonal;
+};
+Compact compact_laplacian(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa, const std::vector<glm::dvec3>& boundary,
+                          const std::vector<double>& psi, const Params& params);
 
 // One solve of (D4)/(D5) with the Jacobi iteration of (D6), starting from kappa (the warm start,
 // updated in place; the first iteration drops it where the particle separates: deficient, or its

@@ -58,6 +58,11 @@ std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correct
            (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
 
+// (D12): the passes that take part in the density solve's pressure stabilisation, when the scene sets one.
+std::string stabilisation(const scene::Scene& scene) {
+    return scene.sph.pressure_stabilisation > 0.0f ? "#define RANRYU_PRESSURE_STABILISATION 1\n" : "";
+}
+
 shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows,
                              bool divergence = false) {
     return rows ? shader::Program::compute(shaders, path, defines(fluid, divergence, true, false)) : shader::Program{};
@@ -95,10 +100,10 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       correction_(scene.sph.gradient_correction),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_, correction_))),
-      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false))),
+      accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false) + stabilisation(scene))),
       finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
-      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_))),
+      predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
       prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_, divergence_)),
@@ -118,6 +123,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     params_.relaxation = scene.sph.relaxation;
     params_.chebyshev = scene.sph.chebyshev;
     params_.complementarity_error = scene.sph.complementarity_error ? 1u : 0u;
+    params_.stabilisation = scene.sph.pressure_stabilisation;
     params_.warm_start = scene.sph.warm_start;
     params_.warm_start_divergence = scene.sph.divergence_warm_start;
     params_.boundary_relaxation = scene.sph.boundary_relaxation;

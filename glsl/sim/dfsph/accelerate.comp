@@ -2,13 +2,19 @@
 // A Jacobi iteration's first half (docs/DFSPH.md (D3), (D6)): the pressure accelerations of the kappa
 // the last residual pass left,
 //     a_i = −Σ_j m (kappa_i + kappa_j) gradW_ij − Σ_b psi_b (kappa_i + kappa_b) gradW_ib   (kappa_b: (D9)),
-// times L_i with the gradient correction (D11).
+// times L_i with the gradient correction (D11). With RANRYU_PRESSURE_STABILISATION the density solve's
+// iterations also sum the compact Laplacian of the same kappa into Density.y (D12):
+//     l_i = rho0 Σ_j m (kappa_j − kappa_i) c_ij + rho0 Σ_b psi_b (kappa_b − kappa_i) c_ib.
 // Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
 layout(std430) readonly buffer Positions { vec4 position[]; };
+#ifdef RANRYU_PRESSURE_STABILISATION
+layout(std430) buffer Density { vec4 density[]; };
+#else
 layout(std430) readonly buffer Density { vec4 density[]; };
+#endif
 layout(std430) readonly buffer Kappa { float kappa[]; };
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source, kept
 layout(std430) readonly buffer Solve { SolveState solve; };
@@ -17,14 +23,36 @@ layout(std430) readonly buffer Solve { SolveState solve; };
 
 float kappa_i_;
 vec3 a_;
+#ifdef RANRYU_PRESSURE_STABILISATION
+float compact_;
+void visit_fluid(uint j, vec3 d, float r2) {
+    float kj = kappa[j];
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    a_ -= sph.mass * (kappa_i_ + kj) * g;
+    compact_ += sph.mass * (kj - kappa_i_) * compact_weight(d, g, r2);
+}
+void visit_boundary(uint b, vec3 d, float r2) {
+    float kb = KAPPA_B(b, solve.solve);
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    a_ -= (kappa_i_ + kb) * boundary[b].w * g;
+    compact_ += boundary[b].w * (kb - kappa_i_) * compact_weight(d, g, r2);
+}
+#else
 void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
 void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, solve.solve)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+#endif
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
     kappa_i_ = kappa[i];
     a_ = vec3(0.0);
+#ifdef RANRYU_PRESSURE_STABILISATION
+    compact_ = 0.0;
+#endif
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
     pressure_accel[i].xyz = CORRECTED(i, a_);   // (D11)
+#ifdef RANRYU_PRESSURE_STABILISATION
+    if (solve.solve == 0u) density[i].y = sph.rest_density * compact_;   // (D12)
+#endif
 }

@@ -33,6 +33,10 @@
 // The two read the same accelerations and write different kappa, so one dispatch serves both (and
 // one barrier, where two passes took two); the rows add nothing to the error, which is the fluid's.
 // A density solve that ends sets the step the next ones may take from its iterations (D8).
+// With RANRYU_PRESSURE_STABILISATION the density solve's residual and diagonal blend in the compact
+// Laplacian's (D12): r_i = dt² [(1 − gamma) Σ(...) + gamma l_i] − s_i, l_i = Density.y from the
+// accelerate pass, and J_i = max(kappa_i + omega r_i / (dt² [(1 − gamma) D_i + gamma C_i]), 0),
+// C_i = rho0 (Σ_j m c_ij + Σ_b psi_b c_ib), gamma = dfsph.stabilisation; the rows keep (D9)'s update.
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -80,8 +84,22 @@ void correct_row(uint k) {
 
 vec3 a_i_;
 float change_;
+#ifdef RANRYU_PRESSURE_STABILISATION
+float diagonal_;   // Σ_j m c_ij + Σ_b psi_b c_ib of (D12)
+void visit_fluid(uint j, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, g);
+    diagonal_ += sph.mass * compact_weight(d, g, r2);
+}
+void visit_boundary(uint b, vec3 d, float r2) {
+    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    change_ += boundary[b].w * dot(a_i_, g);
+    diagonal_ += boundary[b].w * compact_weight(d, g, r2);
+}
+#else
 void visit_fluid(uint j, vec3 d, float r2) { change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, kernel_grad(d, sqrt(r2), sph.h)); }
 void visit_boundary(uint b, vec3 d, float r2) { change_ += boundary[b].w * dot(a_i_, kernel_grad(d, sqrt(r2), sph.h)); }
+#endif
 
 shared float wg_error_[gl_WorkGroupSize.x];
 shared float wg_peak_[gl_WorkGroupSize.x];
@@ -131,12 +149,24 @@ void main() {
         vec4 d = density[i], own = pressure_accel[i];
         a_i_ = own.xyz;
         change_ = 0.0;
+        float factor = d.z;
+#ifdef RANRYU_PRESSURE_STABILISATION
+        diagonal_ = 0.0;
+#endif
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
+#ifdef RANRYU_PRESSURE_STABILISATION
+        if (solve.solve == 0u) {   // (D12)
+            float gamma = dfsph.stabilisation;
+            change_ = (1.0 - gamma) * change_ + gamma * d.y;
+            float blended = (1.0 - gamma) / d.z + gamma * sph.rest_density * diagonal_;
+            factor = d.z > 0.0 && blended > 0.0 ? 1.0 / blended : 0.0;
+        }
+#endif
         float residual = dt2 * change_ - own.w;
         uint k = solve.iterations;
         float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
-        float next = max(kappa_i + dfsph.relaxation * residual * d.z / dt2, 0.0);
+        float next = max(kappa_i + dfsph.relaxation * residual * factor / dt2, 0.0);
         if (solve.solve == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(i, kappa_i, next);   // (D10): the density solve, when on
         kappa[i] = next;
         bool held = solve.solve == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;

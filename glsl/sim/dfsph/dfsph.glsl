@@ -1,6 +1,9 @@
 // What every DFSPH pass shares (docs/DFSPH.md; engine/sim/solvers/dfsph.h): the fluid's blocks, the
 // solver's constants, and its per-particle arrays, which each pass declares as it uses them:
-//     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags)
+//     Density         vec4 (rho_i, p_i of the last step, factor_i = 1/D_i (D2), flags); with
+//                     RANRYU_PRESSURE_STABILISATION, y holds during the density solve the compact
+//                     Laplacian's sum of (D12) for the kappa the iteration's accelerations read, and the
+//                     integration writes the frame's pressure over it as before
 //     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
 //     KappaPrevious   float: the kappa_i the density solve's previous iteration started from (D10)
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
@@ -73,3 +76,11 @@ vec3 corrected_by(vec4 p, vec4 q, vec3 a) {
 #else
 #define CORRECTED(i, a) (a)
 #endif
+
+// (D12), with RANRYU_PRESSURE_STABILISATION: the density solve's residual blends (D6)'s density change
+// with the compact Laplacian's, by gamma = dfsph.stabilisation. One pair's weight in that Laplacian,
+//     c_ij = −2 (x_ij·∇W_ij)/(|x_ij|² + 0.01h²) ≥ 0,
+// so that the compact density change is dt² rho0 Σ_j m (kappa_j − kappa_i) c_ij (boundary particles with
+// psi_b and kappa_b: (D9)'s, or 0 with Akinci's term), and its diagonal rho0 Σ_j m c_ij. The accelerate
+// and prediction passes sum it beside a^p (Density.y), the residual pass reads it and sums the diagonal.
+float compact_weight(vec3 d, vec3 g, float r2) { return -2.0 * dot(d, g) / (r2 + 0.01 * sph.h * sph.h); }
