@@ -100,11 +100,6 @@ Magnitudes magnitudes(const std::vector<dvec3>& x, const std::vector<dvec3>& xb,
     return m;
 }
 
-// c_ij of (D12): −2(x_ij·∇W_ij)/(|x_ij|² + 0.01h²), d = x_i − x_j.
-double compact_weight(const dvec3& d, const ref::CubicKernel& k) {
-    return -2.0 * glm::dot(d, k.gradW(d)) / (glm::dot(d, d) + 0.01 * k.h * k.h);
-}
-
 // One relaxed Jacobi update (D6) of the GPU's passes, recomputed in double from the GPU's own κ and
 // a(κ) of the stage before it, with the bound of the GPU's float rounding. With gamma > 0 the density
 // solve's pressure stabilisation (D12): the compact Laplacian of the same κ blended into the change and
@@ -158,9 +153,9 @@ struct JacobiUpdate {
                 const double ki = std::abs(double(kappa_in[i]));
                 for (std::size_t j = 0; j < n; ++j)
                     if (j != i && glm::length(xs[i] - xs[j]) < p.h)
-                        compact_size += p.rest_density * p.mass * compact_weight(xs[i] - xs[j], k) * (std::abs(double(kappa_in[j])) + ki);
+                        compact_size += p.rest_density * p.mass * df::compact_weight(xs[i] - xs[j], k) * (std::abs(double(kappa_in[j])) + ki);
                 for (std::size_t b = 0; b < xb.size(); ++b)
-                    if (glm::length(xs[i] - xb[b]) < p.h) compact_size += p.rest_density * psi[b] * compact_weight(xs[i] - xb[b], k) * ki;
+                    if (glm::length(xs[i] - xb[b]) < p.h) compact_size += p.rest_density * psi[b] * df::compact_weight(xs[i] - xb[b], k) * ki;
                 change = (1.0 - gamma) * change + gamma * compact.change[i];
                 size *= 1.0 - gamma;
                 carried *= 1.0 - gamma;

@@ -179,22 +179,25 @@ SolveResult solve(Solve which, const std::vector<dvec3>& x, std::vector<dvec3>& 
     return r;
 }
 
+double compact_weight(const dvec3& d, const CubicKernel& kernel) {
+    return -2.0 * glm::dot(d, kernel.gradW(d)) / (glm::dot(d, d) + 0.01 * kernel.h * kernel.h);
+}
+
 Compact compact_laplacian(const std::vector<dvec3>& x, const std::vector<double>& kappa, const std::vector<dvec3>& boundary,
                           const std::vector<double>& psi, const Params& params) {
     const CubicKernel kernel{params.h};
-    const double rho0 = params.rest_density, eps = 0.01 * params.h * params.h;
-    auto weight = [&](const dvec3& d) { return -2.0 * glm::dot(d, kernel.gradW(d)) / (glm::dot(d, d) + eps); };
+    const double rho0 = params.rest_density;
     Compact c{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
     for (size_t i = 0; i < x.size(); ++i) {
         for (size_t j = 0; j < x.size(); ++j) {
             if (j == i || glm::length(x[i] - x[j]) >= params.h) continue;
-            const double w = params.mass * weight(x[i] - x[j]);
+            const double w = params.mass * compact_weight(x[i] - x[j], kernel);
             c.change[i] += rho0 * w * (kappa[j] - kappa[i]);
             c.diagonal[i] += rho0 * w;
         }
         for (size_t b = 0; b < boundary.size(); ++b) {
             if (glm::length(x[i] - boundary[b]) >= params.h) continue;
-            const double w = psi[b] * weight(x[i] - boundary[b]);
+            const double w = psi[b] * compact_weight(x[i] - boundary[b], kernel);
             c.change[i] -= rho0 * w * kappa[i];
             c.diagonal[i] += rho0 * w;
         }

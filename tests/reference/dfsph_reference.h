@@ -87,6 +87,7 @@ enum class Solve { divergence, density };
 struct Compact {
     std::vector<double> change, diagonal;
 };
+double compact_weight(const glm::dvec3& d, const CubicKernel& kernel);   // c_ij at d = x_i − x_j
 Compact compact_laplacian(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa, const std::vector<glm::dvec3>& boundary,
                           const std::vector<double>& psi, const Params& params);
 

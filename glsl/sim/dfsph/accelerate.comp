@@ -21,35 +21,31 @@ layout(std430) readonly buffer Solve { SolveState solve; };
 
 #include "../fluid/neighbours.glsl"
 
-float kappa_i_;
+float kappa_i_, compact_;
 vec3 a_;
-#ifdef RANRYU_PRESSURE_STABILISATION
-float compact_;
 void visit_fluid(uint j, vec3 d, float r2) {
     float kj = kappa[j];
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     a_ -= sph.mass * (kappa_i_ + kj) * g;
+#ifdef RANRYU_PRESSURE_STABILISATION
     compact_ += sph.mass * (kj - kappa_i_) * compact_weight(d, g, r2);
+#endif
 }
 void visit_boundary(uint b, vec3 d, float r2) {
     float kb = KAPPA_B(b, solve.solve);
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     a_ -= (kappa_i_ + kb) * boundary[b].w * g;
+#ifdef RANRYU_PRESSURE_STABILISATION
     compact_ += boundary[b].w * (kb - kappa_i_) * compact_weight(d, g, r2);
-}
-#else
-void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
-void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, solve.solve)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
 #endif
+}
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
     kappa_i_ = kappa[i];
     a_ = vec3(0.0);
-#ifdef RANRYU_PRESSURE_STABILISATION
     compact_ = 0.0;
-#endif
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
     pressure_accel[i].xyz = CORRECTED(i, a_);   // (D11)
 #ifdef RANRYU_PRESSURE_STABILISATION

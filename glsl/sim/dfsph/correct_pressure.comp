@@ -83,23 +83,21 @@ void correct_row(uint k) {
 #endif
 
 vec3 a_i_;
-float change_;
-#ifdef RANRYU_PRESSURE_STABILISATION
-float diagonal_;   // Σ_j m c_ij + Σ_b psi_b c_ib of (D12)
+float change_, diagonal_;   // diagonal_: Σ_j m c_ij + Σ_b psi_b c_ib of (D12)
 void visit_fluid(uint j, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, g);
+#ifdef RANRYU_PRESSURE_STABILISATION
     diagonal_ += sph.mass * compact_weight(d, g, r2);
+#endif
 }
 void visit_boundary(uint b, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     change_ += boundary[b].w * dot(a_i_, g);
+#ifdef RANRYU_PRESSURE_STABILISATION
     diagonal_ += boundary[b].w * compact_weight(d, g, r2);
-}
-#else
-void visit_fluid(uint j, vec3 d, float r2) { change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, kernel_grad(d, sqrt(r2), sph.h)); }
-void visit_boundary(uint b, vec3 d, float r2) { change_ += boundary[b].w * dot(a_i_, kernel_grad(d, sqrt(r2), sph.h)); }
 #endif
+}
 
 shared float wg_error_[gl_WorkGroupSize.x];
 shared float wg_peak_[gl_WorkGroupSize.x];
@@ -150,9 +148,7 @@ void main() {
         a_i_ = own.xyz;
         change_ = 0.0;
         float factor = d.z;
-#ifdef RANRYU_PRESSURE_STABILISATION
         diagonal_ = 0.0;
-#endif
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
 #ifdef RANRYU_PRESSURE_STABILISATION
