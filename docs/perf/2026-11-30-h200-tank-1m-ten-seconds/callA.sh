@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The tank at rest with --solver dfsph (the pressure stabilisation (D12) as shipped) ten simulated seconds at
+# about 1M particles, in two calls of one warm machine: a run takes longer than a call may. Call A builds,
+# runs up to SECONDS_A of wall time and stops with SIGTERM, writing its checkpoint (--checkpoint) to the
+# ignored build/gpu/, which a warm machine keeps for the next call; callB.sh goes on from it (--resume).
+set -u
+scripts/gpu/setup-and-build.sh ranryu > $OUT/build.txt 2>&1 || { tail -30 $OUT/build.txt; exit 1; }
+. scripts/gpu/env.sh x
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $OUT/device.txt; date -u | tee -a $OUT/device.txt
+dx=$(python3 scripts/gpu/scene-at.py hydrostatic $OUT/hydrostatic.json 1000000)
+rm -f build/gpu/tank1m.ckpt
+timeout -s TERM ${SECONDS_A:-300} $B profile --scene $OUT/hydrostatic.json --solver dfsph --spacing $dx --shading particles --size 640x360 \
+  --frames 600 --warmup 0 --records $OUT/a.csv --checkpoint build/gpu/tank1m.ckpt > $OUT/a.txt 2>&1
+echo "rc $? spacing $dx; $(ls -l build/gpu/tank1m.ckpt)"
+grep -E "particles|substeps/frame|density solve|^guard|^ranryu:" $OUT/a.txt | cut -c1-300
+python3 - "$OUT/a.csv" <<'PY'
+import csv, sys
+r = list(csv.DictReader(open(sys.argv[1])))
+s = sum(float(x["substeps"]) for x in r)
+print(f"{len(r)} frames ({r[0]['frame']}..{r[-1]['frame']}), t {float(r[-1]['time']):.3f} s, {s / len(r):.1f} steps/frame, "
+      f"{sum(float(x['iterations']) for x in r) / s:.2f} density iterations/step, largest rho/rho0 {max(float(x['max_density']) for x in r):.4f}, "
+      f"fastest {max(float(x['max_speed']) for x in r):.2f} m/s, nan {sum(int(x['nan']) for x in r)}, escaped {sum(int(x['escaped']) for x in r)}")
+PY
