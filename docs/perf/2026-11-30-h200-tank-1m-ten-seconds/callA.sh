@@ -13,11 +13,4 @@ timeout -s TERM ${SECONDS_A:-300} $B profile --scene $OUT/hydrostatic.json --sol
   --frames 600 --warmup 0 --records $OUT/a.csv --checkpoint build/gpu/tank1m.ckpt > $OUT/a.txt 2>&1
 echo "rc $? spacing $dx; $(ls -l build/gpu/tank1m.ckpt)"
 grep -E "particles|substeps/frame|density solve|^guard|^ranryu:" $OUT/a.txt | cut -c1-300
-python3 - "$OUT/a.csv" <<'PY'
-import csv, sys
-r = list(csv.DictReader(open(sys.argv[1])))
-s = sum(float(x["substeps"]) for x in r)
-print(f"{len(r)} frames ({r[0]['frame']}..{r[-1]['frame']}), t {float(r[-1]['time']):.3f} s, {s / len(r):.1f} steps/frame, "
-      f"{sum(float(x['iterations']) for x in r) / s:.2f} density iterations/step, largest rho/rho0 {max(float(x['max_density']) for x in r):.4f}, "
-      f"fastest {max(float(x['max_speed']) for x in r):.2f} m/s, nan {sum(int(x['nan']) for x in r)}, escaped {sum(int(x['escaped']) for x in r)}")
-PY
+python3 docs/perf/2026-11-30-h200-tank-1m-ten-seconds/records.py "$OUT/a.csv"

@@ -14,11 +14,4 @@ timeout -s TERM ${SECONDS_B:-360} $B profile --resume build/gpu/tank1m.ckpt --sh
   --frames $((600 - done_frames)) --warmup 0 --records $OUT/b.csv --checkpoint build/gpu/tank1m-b.ckpt > $OUT/b.txt 2>&1
 echo "rc $?"
 grep -E "particles|substeps/frame|density solve|^guard|^ranryu:" $OUT/b.txt | cut -c1-300
-python3 - "$OUT/b.csv" <<'PY'
-import csv, sys
-r = list(csv.DictReader(open(sys.argv[1])))
-s = sum(float(x["substeps"]) for x in r)
-print(f"{len(r)} frames ({r[0]['frame']}..{r[-1]['frame']}), t {float(r[-1]['time']):.3f} s, {s / len(r):.1f} steps/frame, "
-      f"{sum(float(x['iterations']) for x in r) / s:.2f} density iterations/step, largest rho/rho0 {max(float(x['max_density']) for x in r):.4f}, "
-      f"fastest {max(float(x['max_speed']) for x in r):.2f} m/s, nan {sum(int(x['nan']) for x in r)}, escaped {sum(int(x['escaped']) for x in r)}")
-PY
+python3 docs/perf/2026-11-30-h200-tank-1m-ten-seconds/records.py "$OUT/b.csv"
