@@ -12,7 +12,8 @@
 # e.g. build/gpu/checkpoints) makes each run stopped by RUN_TIMEOUT write DIR/NAME.ckpt (profile
 # --checkpoint), and the next call with the same settings, issued while the machine is still warm, go on
 # from it (profile --resume) to the last frame; its records then start at the checkpoint's frame
-# (docs/perf/2026-11-30-h200-tank-1m-ten-seconds/ ran the tank so, by hand).
+# (docs/perf/2026-11-30-h200-tank-1m-ten-seconds/ ran the tank so, by hand). A checkpoint whose scene,
+# spacing or solver is not this call's (other SOLVER, PARTICLES or KEYS) is refused, naming the file.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 out=${OUT:-scenes-seconds-out}
@@ -37,7 +38,11 @@ for name in ${SCENES:-dam-break drop turbulent-jet hydrostatic}; do
       at=$(python3 -c "
 import json, struct, sys
 f = open(sys.argv[1], 'rb'); f.read(12); n = struct.unpack('<Q', f.read(8))[0]
-print(json.loads(f.read(n))['frame'])" "$ckpt")
+h = json.loads(f.read(n)); sc = h['scene']
+if (json.loads(sc['source']) != json.load(open(sys.argv[2])) or sc['solver'] != sys.argv[3]
+        or abs(float(sc['spacing']) - float(sys.argv[4])) > 1e-6 * float(sys.argv[4])):
+    sys.exit(f'{sys.argv[1]}: a checkpoint of another scene, spacing or solver than this call\'s; remove it to start afresh')
+print(h['frame'])" "$ckpt" "$file" "$solver" "$dx") || continue
       left=$((frames - at))
       [ "$left" -le 0 ] && { echo "$name: its checkpoint is at frame $at of $frames already"; continue; }
       start=(--resume "$ckpt")
@@ -49,6 +54,7 @@ print(json.loads(f.read(n))['frame'])" "$ckpt")
   rc=$?
   verdict=$(grep -m1 "^ranryu: simulation" "$out/$name.txt" || grep -m1 "fps and real-time" "$out/$name.txt" ||
             grep -m1 "^ranryu: interrupted" "$out/$name.txt" || echo "rc $rc")
-  echo "$name at $dx ($(grep -m1 -oE '[0-9]+ particles' "$out/$name.txt")), $(grep -m1 -oE '[0-9.]+ substeps/frame' "$out/$name.txt"), $left of $frames frames: $verdict"
+  particles=$(grep -m1 -oE '[0-9]+ particles' "$out/$name.txt")
+  echo "$name at $dx${particles:+ ($particles)}, $(grep -m1 -oE '[0-9.]+ substeps/frame' "$out/$name.txt"), $left of $frames frames: $verdict"
   grep -h "^guard:" "$out/$name.txt"
 done
