@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "frame/checkpoint.h"
@@ -141,11 +143,17 @@ scene::Scene load_scene(const Options& o) { return with_options(scene::load(o.sc
 // The build a checkpoint belongs to: the version and the commit (frame/checkpoint.h).
 std::string build_id() { return std::string(RANRYU_VERSION) + " " + app::commit(); }
 
+void check_report_files(const Options& o) {
+    for (const auto& [option, path] : {std::pair{"--records", &o.records}, std::pair{"--json", &o.json}, std::pair{"--csv", &o.csv}})
+        if (!path->empty()) profile::check_writable(*path, std::string(option) + " " + *path);
+    if (!o.checkpoint.empty()) frame::check_checkpoint_path(o.checkpoint, "--checkpoint " + o.checkpoint);
+}
+
 // --resume FILE: the checkpoint's header (its scene is the run's; frame/checkpoint.h). The scene
 // options would contradict it, and an existing --records file is the earlier run's: refused. And
-// --checkpoint FILE: checked writable first.
+// the report files and --checkpoint FILE: checked writable first (check_report_files).
 std::optional<frame::CheckpointInfo> resumed_run(const Options& o) {
-    if (!o.checkpoint.empty()) frame::check_checkpoint_path(o.checkpoint, "--checkpoint " + o.checkpoint);
+    check_report_files(o);
     if (o.resume.empty()) return std::nullopt;
     const std::string what = "--resume " + o.resume;
     if (o.scene_given) throw InputError(what + ": the run goes on with the checkpoint's scene; drop --scene");
@@ -155,6 +163,22 @@ std::optional<frame::CheckpointInfo> resumed_run(const Options& o) {
     if (!o.records.empty() && std::filesystem::exists(o.records, ec))
         throw InputError("--records " + o.records + ": exists (the earlier run's records?); a resumed run writes its own: name another file");
     return frame::read_checkpoint(o.resume, what, build_id());
+}
+
+// A resumed record goes on in the folder of the run it continues: one whose run.json names another
+// scene or particle count holds another run, and the resumed frames would be mixed into it. (A folder
+// without run.json, or with one that cannot be read, is left to prepare_output's checks.)
+void check_resumed_folder(const std::filesystem::path& out, const frame::CheckpointInfo& resumed) {
+    std::ifstream in(out / "run.json");
+    if (!in) return;
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("scene") || !j.contains("particles")) return;
+    const std::string scene = j["scene"].is_string() ? j["scene"].get<std::string>() : "";
+    const bool same_count = j["particles"].is_number_unsigned() && j["particles"].get<std::uint64_t>() == resumed.particles;
+    if (scene != resumed.scene.name || !same_count)
+        throw InputError("--out " + out.string() + ": holds a run of " + (scene.empty() ? std::string("another scene") : "scene " + scene) + " (" +
+                         j["particles"].dump() + " particles), and the checkpoint is of scene " + resumed.scene.name + " (" +
+                         std::to_string(resumed.particles) + " particles); choose another folder");
 }
 
 // --checkpoint FILE at the end of a run (after the drain): writes it and says so, or returns why not.
@@ -209,6 +233,7 @@ int record(const Options& o) {
     const glm::ivec2 size = image_size(o, scene);
     const int frames = o.frames.value_or(120);
     const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(o.out);
+    if (resumed) check_resumed_folder(out, *resumed);
     frame::Progress progress = make_progress(o, "ranryu record");
     if (o.export_mesh && !render::needs_surface(shading(o).value_or(render::default_shading(scene))))
         throw InputError("--export-mesh: needs a surface (--shading water, fresnel, phong or gouraud of an SPH scene); scene " +

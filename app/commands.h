@@ -38,5 +38,8 @@ bool debug_context(const Options& o);
 std::optional<render::Shading> shading(const Options& o);
 glm::ivec2 image_size(const Options& o, const scene::Scene& s);
 void print_device(const gl::DeviceInfo& d);
+// --records, --json, --csv and --checkpoint, where given: each checked writable (profile::check_writable)
+// before any work, so that a run is not spent, nor an earlier one removed, for a file that cannot be written.
+void check_report_files(const Options& o);
 profile::RunInfo run_info(const gl::DeviceInfo& d, const frame::Pipeline& p, int frames, int warmup);
 }  // namespace ranryu::app

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -48,6 +50,7 @@ int export_field(const Options& o) {
     if (fs::is_directory(out)) throw InputError("--out " + o.out + ": is a folder");
     const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(parent)) throw InputError("--out " + o.out + ": no such folder");
+    profile::check_writable(out, "--out " + o.out);
 
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
@@ -77,7 +80,7 @@ int export_field(const Options& o) {
     tmp += ".tmp" + std::to_string(::getpid());
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw InputError("--out " + o.out + ": cannot write the file");
+        if (!f) throw InputError("--out " + o.out + ": cannot write the file (" + std::strerror(errno) + ")");
         f.write(header.data(), std::streamsize(header.size()));
         f.write(reinterpret_cast<const char*>(field.data()), std::streamsize(field.size() * sizeof(float)));
         if (!f.flush()) {

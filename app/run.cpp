@@ -142,22 +142,20 @@ int run(const Options& o) {
     const glm::ivec2 size = image_size(o, scene);
     const std::uint64_t frames = std::uint64_t(o.frames.value_or(0));
     // Refuse bad input before opening anything.
-    if (!o.screenshot.empty()) {
-        // An existing file is earlier output, and the folder must exist.
-        const fs::path shot(o.screenshot);
-        if (fs::exists(shot)) throw InputError("--screenshot " + o.screenshot + ": the file exists; not overwriting it");
-        const auto parent = shot.parent_path().empty() ? fs::path(".") : shot.parent_path();
-        if (!fs::is_directory(parent)) throw InputError("--screenshot " + o.screenshot + ": no such folder");
-    }
+    // A file written at exit: an existing one is earlier output, and its folder must exist and be
+    // writable (it is written as FILE.tmp, then renamed).
+    auto check_new_file = [](const std::string& path, const std::string& option) {
+        if (path.empty()) return;
+        const std::string what = option + " " + path;
+        if (fs::is_directory(path)) throw InputError(what + ": is a folder; name the file to write");
+        if (fs::exists(path)) throw InputError(what + ": the file exists; not overwriting it");
+        profile::check_writable(path, what);
+    };
+    check_new_file(o.screenshot, "--screenshot");
     Shots shots(o.shots);
     if (fs::exists(o.record_dir) && !fs::is_directory(o.record_dir))
         throw InputError("--record-dir " + o.record_dir + ": not a folder");
-    if (!o.save_particles.empty()) {
-        const fs::path file(o.save_particles);
-        if (fs::exists(file)) throw InputError("--save-particles " + o.save_particles + ": the file exists; not overwriting it");
-        const auto parent = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-        if (!fs::is_directory(parent)) throw InputError("--save-particles " + o.save_particles + ": no such folder");
-    }
+    check_new_file(o.save_particles, "--save-particles");
     input::Replay script;
     if (!o.script.empty()) script = input::Replay(input::load_script(o.script));
 

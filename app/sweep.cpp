@@ -244,6 +244,8 @@ int sweep(const Options& o) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) throw InputError("--out " + o.out + ": cannot make the folder (" + ec.message() + ")");
+    // The rows' files, before the first row runs (each is written as FILE.tmp, then renamed).
+    for (const char* name : {"sweep.json", "sweep.csv"}) profile::check_writable(dir / name, "--out " + o.out + " (" + name + ")");
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);
     const std::string device = ctx->info().renderer + " | " + ctx->info().version;

@@ -17,6 +17,7 @@ int validate(const Options& o) {
     if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave")
         throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic, standing-wave)");
     const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
+    check_report_files(o);   // --json, before the case runs
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);

@@ -1,5 +1,7 @@
 #include "frame/checkpoint.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -10,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/whole_file.h"
+#include "profile/report.h"
 #include "sim/state_io.h"
 
 namespace ranryu::frame {
@@ -59,6 +62,7 @@ struct Opened {
 Opened open_file(std::ifstream& in, const std::filesystem::path& file, const std::string& what) {
     auto bad = [&](const std::string& why) { return InputError(what + ": " + why); };
     std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) throw bad("is a folder; name the checkpoint file");
     if (!std::filesystem::is_regular_file(file, ec)) throw bad("no such file");
     in.open(file, std::ios::binary);
     if (!in) throw bad("cannot read the file");
@@ -89,7 +93,11 @@ Opened open_file(std::ifstream& in, const std::filesystem::path& file, const std
         }
         o.end = at;
         (void)o.header.at("scene").at("source").get<std::string>();
-        (void)o.header.at("frame").get<std::uint64_t>();
+        // nlohmann converts a negative number to a huge unsigned one: the kinds are checked first.
+        if (!o.header.at("frame").is_number_unsigned()) throw bad("malformed header: \"frame\" is not a whole number >= 0");
+        if (!o.header.at("particles").is_number_unsigned()) throw bad("malformed header: \"particles\" is not a whole number >= 0");
+        const double time = o.header.at("time").get<double>();
+        if (!std::isfinite(time) || time < 0.0) throw bad("malformed header: \"time\" is not a finite time >= 0");
     } catch (const json::exception& e) {
         throw bad(std::string("malformed header: ") + e.what());
     }
@@ -101,12 +109,25 @@ Opened open_file(std::ifstream& in, const std::filesystem::path& file, const std
 // Loading: each entry persist() lists, checked against the file's.
 class Loader final : public sim::StateIo {
 public:
-    Loader(std::ifstream& in, Opened& o, std::string what) : in_(in), o_(o), what_(std::move(what)) {}
+    // `particles`: the run's count, whose positions and velocities (vec4 each, the first in their
+    // buffers) are checked finite; the rest of a buffer is capacity, never read as a particle.
+    Loader(std::ifstream& in, Opened& o, std::string what, std::size_t particles)
+        : in_(in), o_(o), what_(std::move(what)), particles_(particles) {}
     void buffer(const std::string& name, gl::Buffer& b) override {
         const Entry& e = find(name, b.size());
         if (!e.bytes) return;
         std::vector<char> bytes(e.bytes);
         read(e, bytes.data());
+        if (name == "fluid.positions" || name == "fluid.velocities") {   // vec4s: a run from them would only fail later
+            const std::size_t n = std::min(bytes.size() / sizeof(float), 4 * particles_);
+            for (std::size_t k = 0; k < n; ++k) {
+                float x;
+                std::memcpy(&x, bytes.data() + k * sizeof(float), sizeof x);
+                if (!std::isfinite(x))
+                    throw InputError(what_ + ": entry " + name + " holds a non-finite value (particle " + std::to_string(k / 4) +
+                                     "): a damaged file");
+            }
+        }
         b.upload(bytes.data(), bytes.size());
     }
     void bytes(const std::string& name, void* data, std::size_t size) override { read(find(name, size), data); }
@@ -135,6 +156,7 @@ private:
     std::ifstream& in_;
     Opened& o_;
     std::string what_;
+    std::size_t particles_;
 };
 
 }  // namespace
@@ -183,15 +205,7 @@ void write_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, con
 }
 
 void check_checkpoint_path(const std::filesystem::path& file, const std::string& what) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) throw InputError(what + ": is a folder; name the file to write");
-    std::filesystem::path tmp = file;
-    tmp += ".tmp";   // where write_whole_file() writes it first
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(what + ": cannot write " + tmp.string() + " (is its folder there, and writable?)");
-    }
-    std::filesystem::remove(tmp, ec);
+    profile::check_writable(file, what);   // write_whole_file() writes "<file>.tmp" first, as it checks
 }
 
 CheckpointInfo read_checkpoint(const std::filesystem::path& file, const std::string& what, const std::string& build) {
@@ -224,7 +238,11 @@ void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, cons
     std::ifstream in;
     Opened o = open_file(in, file, what);
     if (pipeline.frames() != 0) throw Error("load_checkpoint: the pipeline has already run frames");
-    Loader loader(in, o, what);
+    const std::uint64_t particles = o.header.at("particles").get<std::uint64_t>();
+    if (particles != pipeline.particle_count())
+        throw InputError(what + ": its header says " + std::to_string(particles) + " particles, and its scene has " +
+                         std::to_string(pipeline.particle_count()) + " (a damaged file)");
+    Loader loader(in, o, what, pipeline.particle_count());
     pipeline.persist(loader);
     loader.finish();
 }

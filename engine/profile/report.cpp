@@ -1,6 +1,8 @@
 #include "profile/report.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <bit>
 #include <chrono>
 #include <cstdio>
@@ -258,12 +260,28 @@ std::string utc_now_iso8601() {
     return buf;
 }
 
+void check_writable(const std::filesystem::path& path, const std::string& what) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(what + ": is a folder; name the file to write");
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    if (!fs::exists(folder, ec)) throw InputError(what + ": its folder " + folder.string() + " does not exist");
+    if (!fs::is_directory(folder, ec)) throw InputError(what + ": " + folder.string() + " is not a folder");
+    fs::path tmp = path;
+    tmp += ".tmp";
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw InputError(what + ": cannot write the file (" + std::strerror(errno) + ")");
+    std::fclose(f);
+    fs::remove(tmp, ec);
+}
+
 void write_text_file(const std::filesystem::path& path, const std::string& text, const std::string& what) {
     std::filesystem::path tmp = path;
     tmp += ".tmp";
     {
+        errno = 0;
         std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw InputError(what + ": cannot write the file");
+        if (!out) throw InputError(what + ": cannot write the file" + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
         out << text;
         if (!out.flush()) throw InputError(what + ": cannot write the file");
     }

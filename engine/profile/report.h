@@ -92,4 +92,9 @@ std::string utc_now_iso8601();
 // error (e.g. "--json out.json"); failure raises ranryu::InputError.
 void write_text_file(const std::filesystem::path& path, const std::string& text, const std::string& what);
 
+// Checks, before any work, that write_text_file() (or any writer that writes "<path>.tmp" and renames it)
+// will be able to write `path`: not a folder, its folder there, "<path>.tmp" creatable (made and removed;
+// an existing `path` is not touched). Raises ranryu::InputError naming `what` and the reason.
+void check_writable(const std::filesystem::path& path, const std::string& what);
+
 }  // namespace ranryu::profile

@@ -32,6 +32,26 @@ std::string first_error(const std::string& annotated, const std::string& fallbac
     return fallback;
 }
 
+// The lines of an annotated log worth showing under its summary: its errors (a driver also lists
+// warnings, a dozen of them for one mistake on Mesa), at most kShown, then how many more it had; the
+// first lines where none says "error" (another driver's wording).
+std::string error_lines(const std::string& annotated) {
+    constexpr std::size_t kShown = 4;
+    std::vector<std::string> all, errors;
+    std::istringstream lines(annotated);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        all.push_back(line);
+        if (line.find("error") != std::string::npos) errors.push_back(line);
+    }
+    const std::vector<std::string>& shown = errors.empty() ? all : errors;
+    std::string out;
+    for (std::size_t k = 0; k < std::min(shown.size(), kShown); ++k) out += (k ? "\n" : "") + shown[k];
+    if (all.size() > std::min(shown.size(), kShown))
+        out += "\n(" + std::to_string(all.size() - std::min(shown.size(), kShown)) + " more lines of the driver's log, warnings among them)";
+    return out;
+}
+
 gl::Name<gl::DeleteShader> compile(GLenum stage, const FileSource& src, const std::string& path,
                                    std::string_view defines) {
     const Preprocessed pre = preprocess(src, path, defines);
@@ -43,7 +63,7 @@ gl::Name<gl::DeleteShader> compile(GLenum stage, const FileSource& src, const st
     glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
     if (!ok) {
         const std::string log = annotate_log(info_log(shader.id(), false), pre.files);
-        throw Error("shader " + first_error(log, path + ": failed to compile") + "\n" + log);
+        throw Error("shader " + first_error(log, path + ": failed to compile") + "\n" + error_lines(log));
     }
     return shader;
 }

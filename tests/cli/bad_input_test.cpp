@@ -212,18 +212,47 @@ TEST_CASE("bad input: an --out folder that cannot be made or written", "[cli][ba
     CHECK(list_dir(tmp.path()) == std::vector<std::string>{"blocker"});
 }
 
-TEST_CASE("bad input: profile --json or --csv onto a path that cannot be written", "[cli][bad-input]") {
+TEST_CASE("bad input: a report file that cannot be written is refused before the run, naming why", "[cli][bad-input]") {
+    // profile::check_writable(): every --json, --csv and --records (and record's, validate's) is tried
+    // before any work, so that no run is spent, nor an earlier one removed, for a file it cannot write.
     TempDir tmp;
     write_file(tmp / "blocker", "a regular file\n");
-    for (const std::string opt : {"--json", "--csv"}) {
-        const std::string path = tmp.str("blocker/report");
-        INFO(opt << " " << path);
-        // The report is written after the run, so the table is on stdout already.
-        check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", scene_file("small.json").string(), "--frames", "1",
-                                                "--warmup", "0", opt, path}),
-                        {opt + " " + path}, /*stdout_empty=*/false);
+    fs::create_directory(tmp / "folder");
+    const std::string small = scene_file("small.json").string();
+    for (const std::string opt : {"--json", "--csv", "--records"}) {
+        const std::string under_file = tmp.str("blocker/report"), folder = tmp.str("folder");
+        INFO(opt);
+        check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", small, "--frames", "1", "--warmup", "0", opt, under_file}),
+                        {opt + " " + under_file, tmp.str("blocker") + " is not a folder"});
+        check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", small, "--frames", "1", "--warmup", "0", opt, folder}),
+                        {opt + " " + folder, "is a folder"});
+        check_bad_input(run_ranryu(tmp.path(), {"profile", "--scene", small, "--frames", "1", "--warmup", "0", opt, tmp.str("none/r")}),
+                        {opt + " " + tmp.str("none/r"), "its folder " + tmp.str("none") + " does not exist"});
     }
-    CHECK(list_dir(tmp.path()) == std::vector<std::string>{"blocker"});
+    check_bad_input(run_ranryu(tmp.path(), {"validate", "hydrostatic", "--spacing", "0.04", "--json", tmp.str("blocker/v.json")}),
+                    {"--json " + tmp.str("blocker/v.json")});
+    // sweep's rows files, before its first row runs.
+    fs::create_directories(tmp / "sweep" / "sweep.csv");
+    check_bad_input(run_ranryu(tmp.path(), {"sweep", "--quick", "--out", tmp.str("sweep")}), {"--out " + tmp.str("sweep"), "sweep.csv", "is a folder"});
+    CHECK(list_dir(tmp / "sweep") == std::vector<std::string>{"sweep.csv"});
+    CHECK(list_dir(tmp.path()) == (std::vector<std::string>{"blocker", "folder", "sweep"}));
+    CHECK(list_dir(tmp / "folder").empty());
+}
+
+TEST_CASE("bad input: record --force with a --records it cannot write keeps the earlier run", "[cli][bad-input]") {
+    TempDir tmp;
+    const std::vector<std::string> run = {"record", "--scene", scene_file("small.json").string(), "--frames", "1", "--out", tmp.str("out")};
+    const Result first = run_ranryu(tmp.path(), run);
+    INFO(first.describe());
+    REQUIRE(first.exit_code == 0);
+    const std::vector<std::string> earlier = list_dir(tmp / "out");
+    REQUIRE(earlier.size() >= 2);   // a frame and run.json
+    const std::string report = read_file(tmp / "out" / "run.json");
+    std::vector<std::string> again = run;
+    again.insert(again.end(), {"--force", "--records", tmp.str("out/run.json/records.csv")});
+    check_bad_input(run_ranryu(tmp.path(), again), {"--records " + tmp.str("out/run.json/records.csv")});
+    CHECK(list_dir(tmp / "out") == earlier);
+    CHECK(read_file(tmp / "out" / "run.json") == report);
 }
 
 // ---- run --script, --shots ----

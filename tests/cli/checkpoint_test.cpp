@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <csignal>
+#include <cstring>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -124,13 +126,15 @@ TEST_CASE("checkpoint: misuse is one line and exit 2 before any work", "[cli][ch
     };
     // An unwritable checkpoint is found before the run (no output folder made).
     refused({"record", "--scene", scene, "--frames", "2", "--out", "o1", "--checkpoint", "no/such/folder/c.bin"},
-            "--checkpoint no/such/folder/c.bin: cannot write");
+            "--checkpoint no/such/folder/c.bin: its folder no/such/folder does not exist");
     CHECK_FALSE(fs::exists(tmp / "o1"));
     refused({"profile", "--scene", scene, "--frames", "2", "--checkpoint", "."}, "is a folder");
     // Not a checkpoint; none there.
     write_file(tmp / "x.bin", "not a checkpoint at all");
     refused({"record", "--resume", "x.bin", "--frames", "2"}, "--resume x.bin: not a ranryu checkpoint");
     refused({"profile", "--resume", "none.bin", "--frames", "2"}, "--resume none.bin: no such file");
+    fs::create_directory(tmp / "folder.bin");
+    refused({"profile", "--resume", "folder.bin", "--frames", "2"}, "--resume folder.bin: is a folder");
     // A real one, with options that would contradict its scene.
     const Result made = run_ranryu(tmp.path(), {"profile", "--scene", scene, "--frames", "1", "--warmup", "0", "--size", "32x32",
                                                 "--checkpoint", "c.bin", "--quiet"});
@@ -143,6 +147,103 @@ TEST_CASE("checkpoint: misuse is one line and exit 2 before any work", "[cli][ch
     write_file(tmp / "records.csv", "frame,time\n");
     refused({"profile", "--resume", "c.bin", "--frames", "1", "--records", "records.csv"}, "--records records.csv: exists");
     CHECK(read_file(tmp / "records.csv") == "frame,time\n");
+}
+
+namespace {
+
+// A checkpoint's parts (engine/frame/checkpoint.cpp: "RANRYUCP", the format, the header's length, the
+// JSON header, the entries' bytes), to damage one and write it back whole.
+struct CheckpointFile {
+    std::string lead;   // magic and format
+    nlohmann::json header;
+    std::string body;
+    explicit CheckpointFile(const std::string& bytes) {
+        REQUIRE(bytes.size() > 20);
+        lead = bytes.substr(0, 12);
+        std::uint64_t length = 0;
+        std::memcpy(&length, bytes.data() + 12, sizeof length);
+        REQUIRE(20 + length <= bytes.size());
+        header = nlohmann::json::parse(bytes.substr(20, length));
+        body = bytes.substr(20 + length);
+    }
+    std::string bytes() const {
+        const std::string text = header.dump();
+        const std::uint64_t length = text.size();
+        return lead + std::string(reinterpret_cast<const char*>(&length), sizeof length) + text + body;
+    }
+    std::size_t offset(const std::string& entry) const {   // of its bytes in `body`
+        std::size_t at = 0;
+        for (const auto& e : header["entries"]) {
+            if (e["name"] == entry) return at;
+            at += e["bytes"].get<std::size_t>();
+        }
+        FAIL("no entry " << entry);
+        return 0;
+    }
+};
+
+}  // namespace
+
+TEST_CASE("checkpoint: a damaged file, or a folder of another run to resume into, is one line and exit 2 before any work",
+          "[cli][checkpoint][bad-input]") {
+    TempDir tmp;
+    const std::vector<std::string> sph = {"--scene", "dam-break", "--spacing", "0.04"};   // 100 particles
+    auto with = [](std::vector<std::string> args, const std::vector<std::string>& more) {
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    };
+    const Result made = run_ranryu(tmp.path(), with({"record", "--frames", "2", "--size", "32x32", "--out", "run", "--checkpoint",
+                                                     "c.bin", "--quiet"}, sph));
+    INFO(made.describe());
+    REQUIRE(made.exit_code == 0);
+    const CheckpointFile good(read_file(tmp / "c.bin"));
+    auto refused = [&](const std::string& name, const CheckpointFile& file, const std::string& says) {
+        write_file(tmp / name, file.bytes());
+        const Result r = run_ranryu(tmp.path(), {"profile", "--resume", name, "--frames", "1", "--warmup", "0", "--size", "32x32"});
+        INFO(r.describe());
+        CHECK(r.exit_code == 2);
+        CHECK(r.err_lines().size() == 1);
+        CHECK_THAT(r.err, Contains("--resume " + name + ": " + says));
+        CHECK(r.out.find("frame (GPU span)") == std::string::npos);   // no run
+    };
+    // The control: the file written back unchanged resumes.
+    write_file(tmp / "same.bin", good.bytes());
+    const Result same = run_ranryu(tmp.path(), {"profile", "--resume", "same.bin", "--frames", "1", "--warmup", "0", "--size", "32x32",
+                                                "--quiet"});
+    INFO(same.describe());
+    CHECK(same.exit_code == 0);
+    CheckpointFile count = good;
+    count.header["particles"] = good.header["particles"].get<std::uint64_t>() + 7;
+    refused("count.bin", count, "its header says 107 particles, and its scene has 100");
+    CheckpointFile frame = good;
+    frame.header["frame"] = -5;
+    refused("frame.bin", frame, "malformed header: \"frame\" is not a whole number >= 0");
+    CheckpointFile time = good;
+    time.header["time"] = -1.0;
+    refused("time.bin", time, "malformed header: \"time\" is not a finite time >= 0");
+    CheckpointFile nan = good;
+    const float bad = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(nan.body.data() + nan.offset("fluid.velocities") + 16 * 3 + 4, &bad, sizeof bad);   // particle 3's v.y
+    refused("nan.bin", nan, "entry fluid.velocities holds a non-finite value (particle 3)");
+
+    // Resumed into the folder of another scene's run: refused, that run untouched.
+    const Result other = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--frames", "1", "--size",
+                                                 "32x32", "--out", "other", "--quiet"});
+    INFO(other.describe());
+    REQUIRE(other.exit_code == 0);
+    const std::vector<std::string> before = list_dir(tmp / "other");
+    const std::string report = read_file(tmp / "other" / "run.json");
+    const Result into = run_ranryu(tmp.path(), {"record", "--resume", "c.bin", "--frames", "1", "--size", "32x32", "--out", "other", "--force"});
+    INFO(into.describe());
+    CHECK(into.exit_code == 2);
+    CHECK(into.err_lines().size() == 1);
+    CHECK_THAT(into.err, Contains("--out other: holds a run of scene cli-small"));
+    CHECK(list_dir(tmp / "other") == before);
+    CHECK(read_file(tmp / "other" / "run.json") == report);
+    // And into its own run's folder it goes on.
+    const Result own = run_ranryu(tmp.path(), {"record", "--resume", "c.bin", "--frames", "1", "--size", "32x32", "--out", "run", "--quiet"});
+    INFO(own.describe());
+    CHECK(own.exit_code == 0);
 }
 
 TEST_CASE("checkpoint: a run that goes unstable writes none, and says so", "[cli][checkpoint][guard]") {

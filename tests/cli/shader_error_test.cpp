@@ -118,6 +118,25 @@ TEST_CASE("shader errors: a compile error names the file and line and includes t
     }
 }
 
+TEST_CASE("shader errors: the report is the summary and the driver's errors, not its warnings", "[cli][shader]") {
+    // An undeclared name where a pass's sums are set up: Mesa then also warns of every variable left
+    // uninitialised after it, a dozen lines. The report keeps the errors (at most four) and counts the rest.
+    TempDir tmp;
+    const fs::path glsl = copy_glsl(tmp);
+    const int line = inject(glsl / "sim/dfsph/compute_density.comp", "        xi_ = position[i].xyz;", false,
+                            "        xi_ = ranryu_injected_undeclared[i].xyz;");
+    const Result r = run_ranryu(tmp.path(), {"profile", "--shader-dir", glsl.string(), "--scene", "dam-break", "--spacing", "0.04",
+                                             "--frames", "1", "--warmup", "0", "--size", "32x32", "--quiet"});
+    INFO(r.describe());
+    CHECK(r.exit_code == 1);
+    const std::vector<std::string> lines = r.err_lines();
+    REQUIRE_FALSE(lines.empty());
+    CHECK_THAT(lines.front(), Contains("sim/dfsph/compute_density.comp:" + std::to_string(line) + ":"));
+    CHECK(lines.size() <= 6);   // the summary, four of the driver's lines, how many more
+    for (std::size_t k = 1; k < lines.size(); ++k)
+        if (lines[k].starts_with("sim/")) CHECK_THAT(lines[k], Contains("error"));
+}
+
 TEST_CASE("shader errors: a missing include names the including file and line", "[cli][shader]") {
     // Only sim/integrate.comp includes the missing file, so the report does not depend on which
     // program the engine builds first.
