@@ -503,6 +503,13 @@ int profile_cmd(const Options& o) {
         skipped.push_back({{"passes", st.passes}, {"why", st.why}});
     }
     extra["not_run"] = skipped;
+    // The scene's other passes that took no sample in the timed frames, so that every named pass is
+    // accounted for: in the table, in a "not run" line, or here.
+    const std::string untimed = pipeline.untimed_passes();
+    if (!untimed.empty())
+        std::printf("not timed: %s (none ran in the timed frames: they run at start-up, in the warm-up, or on an event this run did not have)\n",
+                    untimed.c_str());
+    extra["not_timed"] = untimed;
     // Why the scene's solver and step settings are its own (sph.why, docs/SCENES.md); said to hold
     // for the scene as shipped, so a run at another spacing or with another solver says so.
     if (scene.model == scene::Model::sph && !scene.sph.why.empty()) {

@@ -265,6 +265,18 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     for (const auto& p : j["passes"]) timed.insert(p["name"].get<std::string>());
     for (const char* absent : {"wavelet", "turbulence-force", "level-set", "mc.emit", "draw-surface", "forces"}) CHECK_FALSE(timed.count(absent));
     CHECK(timed.count("dfsph.density"));
+    // The scene's other named passes that did not run in the timed frames, listed apart: the boundary's
+    // volumes and cells (at start-up), the rows' wall density (the first frame, in the warm-up), the
+    // emitter (no emission in a profile).
+    REQUIRE(j["not_timed"].is_string());
+    const std::string untimed = j["not_timed"].get<std::string>();
+    for (const char* name : {"boundary-volume", "boundary-cells", "dfsph.boundary.wall", "emit"}) {
+        INFO(name);
+        CHECK_THAT(untimed, Contains(name));
+        CHECK_FALSE(timed.count(name));
+    }
+    CHECK_THAT(r.out, Contains("not timed: " + untimed + " ("));
+    for (const char* named_elsewhere : {"dfsph.density", "wavelet", "pbf.lambda", "draw-particles"}) CHECK_THAT(untimed, !Contains(named_elsewhere));
 }
 
 TEST_CASE("ranryu profile prints a scene's sph.why, and says when --spacing or --solver changed the scene it speaks of",
