@@ -4,7 +4,7 @@
 #   scratch/glsl-restart, -overshoot                   glsl/ with restart.patch, overshoot.patch
 #   scratch/glsl-dragout-restart, -dragout-overshoot   the drag implicit and out of (D8)'s force
 #                                                      condition (docs/perf/2026-11-30-h200-wall-drag/) with the same
-#   scratch/glsl-rows-restart, -fluid-restart, -big-restart   the drag out with that patch
+#   scratch/glsl-rows-restart, -fluid-restart, -big-restart, -wall-restart   the drag out with that patch
 set -eu
 here=docs/perf/2026-11-30-h200-chebyshev-restart
 bash docs/perf/2026-11-30-h200-wall-drag/make-shaders.sh
@@ -16,4 +16,4 @@ put glsl-restart glsl restart.patch
 put glsl-overshoot glsl overshoot.patch
 put glsl-dragout-restart scratch/glsl-dragout restart.patch
 put glsl-dragout-overshoot scratch/glsl-dragout overshoot.patch
-for v in rows-restart fluid-restart big-restart; do put glsl-$v scratch/glsl-dragout $v.patch; done
+for v in rows-restart fluid-restart big-restart wall-restart; do put glsl-$v scratch/glsl-dragout $v.patch; done
