@@ -2,7 +2,7 @@
 // One frame of ranryu as a list of GPU passes (frame/loop.h runs them for every command):
 //
 //     pipeline.begin_frame();
-//     pipeline.simulate();        // ballistic: "integrate" x substeps; SPH: sim/simulation.h, then, with
+//     pipeline.simulate();        // ballistic: "ballistic.integrate" x substeps; SPH: sim/simulation.h, then, with
 //                                 // sub-particles (turbulence/subparticles.h) "subparticles.classify",
 //                                 // "subparticles.budget", "subparticles.spawn"; then, when the
 //                                 // shading draws a surface, ("surface.anisotropy"), "surface.bounds",

@@ -7,7 +7,7 @@ namespace ranryu::sim {
 
 Particles::Particles(const shader::FileSource& shaders, profile::GpuTimer& timer)
     : timer_(timer),
-      integrate_pass_(timer.pass("integrate")),
+      integrate_pass_(timer.pass("ballistic.integrate")),   // not WCSPH's "integrate": another shader
       integrate_(shader::Program::compute(shaders, "sim/integrate.comp")),
       params_ubo_(sizeof(gpu::SimParams), GL_DYNAMIC_DRAW, nullptr, "SimParams") {}
 

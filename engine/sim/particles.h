@@ -27,7 +27,7 @@ public:
     void set_params(const gpu::SimParams& p);   // copied into the SimParams UBO
     const gpu::SimParams& params() const { return params_; }
 
-    // One substep of every particle (pass "integrate").
+    // One substep of every particle (pass "ballistic.integrate").
     void integrate();
 
     std::size_t count() const { return count_; }

@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 // The passes every frame of every scene runs today (renderer and particle passes).
-const std::vector<std::string> kFramePasses = {"integrate", "clear", "draw-floor", "draw-tank", "draw-particles"};
+const std::vector<std::string> kFramePasses = {"ballistic.integrate", "clear", "draw-floor", "draw-tank", "draw-particles"};
 
 struct Row {
     std::string name;
@@ -145,7 +145,7 @@ TEST_CASE("ranryu profile prints one row per pass that ran with calls, min, medi
     for (const Row& row : t.rows) {
         INFO("row " << row.name);
         if (row.name == "clear" || row.name.starts_with("draw-") || row.name == "frame (GPU span)") CHECK(row.calls == 1.0);
-        if (row.name == "integrate") CHECK(row.calls >= 1.0);
+        if (row.name == "ballistic.integrate") CHECK(row.calls >= 1.0);
     }
     // No report files unless asked for.
     CHECK(list_dir(tmp.path()).empty());

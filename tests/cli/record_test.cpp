@@ -112,7 +112,7 @@ TEST_CASE("ranryu record writes run.json describing the run", "[cli][record]") {
             CHECK(p.at(key).get<double>() >= 0.0);
         }
     }
-    for (const char* pass : {"integrate", "clear", "draw-floor", "draw-tank", "draw-particles", "readback"}) {
+    for (const char* pass : {"ballistic.integrate", "clear", "draw-floor", "draw-tank", "draw-particles", "readback"}) {
         INFO("pass " << pass);
         CHECK(std::find(names.begin(), names.end(), pass) != names.end());
     }

@@ -84,7 +84,7 @@ TEST_CASE("shader errors: an untouched copy of glsl/ given with --shader-dir com
     const Result r = profile_with(tmp, copy_glsl(tmp));
     INFO(r.describe());
     CHECK(r.exit_code == 0);
-    CHECK_THAT(r.out, Contains("integrate"));
+    CHECK_THAT(r.out, Contains("ballistic.integrate"));
 }
 
 TEST_CASE("shader errors: a compile error names the file and line and includes the driver log", "[cli][shader]") {

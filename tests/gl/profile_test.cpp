@@ -189,7 +189,7 @@ TEST_CASE("profile: a pipeline's passes are timed once per call, every frame, an
     CHECK(probe().waits == 0);   // the frames read only results that were available
     timer.drain();
     const std::map<std::string, int> expect = {
-        {"integrate", substeps}, {"clear", 1}, {"draw-floor", 1}, {"draw-tank", 1}, {"draw-particles", 1}};
+        {"ballistic.integrate", substeps}, {"clear", 1}, {"draw-floor", 1}, {"draw-tank", 1}, {"draw-particles", 1}};
     check_samples(timer, expect, frames);
 
     ranryu::profile::RunInfo info;
@@ -266,7 +266,7 @@ TEST_CASE("profile: report rows follow the order in which a frame first ran the 
     const ranryu::profile::Report report = ranryu::profile::summarize(pipeline.timer(), {});
     std::vector<std::string> names;
     for (const auto& row : report.passes) names.push_back(row.name);
-    CHECK(names == std::vector<std::string>{"integrate", "clear", "draw-floor", "draw-tank", "draw-particles"});
+    CHECK(names == std::vector<std::string>{"ballistic.integrate", "clear", "draw-floor", "draw-tank", "draw-particles"});
     ranryu::test::require_no_gl_errors();
 }
 
