@@ -238,13 +238,15 @@ void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, cons
     std::ifstream in;
     Opened o = open_file(in, file, what);
     if (pipeline.frames() != 0) throw Error("load_checkpoint: the pipeline has already run frames");
+    Loader loader(in, o, what, pipeline.particle_count());
+    pipeline.persist(loader);
+    loader.finish();
+    // Every entry matched this run's (a file of another run fails above, by its entries' sizes), so a
+    // count in the header that differs is damage.
     const std::uint64_t particles = o.header.at("particles").get<std::uint64_t>();
     if (particles != pipeline.particle_count())
         throw InputError(what + ": its header says " + std::to_string(particles) + " particles, and its scene has " +
                          std::to_string(pipeline.particle_count()) + " (a damaged file)");
-    Loader loader(in, o, what, pipeline.particle_count());
-    pipeline.persist(loader);
-    loader.finish();
 }
 
 }  // namespace ranryu::frame
