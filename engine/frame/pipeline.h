@@ -4,7 +4,7 @@
 //     pipeline.begin_frame();
 //     pipeline.simulate();        // ballistic: "ballistic.integrate" x substeps; SPH: sim/simulation.h, then, with
 //                                 // sub-particles (turbulence/subparticles.h) "subparticles.classify",
-//                                 // "subparticles.budget", "subparticles.spawn"; then, when the
+//                                 // ".scan", ".compact", ".budget", ".spawn"; then, when the
 //                                 // shading draws a surface, ("surface.anisotropy"), "surface.bounds",
 //                                 // ("subparticles.splat"), ("level-set.splat"), "level-set" and
 //                                 // "mc.classify", "mc.compact", "mc.emit"

@@ -153,6 +153,8 @@ Subparticles::Subparticles(const shader::FileSource& shaders, profile::GpuTimer&
                            float spacing, std::size_t particles, const NoiseTiles& tiles, const CurlNoise& noise)
     : timer_(timer),
       classify_pass_(timer.pass("subparticles.classify")),
+      scan_pass_(timer.pass("subparticles.scan")),
+      compact_pass_(timer.pass("subparticles.compact")),
       budget_pass_(timer.pass("subparticles.budget")),
       spawn_pass_(timer.pass("subparticles.spawn")),
       classify_(shader::Program::compute(shaders, "turbulence/subparticles/classify_particles.comp")),
@@ -230,9 +232,15 @@ void Subparticles::generate(const Inputs& in, std::uint64_t frame) {
         auto pass = timer_.scope(classify_pass_);
         classify_.bind(buffers).dispatch(in.count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(scan_pass_);
         scan_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto pass = timer_.scope(compact_pass_);
         compact_.bind(buffers).dispatch(in.count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -26,8 +26,8 @@
 //
 // Passes (named in the GpuTimer), every one on the GPU, nothing read back in the frame path:
 //   "subparticles.classify"  classify_particles.comp      L_i per particle; per-workgroup level counts
-//                            scan_level_counts.comp       one workgroup: their exclusive scan; n_L
-//                            compact_split_particles.comp per-level lists of the particles with L_i >= 1,
+//   "subparticles.scan"      scan_level_counts.comp       one workgroup: their exclusive scan; n_L
+//   "subparticles.compact"   compact_split_particles.comp per-level lists of the particles with L_i >= 1,
 //                                                          in cell order (scan, no atomics: the same
 //                                                          lists, sub-particle order and images every run)
 //   "subparticles.budget"    choose_level_cap.comp        one invocation: C, the layout, the indirect
@@ -179,7 +179,7 @@ private:
     void on_record(std::uint64_t frame, const void* bytes);
 
     profile::GpuTimer& timer_;
-    profile::PassId classify_pass_, budget_pass_, spawn_pass_;
+    profile::PassId classify_pass_, scan_pass_, compact_pass_, budget_pass_, spawn_pass_;
     shader::Program classify_, scan_, compact_, budget_, spawn_;
     const CurlNoise& noise_;   // the force's tiles on the GPU
     gpu::SubparticleParams params_{};

@@ -675,7 +675,8 @@ const ranryu::profile::PassSamples* find_pass(const ranryu::profile::GpuTimer& t
 
 TEST_CASE("subparticles: levels 0 builds and runs nothing, levels above 0 run each pass once a frame", "[subparticles]") {
     ranryu::test::context();
-    const char* names[] = {"subparticles.classify", "subparticles.budget", "subparticles.spawn", "subparticles.splat"};
+    const char* names[] = {"subparticles.classify", "subparticles.scan", "subparticles.compact", "subparticles.budget",
+                           "subparticles.spawn", "subparticles.splat"};
     for (const auto shading : {ranryu::render::Shading::fresnel, ranryu::render::Shading::particles}) {
         INFO("shading " << ranryu::render::shading_name(shading));
         {
