@@ -45,12 +45,11 @@ std::string npy_header(int n) {
 int export_field(const Options& o) {
     namespace fs = std::filesystem;
     const fs::path out(o.out);
-    // Refuse before any GPU work: an existing file is earlier output, and the folder must exist.
-    if (fs::exists(out) && !o.force) throw InputError("--out " + o.out + ": the file exists; not overwriting it (use --force)");
-    if (fs::is_directory(out)) throw InputError("--out " + o.out + ": is a folder");
-    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    if (!fs::is_directory(parent)) throw InputError("--out " + o.out + ": no such folder");
-    profile::check_writable(out, "--out " + o.out);
+    // Refuse before any GPU work: an existing file is earlier output (a folder is never replaced), and
+    // the file must be writable where it goes.
+    if (fs::exists(out) && !fs::is_directory(out) && !o.force)
+        throw InputError("--out " + o.out + ": the file exists; not overwriting it (use --force)");
+    profile::check_writable(out, "--out " + o.out);   // a folder, a missing folder, no write access
 
     const shader::FileSource shaders = shader_source(o);
     auto ctx = headless(o);

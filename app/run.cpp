@@ -147,9 +147,8 @@ int run(const Options& o) {
     auto check_new_file = [](const std::string& path, const std::string& option) {
         if (path.empty()) return;
         const std::string what = option + " " + path;
-        if (fs::is_directory(path)) throw InputError(what + ": is a folder; name the file to write");
+        profile::check_writable(path, what);   // a folder, a missing folder, no write access
         if (fs::exists(path)) throw InputError(what + ": the file exists; not overwriting it");
-        profile::check_writable(path, what);
     };
     check_new_file(o.screenshot, "--screenshot");
     Shots shots(o.shots);

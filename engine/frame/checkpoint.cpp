@@ -28,7 +28,7 @@ constexpr std::uint64_t kMaxHeader = 64ull << 20;   // the scene's text and the 
 // Saving: every entry's bytes, in the order persist() lists them.
 class Saver final : public sim::StateIo {
 public:
-    void buffer(const std::string& name, gl::Buffer& b) override {
+    void buffer(const std::string& name, gl::Buffer& b, std::size_t) override {
         std::vector<char>& bytes = add(name, b.size());
         if (b.size()) b.read_bytes(bytes.data(), b.size());
     }
@@ -109,24 +109,19 @@ Opened open_file(std::ifstream& in, const std::filesystem::path& file, const std
 // Loading: each entry persist() lists, checked against the file's.
 class Loader final : public sim::StateIo {
 public:
-    // `particles`: the run's count, whose positions and velocities (vec4 each, the first in their
-    // buffers) are checked finite; the rest of a buffer is capacity, never read as a particle.
-    Loader(std::ifstream& in, Opened& o, std::string what, std::size_t particles)
-        : in_(in), o_(o), what_(std::move(what)), particles_(particles) {}
-    void buffer(const std::string& name, gl::Buffer& b) override {
+    Loader(std::ifstream& in, Opened& o, std::string what) : in_(in), o_(o), what_(std::move(what)) {}
+    void buffer(const std::string& name, gl::Buffer& b, std::size_t finite_vec4s) override {
         const Entry& e = find(name, b.size());
         if (!e.bytes) return;
         std::vector<char> bytes(e.bytes);
         read(e, bytes.data());
-        if (name == "fluid.positions" || name == "fluid.velocities") {   // vec4s: a run from them would only fail later
-            const std::size_t n = std::min(bytes.size() / sizeof(float), 4 * particles_);
-            for (std::size_t k = 0; k < n; ++k) {
-                float x;
-                std::memcpy(&x, bytes.data() + k * sizeof(float), sizeof x);
-                if (!std::isfinite(x))
-                    throw InputError(what_ + ": entry " + name + " holds a non-finite value (particle " + std::to_string(k / 4) +
-                                     "): a damaged file");
-            }
+        const std::size_t n = std::min(bytes.size() / sizeof(float), 4 * finite_vec4s);
+        for (std::size_t k = 0; k < n; ++k) {
+            float x;
+            std::memcpy(&x, bytes.data() + k * sizeof(float), sizeof x);
+            if (!std::isfinite(x))
+                throw InputError(what_ + ": entry " + name + " holds a non-finite value (element " + std::to_string(k / 4) +
+                                 "): a damaged file");
         }
         b.upload(bytes.data(), bytes.size());
     }
@@ -156,7 +151,6 @@ private:
     std::ifstream& in_;
     Opened& o_;
     std::string what_;
-    std::size_t particles_;
 };
 
 }  // namespace
@@ -238,7 +232,7 @@ void load_checkpoint(Pipeline& pipeline, const std::filesystem::path& file, cons
     std::ifstream in;
     Opened o = open_file(in, file, what);
     if (pipeline.frames() != 0) throw Error("load_checkpoint: the pipeline has already run frames");
-    Loader loader(in, o, what, pipeline.particle_count());
+    Loader loader(in, o, what);
     pipeline.persist(loader);
     loader.finish();
     // Every entry matched this run's (a file of another run fails above, by its entries' sizes), so a

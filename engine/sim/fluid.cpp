@@ -493,8 +493,8 @@ void Fluid::on_record(std::uint64_t opened, const void* bytes) {
 
 void Fluid::persist(StateIo& io) {
     if (boundary_generation_ != 0) io.refuse("the paddle has moved the boundary, and a run with the paddle cannot be saved");
-    io.buffer("fluid.positions", position_[current_]);
-    io.buffer("fluid.velocities", velocity_[current_]);
+    io.buffer("fluid.positions", position_[current_], count());
+    io.buffer("fluid.velocities", velocity_[current_], count());
     io.buffer("fluid.densities", density_);
     io.buffer("fluid.accelerations", accel_);
     io.buffer("fluid.step", step_);

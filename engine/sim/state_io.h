@@ -18,8 +18,9 @@ public:
     virtual ~StateIo() = default;
     // The whole of `buffer`, under a name unique in the checkpoint. Saving reads it back (it waits for
     // the GPU: the end of a run, never the frame path); loading replaces it, after checking that the
-    // saved size is the buffer's.
-    virtual void buffer(const std::string& name, gl::Buffer& buffer) = 0;
+    // saved size is the buffer's and that its first `finite_vec4s` vec4s hold finite numbers only (a
+    // part's positions or velocities, from which a run would fail only later, as an instability).
+    virtual void buffer(const std::string& name, gl::Buffer& buffer, std::size_t finite_vec4s = 0) = 0;
     // `size` bytes of a CPU value, the same way.
     virtual void bytes(const std::string& name, void* data, std::size_t size) = 0;
     // Whether this reads a checkpoint back (a part may note that it was resumed).

@@ -224,7 +224,7 @@ TEST_CASE("checkpoint: a damaged file, or a folder of another run to resume into
     CheckpointFile nan = good;
     const float bad = std::numeric_limits<float>::quiet_NaN();
     std::memcpy(nan.body.data() + nan.offset("fluid.velocities") + 16 * 3 + 4, &bad, sizeof bad);   // particle 3's v.y
-    refused("nan.bin", nan, "entry fluid.velocities holds a non-finite value (particle 3)");
+    refused("nan.bin", nan, "entry fluid.velocities holds a non-finite value (element 3)");
 
     // Resumed into the folder of another scene's run: refused, that run untouched.
     const Result other = run_ranryu(tmp.path(), {"record", "--scene", scene_file("small.json").string(), "--frames", "1", "--size",
