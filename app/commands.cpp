@@ -443,7 +443,7 @@ int profile_cmd(const Options& o) {
     OverlayState overlay_state;
     std::vector<input::Command> ignored;
     if (o.overlay) {
-        overlay = std::make_unique<Overlay>(glm::ivec2(size.x, size.y));
+        overlay = std::make_unique<Overlay>(glm::ivec2(size.x, size.y), shaders);
         overlay_cpu_ms.reserve(std::size_t(frames));
         ignored.reserve(64);
         if (pipeline.simulation()) overlay_state.limits = sim::guard_limits(scene);

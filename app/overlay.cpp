@@ -1,7 +1,6 @@
 #include "overlay.h"
 
 #include <imgui.h>
-#include <imgui_impl_opengl3.h>
 #ifdef RANRYU_HAVE_GLFW
 #include <GLFW/glfw3.h>
 #include <imgui_impl_glfw.h>
@@ -9,6 +8,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 
 #include "core/error.h"
@@ -22,50 +23,79 @@ constexpr const char* kShadingNames[] = {"water", "fresnel", "phong", "gouraud",
 constexpr const char* kSolverNames[] = {"dfsph", "wcsph", "pbf"};   // scene::Solver's order
 }  // namespace
 
-void Overlay::start() {
+// Dear ImGui's vertices and indices go to the GPU as they are (render/overlay_draw.h).
+static_assert(sizeof(ImDrawVert) == sizeof(render::OverlayVertex));
+static_assert(offsetof(ImDrawVert, pos) == offsetof(render::OverlayVertex, x));
+static_assert(offsetof(ImDrawVert, uv) == offsetof(render::OverlayVertex, u));
+static_assert(offsetof(ImDrawVert, col) == offsetof(render::OverlayVertex, rgba));
+static_assert(sizeof(ImDrawIdx) == sizeof(render::OverlayIndex));
+
+void Overlay::start(const shader::FileSource& shaders) {
     for (const scene::BundledScene& s : scene::bundled()) scenes_.push_back(s.name);
+    draw_.emplace(shaders);   // its shaders first: one that fails leaves no ImGui context behind
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;   // no imgui.ini in the working folder
     io.LogFilename = nullptr;
+    io.BackendRendererName = "ranryu";
+    io.BackendFlags |= ImGuiBackendFlags_RendererHasVtxOffset;   // glDrawElementsBaseVertex: lists past 65,536 vertices
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 0.0f;
+    // The font atlas: built and uploaded now, not in the first frame.
+    unsigned char* pixels = nullptr;
+    int width = 0, height = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
+    font_ = render::OverlayDraw::texture(pixels, width, height);
+    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(font_.id())));
+    commands_.reserve(256);
 }
 
-Overlay::Overlay(GLFWwindow* window) : window_(window) {
+Overlay::Overlay(GLFWwindow* window, const shader::FileSource& shaders) : window_(window) {
 #ifdef RANRYU_HAVE_GLFW
-    start();
-    if (!ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true) || !ImGui_ImplOpenGL3_Init("#version 430 core")) {
+    start(shaders);
+    if (!ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true)) {
         ImGui::DestroyContext();
-        throw Error("cannot start the overlay (Dear ImGui's GLFW or OpenGL 3 backend failed)");
+        throw Error("cannot start the overlay (Dear ImGui's GLFW backend failed)");
     }
-    // The font atlas and the backend's program and buffers: now, not in the first frame.
-    ImGui_ImplOpenGL3_CreateDeviceObjects();
 #else
+    (void)shaders;
     throw Error("this build has no window (GLFW was not found at configure time)");
 #endif
 }
 
-Overlay::Overlay(glm::ivec2 display) : display_(display) {
-    start();
+Overlay::Overlay(glm::ivec2 display, const shader::FileSource& shaders) : display_(display) {
+    start(shaders);
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(display.x), float(display.y));
     io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
     io.DeltaTime = 1.0f / 60.0f;
-    if (!ImGui_ImplOpenGL3_Init("#version 430 core")) {
-        ImGui::DestroyContext();
-        throw Error("cannot start the overlay (Dear ImGui's OpenGL 3 backend failed)");
-    }
-    ImGui_ImplOpenGL3_CreateDeviceObjects();
 }
 
 Overlay::~Overlay() {
-    ImGui_ImplOpenGL3_Shutdown();
 #ifdef RANRYU_HAVE_GLFW
     if (window_) ImGui_ImplGlfw_Shutdown();
 #endif
     ImGui::DestroyContext();
+}
+
+void Overlay::render() {
+    const ImDrawData* d = ImGui::GetDrawData();
+    if (!d || !d->Valid || d->DisplaySize.x <= 0.0f || d->DisplaySize.y <= 0.0f) return;
+    draw_->begin(std::size_t(d->TotalVtxCount), std::size_t(d->TotalIdxCount), glm::vec2(d->DisplayPos.x, d->DisplayPos.y),
+                 glm::vec2(d->DisplaySize.x, d->DisplaySize.y), glm::vec2(d->FramebufferScale.x, d->FramebufferScale.y));
+    for (int n = 0; n < d->CmdListsCount; ++n) {
+        const ImDrawList* list = d->CmdLists[n];
+        commands_.clear();
+        for (const ImDrawCmd& c : list->CmdBuffer) {
+            if (c.UserCallback) continue;   // the panel registers none
+            commands_.push_back({glm::vec4(c.ClipRect.x, c.ClipRect.y, c.ClipRect.z, c.ClipRect.w),
+                                 GLuint(reinterpret_cast<std::uintptr_t>(c.GetTexID())), c.IdxOffset, c.ElemCount, c.VtxOffset});
+        }
+        draw_->draw_list({reinterpret_cast<const render::OverlayVertex*>(list->VtxBuffer.Data), std::size_t(list->VtxBuffer.Size)},
+                         {list->IdxBuffer.Data, std::size_t(list->IdxBuffer.Size)}, commands_);
+    }
+    draw_->end();
 }
 
 bool Overlay::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
@@ -73,7 +103,6 @@ bool Overlay::wants_text() const { return ImGui::GetIO().WantTextInput; }
 
 void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState& st, std::vector<input::Command>& commands) {
     auto scope = p.timer().scope(pass);
-    ImGui_ImplOpenGL3_NewFrame();
 #ifdef RANRYU_HAVE_GLFW
     if (window_) ImGui_ImplGlfw_NewFrame();
 #endif
@@ -215,7 +244,7 @@ void Overlay::draw(frame::Pipeline& p, profile::PassId pass, const OverlayState&
     ImGui::End();
 
     ImGui::Render();
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    render();
 }
 
 }  // namespace ranryu::app

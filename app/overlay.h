@@ -1,5 +1,6 @@
 #pragma once
-// The window's overlay (Dear ImGui, GLFW and OpenGL 3 backends): a panel with what the CPU already
+// The window's overlay (Dear ImGui with its GLFW backend for input, drawn by render::OverlayDraw,
+// engine/render/overlay_draw.h, whose GL objects are made once at start-up): a panel with what the CPU already
 // knows about the run (fps, GPU ms a frame, the real-time factor, particles and sub-particles,
 // substeps and solver iterations a frame, the guard's state, and a bar per pass with its GPU ms from
 // the asynchronous timers, frames late), the run's controls, and the keys' help.
@@ -8,8 +9,8 @@
 // pipeline's last record, which came back through their rings. The panel is drawn as its own pass,
 // "overlay" (a debug group and a GPU timer), after the frame is presented to the window's back buffer.
 //
-// Headless (`ranryu profile --overlay`, no GLFW needed): the OpenGL 3 backend alone, with the display
-// size given and a 60 Hz clock, draws the same panel into the bound framebuffer (the pipeline's
+// Headless (`ranryu profile --overlay`, no GLFW needed): with the display size given and a 60 Hz
+// clock, the same panel is drawn into the bound framebuffer (the pipeline's
 // target), so that its cost per frame can be measured where no window can open.
 #include <optional>
 #include <string>
@@ -18,8 +19,11 @@
 #include <glm/glm.hpp>
 
 #include "frame/pipeline.h"
+#include "gl/objects.h"
 #include "input/commands.h"
 #include "profile/gpu_timer.h"
+#include "render/overlay_draw.h"
+#include "shader/source.h"
 #include "sim/guard.h"
 
 struct GLFWwindow;
@@ -51,10 +55,11 @@ struct PanelRect {
 
 class Overlay {
 public:
-    // Start-up: the ImGui context, the backends (their shaders and font texture are built here, once).
-    explicit Overlay(GLFWwindow* window);
+    // Start-up: the ImGui context, its GLFW backend, and the panel's program, buffers and font
+    // texture (built here, once; a shader of `shaders` that fails throws ranryu::Error).
+    Overlay(GLFWwindow* window, const shader::FileSource& shaders);
     // Headless: no input; the panel laid out for a `display` pixels framebuffer.
-    explicit Overlay(glm::ivec2 display);
+    Overlay(glm::ivec2 display, const shader::FileSource& shaders);
     ~Overlay();
     Overlay(const Overlay&) = delete;
     Overlay& operator=(const Overlay&) = delete;
@@ -71,13 +76,17 @@ public:
     const PanelRect& panel() const { return panel_; }
 
 private:
-    void start();   // the ImGui context and the OpenGL 3 backend's device objects
+    void start(const shader::FileSource& shaders);   // the ImGui context, the panel's GL objects and font texture
+    void render();                                   // ImGui's draw data through draw_
     GLFWwindow* window_ = nullptr;
     glm::ivec2 display_{0};
     PanelRect panel_;
     std::vector<std::string> scenes_;   // the bundled scenes' names, for the scene list
     float spacing_ = 0.0f;              // the spacing slider's value while it is dragged
     bool spacing_edit_ = false;
+    std::optional<render::OverlayDraw> draw_;
+    gl::Texture2D font_;
+    std::vector<render::OverlayCommand> commands_;   // a list's, reused from frame to frame
 };
 
 }  // namespace ranryu::app

@@ -164,7 +164,7 @@ int run(const Options& o) {
     if (debug) gl::install_debug_callback();
     gl::set_error_checks(debug);   // glGetError after every pass (gl/faults.h)
     print_device(window.info());
-    Overlay overlay(window.handle());
+    Overlay overlay(window.handle(), shaders);
     WindowShots window_shots;   // --screenshot and the screenshot key, read back asynchronously
 
     // The controls' state, changed only by apply() (keys, panel widgets, script), read by the hooks.

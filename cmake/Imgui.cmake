@@ -1,20 +1,18 @@
 # Dear ImGui for the overlay (app/overlay.h): Debian's libimgui-dev (1.86) gives the core as
-# libimgui.a and headers; its GLFW and OpenGL 3 backends ship only as sources in the package's doc
-# folder (examples/backends/, possibly .gz-compressed), so they are copied (or decompressed) into the
-# build folder at configure time and built here: ranryu_imgui (the core and the OpenGL 3 backend,
-# all that the headless `profile --overlay` needs) and, with the window, ranryu_imgui_glfw.
+# libimgui.a and headers: ranryu_imgui, all that the headless `profile --overlay` needs (the panel is
+# drawn by ranryu's engine/render/overlay_draw.h, not by Dear ImGui's OpenGL 3 backend, which makes a
+# vertex array every frame). Its GLFW backend ships only as a source in the package's doc folder
+# (examples/backends/, possibly .gz-compressed), so with the window it is copied (or decompressed)
+# into the build folder at configure time and built here as ranryu_imgui_glfw.
 # Sets RANRYU_HAVE_IMGUI. Required with the window; optional without it.
-#
-# The OpenGL 3 backend takes its entry points from GLVND's libOpenGL like the engine does
-# (engine/gl/gl.h, IMGUI_IMPL_OPENGL_LOADER_CUSTOM): no second loader.
 find_path(IMGUI_INCLUDE_DIR imgui.h PATH_SUFFIXES imgui)
 find_library(IMGUI_LIBRARY imgui)
 # Debian's libimgui.a takes stb_rect_pack and stb_truetype from libstb (its imgui.pc: Requires: stb).
 find_library(STB_LIBRARY stb)
 set(RANRYU_IMGUI_BACKENDS_DIR /usr/share/doc/libimgui-dev/examples/backends CACHE PATH
-    "Folder with Dear ImGui's backend sources imgui_impl_glfw.cpp and imgui_impl_opengl3.cpp (or .cpp.gz)")
+    "Folder with Dear ImGui's GLFW backend source imgui_impl_glfw.cpp (or .cpp.gz)")
 set(RANRYU_HAVE_IMGUI OFF)
-set(_names imgui_impl_opengl3)
+set(_names)
 if(RANRYU_HAVE_GLFW)
   list(APPEND _names imgui_impl_glfw)
 endif()
@@ -54,17 +52,13 @@ foreach(name ${_names})
   list(APPEND _backends ${_out})
 endforeach()
 
-list(GET _backends 0 _opengl3)
-add_library(ranryu_imgui STATIC ${_opengl3})
-target_include_directories(ranryu_imgui SYSTEM PUBLIC ${IMGUI_INCLUDE_DIR} ${IMGUI_INCLUDE_DIR}/backends)
-target_compile_definitions(ranryu_imgui PRIVATE IMGUI_IMPL_OPENGL_LOADER_CUSTOM GL_GLEXT_PROTOTYPES=1)
-# Not our code: its own warnings are not ours to fix. The system's GL core-profile header, included
-# first, declares what the backend calls.
-target_compile_options(ranryu_imgui PRIVATE -w -include GL/glcorearb.h)
-target_link_libraries(ranryu_imgui PUBLIC ${IMGUI_LIBRARY} ${STB_LIBRARY} OpenGL::OpenGL)
+add_library(ranryu_imgui INTERFACE)
+target_include_directories(ranryu_imgui SYSTEM INTERFACE ${IMGUI_INCLUDE_DIR} ${IMGUI_INCLUDE_DIR}/backends)
+target_link_libraries(ranryu_imgui INTERFACE ${IMGUI_LIBRARY} ${STB_LIBRARY})
 if(RANRYU_HAVE_GLFW)
-  list(GET _backends 1 _glfw)
+  list(GET _backends 0 _glfw)
   add_library(ranryu_imgui_glfw STATIC ${_glfw})
+  # Not our code: its own warnings are not ours to fix.
   target_compile_options(ranryu_imgui_glfw PRIVATE -w)
   target_link_libraries(ranryu_imgui_glfw PUBLIC ranryu_imgui glfw)
 endif()
