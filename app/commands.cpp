@@ -499,8 +499,9 @@ int profile_cmd(const Options& o) {
     // What the scene does not run, and why (issue 12: a scene models no more than it needs).
     nlohmann::json skipped = nlohmann::json::array();
     for (const frame::SkippedStage& st : pipeline.skipped_stages()) {
-        std::printf("not run: %s, since %s\n", st.passes.c_str(), st.why.c_str());
-        skipped.push_back({{"passes", st.passes}, {"why", st.why}});
+        const std::string passes = st.text();
+        std::printf("not run: %s, since %s\n", passes.c_str(), st.why.c_str());
+        skipped.push_back({{"passes", passes}, {"names", st.passes}, {"why", st.why}});
     }
     extra["not_run"] = skipped;
     // The scene's other passes that took no sample in the timed frames, so that every named pass is

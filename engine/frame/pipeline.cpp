@@ -117,52 +117,54 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     }
 }
 
+std::string SkippedStage::text() const {
+    std::string out;
+    for (const std::string& p : passes) out += (out.empty() ? "" : ", ") + p;
+    return whose.empty() ? out : out + ": " + whose;
+}
+
+bool SkippedStage::names(std::string_view pass) const {
+    for (const std::string& n : passes)
+        if (n == pass || (n.ends_with('*') && pass.starts_with(std::string_view(n).substr(0, n.size() - 1)))) return true;
+    return false;
+}
+
 std::vector<SkippedStage> Pipeline::skipped_stages() const {
     std::vector<SkippedStage> out;
     if (!sph_) {
-        out.push_back({"hash, sort.*, reorder, the pressure solver's passes", "the scene uses the ballistic model, no SPH"});
+        out.push_back({{"hash", "sort.*", "reorder", "density", "forces", "integrate", "dfsph.*", "pbf.*"}, "the SPH model's",
+                       "the scene uses the ballistic model, no SPH"});
     } else {
         const std::string solver = std::string("the solver is ") + scene::solver_name(scene_.sph.solver);
-        if (scene_.sph.solver != scene::Solver::wcsph) out.push_back({"density, forces, integrate: WCSPH's", solver});
-        if (scene_.sph.solver != scene::Solver::dfsph) out.push_back({"dfsph.*", solver});
-        if (scene_.sph.solver != scene::Solver::pbf) out.push_back({"pbf.*", solver});
-        else if (scene_.sph.pbf.vorticity <= 0.0f) out.push_back({"pbf.vorticity", "sph.pbf.vorticity is 0"});
-        if (scene_.sph.sort == "radix") out.push_back({"sort.bitonic_local, sort.bitonic_global", "sph.sort is radix"});
-        else out.push_back({"sort.count, sort.scan, sort.scatter", "sph.sort is bitonic"});
-        if (!sph_->turbulence()) out.push_back({"wavelet, turbulence-force", "turbulence.amplitude is 0"});
-        if (!sub_) out.push_back({"subparticles.*", sph_->turbulence() ? "turbulence.subparticles is off" : "turbulence is off"});
+        if (scene_.sph.solver != scene::Solver::wcsph) out.push_back({{"density", "forces", "integrate"}, "WCSPH's", solver});
+        if (scene_.sph.solver != scene::Solver::dfsph) out.push_back({{"dfsph.*"}, "", solver});
+        if (scene_.sph.solver != scene::Solver::pbf) out.push_back({{"pbf.*"}, "", solver});
+        else if (scene_.sph.pbf.vorticity <= 0.0f) out.push_back({{"pbf.vorticity"}, "", "sph.pbf.vorticity is 0"});
+        if (scene_.sph.sort == "radix") out.push_back({{"sort.bitonic_local", "sort.bitonic_global"}, "", "sph.sort is radix"});
+        else out.push_back({{"sort.count", "sort.scan", "sort.scatter"}, "", "sph.sort is bitonic"});
+        if (!sph_->turbulence()) out.push_back({{"wavelet", "turbulence-force"}, "", "turbulence.amplitude is 0"});
+        if (!sub_) out.push_back({{"subparticles.*"}, "", sph_->turbulence() ? "turbulence.subparticles is off" : "turbulence is off"});
         if (!level_set_)
-            out.push_back({"surface.anisotropy, surface.bounds, level-set.splat, level-set, mc.*, draw-surface",
+            out.push_back({{"surface.anisotropy", "surface.bounds", "level-set.splat", "level-set", "mc.*", "draw-surface"}, "",
                            renderer_ ? "the shading draws particles" : "nothing is drawn"});
         else if (!scene_.surface.anisotropic)
-            out.push_back({"surface.anisotropy, level-set.splat", "surface.anisotropic is false"});
+            out.push_back({{"surface.anisotropy", "level-set.splat"}, "", "surface.anisotropic is false"});
     }
-    if (!renderer_) out.push_back({"clear, draw-*", "nothing is drawn: a validation run"});
-    else if (level_set_) out.push_back({"draw-particles", std::string("the shading draws the surface: ") + render::shading_name(shading_)});
+    if (!renderer_) out.push_back({{"clear", "draw-*"}, "", "nothing is drawn: a validation run"});
+    else if (level_set_) out.push_back({{"draw-particles"}, "", std::string("the shading draws the surface: ") + render::shading_name(shading_)});
     return out;
 }
 
 std::string Pipeline::untimed_passes() const {
-    // A skipped stage's passes are names or prefixes ("mc.*"), and "draw-*", each comma-separated.
-    std::vector<std::string> named;
-    for (const SkippedStage& st : skipped_stages()) {
-        std::string list = st.passes.substr(0, st.passes.find(':'));   // "density, forces, integrate: WCSPH's"
-        for (std::size_t at = 0; at <= list.size();) {
-            const std::size_t comma = std::min(list.find(',', at), list.size());
-            std::string name = list.substr(at, comma - at);
-            name.erase(0, name.find_first_not_of(' '));
-            if (!name.empty()) named.push_back(name);
-            at = comma + 1;
-        }
-    }
-    auto skipped = [&](const std::string& pass) {
-        for (const std::string& n : named)
-            if (n == pass || (n.ends_with('*') && pass.starts_with(n.substr(0, n.size() - 1)))) return true;
+    const std::vector<SkippedStage> skipped = skipped_stages();
+    auto named = [&](const std::string& pass) {
+        for (const SkippedStage& st : skipped)
+            if (st.names(pass)) return true;
         return false;
     };
     std::string out;
     for (const profile::PassSamples& p : timer_.passes())
-        if (p.ms.empty() && !skipped(p.name)) out += (out.empty() ? "" : ", ") + p.name;
+        if (p.ms.empty() && !named(p.name)) out += (out.empty() ? "" : ", ") + p.name;
     return out;
 }
 

@@ -25,6 +25,9 @@
 // instability() non-empty and the frame loop stops.
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "frame/memory.h"
 #include "gl/objects.h"
@@ -56,8 +59,13 @@ struct View {
 // A stage of the frame that a scene or view leaves out, with why: a scene models no more than it
 // needs, and `profile` says what it did not run (the passes named as the timer names them).
 struct SkippedStage {
-    std::string passes;   // e.g. "wavelet, turbulence-force"
-    std::string why;      // e.g. "turbulence.amplitude is 0"
+    std::vector<std::string> passes;   // the timer's names, or a prefix and '*' ("mc.*"): {"wavelet", "turbulence-force"}
+    std::string whose;                 // what the names are, when they alone mislead ("WCSPH's"); may be empty
+    std::string why;                   // e.g. "turbulence.amplitude is 0"
+    // "wavelet, turbulence-force", and ": " + whose when there is one.
+    std::string text() const;
+    // Whether `pass` is one of passes, or starts with a prefix of one.
+    bool names(std::string_view pass) const;
 };
 
 class Pipeline {

@@ -263,6 +263,21 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     for (const auto& s : j["not_run"]) listed.insert(s["passes"].get<std::string>());
     CHECK(listed.count("wavelet, turbulence-force"));
     for (const auto& p : j["passes"]) timed.insert(p["name"].get<std::string>());
+    // Each entry's names as the timer names them (or a prefix and '*'), the text their list: none of
+    // them took a sample.
+    for (const auto& s : j["not_run"]) {
+        REQUIRE(s["names"].is_array());
+        std::string text;
+        for (const auto& n : s["names"]) {
+            const std::string name = n.get<std::string>();
+            text += (text.empty() ? "" : ", ") + name;
+            for (const std::string& t : timed) {
+                INFO(name << " against the timed " << t);
+                CHECK_FALSE((name == t || (name.ends_with('*') && t.starts_with(name.substr(0, name.size() - 1)))));
+            }
+        }
+        CHECK(s["passes"].get<std::string>().starts_with(text));
+    }
     for (const char* absent : {"wavelet", "turbulence-force", "level-set", "mc.emit", "draw-surface", "forces"}) CHECK_FALSE(timed.count(absent));
     CHECK(timed.count("dfsph.density"));
     // The scene's other named passes that did not run in the timed frames, listed apart: the boundary's
