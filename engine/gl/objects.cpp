@@ -56,6 +56,17 @@ void Buffer::read_bytes(void* dst, std::size_t bytes, std::size_t offset) const 
         throw Error("Buffer::read past the end (" + std::to_string(offset + bytes) + " > " +
                     std::to_string(size_) + " bytes)");
     if (bytes == 0) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // what shaders wrote, before the copy
+    const Buffer staging(bytes, GL_STREAM_READ, nullptr, "read.staging");
+    copy_buffer(*this, staging, bytes, offset, 0);
+    staging.read_own_bytes(dst, bytes, 0);
+}
+
+void Buffer::read_own_bytes(void* dst, std::size_t bytes, std::size_t offset) const {
+    if (offset + bytes > size_)
+        throw Error("Buffer::read past the end (" + std::to_string(offset + bytes) + " > " +
+                    std::to_string(size_) + " bytes)");
+    if (bytes == 0) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBuffer(GL_COPY_READ_BUFFER, id());
     glGetBufferSubData(GL_COPY_READ_BUFFER, GLintptr(offset), GLsizeiptr(bytes), dst);

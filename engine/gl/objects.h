@@ -107,7 +107,11 @@ public:
     }
 
     // Synchronous read of [offset, offset + count·sizeof(T)). Waits for the GPU: tests, tools and
-    // shutdown only, never the frame path.
+    // shutdown only, never the frame path. Goes through a staging buffer the GPU copies into, so that
+    // this buffer is never read by the CPU itself: NVIDIA's driver (580, the H200) copies or moves a
+    // buffer the CPU reads or writes from video into host memory, and a test that uploaded into such a
+    // buffer between its synchronous reads saw the upload overtake a dispatch queued before it
+    // (docs/PERFORMANCE.md "A buffer the CPU reads, and the GL tests on the H200").
     template <class T>
     std::vector<T> read(std::size_t count, std::size_t offset = 0) const {
         std::vector<T> out(count);
@@ -115,6 +119,10 @@ public:
         return out;
     }
     void read_bytes(void* dst, std::size_t bytes, std::size_t offset = 0) const;
+    // The same read from this buffer's own storage, with no staging copy: for buffers made to be read
+    // by the CPU (GL_STREAM_READ: the readback rings' slots), once their fence has signalled, when it
+    // does not wait.
+    void read_own_bytes(void* dst, std::size_t bytes, std::size_t offset = 0) const;
 
 private:
     Name<DeleteBuffer> name_;

@@ -37,7 +37,7 @@ void AsyncReadback::copy(std::span<const Part> parts, std::uint64_t tag) {
 }
 
 void AsyncReadback::hand_over(FenceRing<Buffer>::Slot& s) {
-    s.data.read_bytes(scratch_.data(), bytes_);   // the fence has signalled: no wait
+    s.data.read_own_bytes(scratch_.data(), bytes_);   // the fence has signalled: no wait
     if (on_record_) on_record_(s.tag, scratch_.data());
 }
 

@@ -89,7 +89,7 @@ void ParticleExporter::retire(Slot& s) {
         {&s.data.densities, f.densities.data()}, {&s.data.levels, f.levels.data()},
         {&s.data.energies, f.energies.data()}};
     for (const auto& [copy, dst] : copies)
-        if (*copy) copy->read_bytes(dst, copy->size());
+        if (*copy) copy->read_own_bytes(dst, copy->size());
     queue_.writer().submit(s.tag, buffer);
 }
 

@@ -199,7 +199,7 @@ void CurlNoise::sample(const FieldSpec& spec, gl::Buffer& out) {
 }
 
 std::vector<float> CurlNoise::sample_to_host(const FieldSpec& spec) {
-    gl::Buffer out(spec.points() * 3 * sizeof(float), GL_STREAM_READ, nullptr, "noise.field");
+    gl::Buffer out(spec.points() * 3 * sizeof(float), GL_DYNAMIC_COPY, nullptr, "noise.field");   // read through a staging copy
     timer_.begin_frame();
     sample(spec, out);
     timer_.end_frame();

@@ -53,12 +53,19 @@ TEST_CASE("validation: the GPU's mean compression equals the CPU's of the same d
             order.push_back(tag);
             got[tag] = mean;
         });
-        gl::Buffer densities(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "test.densities");
         // More measurements than the readback ring is deep, none polled: fresh densities each time
-        // (some parked at 0, some below rho0, most above), each uploaded after the last was queued.
+        // (some parked at 0, some below rho0, most above), each uploaded after the last was queued,
+        // each into its own buffer, as the simulation's densities are written (by the GPU) after the
+        // last measurement was queued: NVIDIA's driver (580) moves a buffer the CPU both writes and
+        // reads into host memory and then lets an upload overtake a dispatch queued before it
+        // (docs/PERFORMANCE.md "A buffer the CPU reads, and the GL tests on the H200"), which a test reusing
+        // one buffer would measure.
         const int measures = 2 * validation::CompressionMeter::kDepth + 3;
+        std::vector<gl::Buffer> buffers;
+        for (int m = 0; m < measures; ++m) buffers.emplace_back(n * sizeof(glm::vec4), GL_DYNAMIC_COPY, nullptr, "test.densities");
         std::vector<double> expect;
         for (int m = 0; m < measures; ++m) {
+            gl::Buffer& densities = buffers[std::size_t(m)];
             std::vector<glm::vec4> d(n);
             const bool none_above = m == 1;   // one measurement whose compression is exactly 0
             for (glm::vec4& di : d) {
@@ -134,3 +141,4 @@ TEST_CASE("validation: scene_run's per-frame compression is that of each frame's
     CHECK(std::abs(std::remainder(r.peak_time / frame_dt, 1.0)) < 1e-6);   // a whole frame's end
     test::require_no_gl_errors();
 }
+

@@ -328,11 +328,14 @@ TEST_CASE("pbf: the prediction, lambda and the position correction of both itera
         CHECK(std::abs(double(s.density2[i].y) - p2) <= 8.0 * kU * (std::abs(p1) + std::abs(p2)));
     }
     // The guard records the largest ρ/ρ0 of the last iteration's λ pass, not the prediction's.
+    // The shader's rho/rho0 is GLSL's division, within 2.5 ulp of the quotient (GLSL 4.30 §4.7.1; NVIDIA's
+    // is not IEEE's, llvmpipe's is): the CPU's float quotient of the same densities within 3 ulp.
     float largest = 0.0f;
     for (std::size_t i = 0; i < N; ++i) largest = std::max(largest, s.density2[i].x / rig.fluid.params().rest_density);
-    std::uint32_t bits;
-    std::memcpy(&bits, &largest, sizeof bits);
-    CHECK(s.max_density == bits);
+    float recorded;
+    std::memcpy(&recorded, &s.max_density, sizeof recorded);
+    INFO("recorded " << recorded << ", the CPU's " << largest);
+    CHECK(std::abs(recorded - largest) <= 3.0f * (std::nextafter(largest, 2.0f * largest) - largest));
     // The states exercise what they are meant to: most of the compressed block has a constraint to
     // meet, and the correction reduced the compression.
     CHECK(compressed > int(N) / 2);

@@ -433,18 +433,22 @@ TEST_CASE("water raster: triangles through the near plane and far past the guard
     const Maps draw = render_maps(rig, mesh, Raster::draw, 1);
     // Values up to ~60 m: float32's ulp there is 3.8e-6 m, the fixed point's half step 4.8e-7 m. A
     // thickness is a difference of distances along the ray of up to the box's 60 m, each interpolated
-    // to a few of those ulps: 3e-5 m (8 ulps) + 1e-6 relative. (1e-5 m was too tight: seed 1764408071
-    // had 386 pixels at 1.5-1.9e-5 m, all within 3.3e-6 relative.) Pixels whose centre lies on a
-    // clipped polygon's edge may differ more (under 1 %).
+    // to a few of those ulps: 3e-5 m (8 ulps), plus a relative part for the draws' interpolation over
+    // triangles clipped far past the guard band, whose precision GL leaves to the implementation:
+    // llvmpipe's within 1.5e-6 of the value, NVIDIA's (H200, driver 580, three random boxes) up to
+    // 2.3e-5 (1.4e-4 m), the compute raster agreeing with the analytic chords either way (the
+    // tessellated sphere's case): 5e-5 relative. (1e-5 m alone was too tight: seed 1764408071 had 386 pixels at
+    // 1.5-1.9e-5 m.) Pixels whose centre lies on a clipped polygon's edge may differ more (under 1 %).
     for (const auto& [what, a, b] : {std::tuple{"thickness", &compute.thickness, &draw.thickness},
                                      std::tuple{"sun thickness", &compute.sun, &draw.sun}, std::tuple{"sun near", &compute.near, &draw.near}}) {
         std::size_t beyond = 0, covered = 0;
         for (std::size_t n = 0; n < a->size(); ++n) {
             if ((*b)[n] != 0.0f && (*b)[n] < 1e29f) ++covered;
-            if (std::abs(double((*a)[n]) - double((*b)[n])) > 3e-5 + 1e-6 * std::abs(double((*b)[n]))) ++beyond;
+            if (std::abs(double((*a)[n]) - double((*b)[n])) > 3e-5 + 5e-5 * std::abs(double((*b)[n]))) ++beyond;
         }
         INFO(what << ": covered " << covered << ", beyond the bound " << beyond);
         CHECK(covered > 0);
         CHECK(double(beyond) <= 0.01 * double(a->size()));
     }
 }
+
