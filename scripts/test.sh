@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset debug >/dev/null
 cmake --build --preset debug
-(cd build/test && RANRYU_REQUIRE_XVFB=1 RANRYU_REQUIRE_FFMPEG=1 ctest --output-on-failure -j "$(nproc)" "$@")
+(cd build/test && RANRYU_REQUIRE_XVFB=1 RANRYU_REQUIRE_FFMPEG=1 RANRYU_REQUIRE_MATPLOTLIB=1 ctest --output-on-failure -j "$(nproc)" "$@")
 if [ $# -eq 0 ] && [ "${RANRYU_SANITIZE_RUN:-1}" != 0 ]; then
   scripts/sanitize.sh
 fi

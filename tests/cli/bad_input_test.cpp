@@ -92,18 +92,31 @@ TEST_CASE("bad input: neighbour masks larger than one storage block name the key
     // the masks with 32-bit uints: the dam break at 1.5 mm (2.3M particles) has fluid masks of 336 MB;
     // a 1 m tank at 4 mm has 955,608 boundary particles, whose DFSPH rows' masks (27 runs with Morton
     // keys) take 206 MB. Both are refused before any output exists (engine/sim/fluid.cpp, dfsph.cpp).
+    // A device whose storage blocks hold them (NVIDIA's: 2 GiB) runs these scenes: that part is skipped
+    // there, after checking that the run did write its frame.
     TempDir tmp;
+    auto refused = [&](const Result& r, const char* what) {
+        if (r.exit_code != 0) return true;
+        CHECK(fs::exists(tmp / "out" / "frame_00000.png"));
+        WARN("skipped: this device's storage blocks hold " << what << " (the refusal is checked where they do not, as on llvmpipe)");
+        fs::remove_all(tmp / "out");
+        return false;
+    };
     Result r = run_ranryu(tmp.path(), {"record", "--scene", "dam-break", "--spacing", "0.0015", "--size", "64x48", "--frames", "1",
                                        "--out", tmp.str("out")});
-    check_bad_input(r, {"scene dam-break", "neighbour masks", "storage block", "\"neighbour_masks\": false"}, false);
-    CHECK_FALSE(fs::exists(tmp / "out"));
+    if (refused(r, "the dam break's masks at 1.5 mm")) {
+        check_bad_input(r, {"scene dam-break", "neighbour masks", "storage block", "\"neighbour_masks\": false"}, false);
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    }
     const fs::path path = tmp / "tank.json";
     write_file(path, R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [1, 1, 1]},
         "sph": {"solver": "dfsph", "boundary_rows": true, "neighbour_keys": "morton", "neighbour_masks": false},
         "particles": {"spacing": 0.004, "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}]}})");
     r = run_ranryu(tmp.path(), {"record", "--scene", path.string(), "--size", "64x48", "--frames", "1", "--out", tmp.str("out")});
-    check_bad_input(r, {path.string(), "boundary rows' neighbour masks", "storage block", "\"boundary_rows\": false"}, false);
-    CHECK_FALSE(fs::exists(tmp / "out"));
+    if (refused(r, "the 1 m tank's boundary rows' masks")) {
+        check_bad_input(r, {path.string(), "boundary rows' neighbour masks", "storage block", "\"boundary_rows\": false"}, false);
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    }
 }
 
 TEST_CASE("bad input: validate without a case or with an unknown one", "[cli][bad-input]") {
@@ -258,6 +271,10 @@ TEST_CASE("bad input: record --force with a --records it cannot write keeps the 
 // ---- run --script, --shots ----
 
 TEST_CASE("bad input: a run script with a mistake names the file and the line, before any window", "[cli][bad-input][script]") {
+    if (!RANRYU_HAVE_WINDOW) {   // `run` itself is refused in a headless build (tests/cli/window_test.cpp)
+        WARN("skipped: this build has no window (GLFW was not found at configure time)");
+        return;
+    }
     TempDir tmp;
     write_file(tmp / "s.txt", "# a comment\n0 key h\n2 key q\n");
     // No display: the refusal comes before a window is opened.
