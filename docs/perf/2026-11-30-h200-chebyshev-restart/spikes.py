@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # The dam break's ten-second records of this folder's calls: frames whose largest density passed 1.1 rho0
 # (all, with the densest particle in the floor's five layers, after t = 4 s), the largest, and the last
-# six seconds' steps a frame and density iterations a step. Run from this folder: python3 spikes.py
-import csv, glob, os
-here = os.path.dirname(os.path.abspath(__file__))
+# six seconds' steps a frame and density iterations a step. python3 spikes.py [FOLDER] reads FOLDER's
+# call*/eta-*.tgz (this folder's by default).
+import csv, glob, os, sys
+here = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
 for tgz in sorted(glob.glob(os.path.join(here, "call*", "eta-*.tgz"))):
     import tarfile
     with tarfile.open(tgz) as t:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (As run on the device it copied scratch/objects-direct.cpp, engine/gl/objects.cpp with this patch, over the file.)
 # Session 33, call 4: the whole GL suite on NVIDIA with the three fixes; then whether a synchronous read of
 # the fluid's buffers (the validation cases' energy at the start) slows the run after it: validate
 # dam-break with the staged read (as committed) and with a direct glGetBufferSubData of the live buffer.
@@ -12,5 +13,5 @@ grep -v "passed:" $OUT/gl-tests.txt | grep -v "GL message" | cut -c1-500 | tail 
 v() { timeout 120 $B validate dam-break --solver dfsph --spacing 0.005 --json $OUT/v-$1.json --quiet > $OUT/v-$1.txt 2>&1; python3 -c "
 import json,sys; j=json.load(open('$OUT/v-$1.json')); print('$1', j['particles'], 'particles', j['steps'], 'steps', round(j['wall_seconds'],2), 's wall, rms', round(j['rms_error'],4))"; }
 v staged-a; v staged-b
-cp scratch/objects-direct.cpp engine/gl/objects.cpp && cmake --build build/gpu --target ranryu > /dev/null 2>&1
+patch -s -p1 < docs/perf/2026-11-30-h200-gl-suite/direct-read.patch && cmake --build build/gpu --target ranryu > /dev/null 2>&1
 v direct-a; v direct-b
