@@ -1,5 +1,6 @@
 #include "gl/objects.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <string>
@@ -56,10 +57,17 @@ void Buffer::read_bytes(void* dst, std::size_t bytes, std::size_t offset) const 
         throw Error("Buffer::read past the end (" + std::to_string(offset + bytes) + " > " +
                     std::to_string(size_) + " bytes)");
     if (bytes == 0) return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // what shaders wrote, before the copy
-    const Buffer staging(bytes, GL_STREAM_READ, nullptr, "read.staging");
-    copy_buffer(*this, staging, bytes, offset, 0);
-    staging.read_own_bytes(dst, bytes, 0);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // what shaders wrote, before the copies
+    // In pieces of at most kStagingBytes, so that reading a buffer near the device's memory (a
+    // checkpoint's) does not need as much again.
+    constexpr std::size_t kStagingBytes = std::size_t(32) << 20;
+    const Buffer staging(std::min(bytes, kStagingBytes), GL_STREAM_READ, nullptr, "read.staging");
+    for (std::size_t done = 0; done < bytes;) {
+        const std::size_t piece = std::min(bytes - done, kStagingBytes);
+        copy_buffer(*this, staging, piece, offset + done, 0);
+        staging.read_own_bytes(static_cast<char*>(dst) + done, piece, 0);
+        done += piece;
+    }
 }
 
 void Buffer::read_own_bytes(void* dst, std::size_t bytes, std::size_t offset) const {
@@ -67,7 +75,8 @@ void Buffer::read_own_bytes(void* dst, std::size_t bytes, std::size_t offset) co
         throw Error("Buffer::read past the end (" + std::to_string(offset + bytes) + " > " +
                     std::to_string(size_) + " bytes)");
     if (bytes == 0) return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    // No memory barrier: this storage is written by copies (whose writes GL orders before this read),
+    // not by shaders, and on llvmpipe a barrier waits for all queued work.
     glBindBuffer(GL_COPY_READ_BUFFER, id());
     glGetBufferSubData(GL_COPY_READ_BUFFER, GLintptr(offset), GLsizeiptr(bytes), dst);
     glBindBuffer(GL_COPY_READ_BUFFER, 0);

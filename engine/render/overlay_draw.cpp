@@ -87,14 +87,15 @@ void OverlayDraw::draw_list(std::span<const OverlayVertex> vertices, std::span<c
     indices_.upload(indices.data(), indices.size_bytes(), first_index * sizeof(OverlayIndex));
     vertex_fill_ += vertices.size(), index_fill_ += indices.size();
 
-    GLuint bound = 0;
+    GLuint bound = ~0u;   // none yet: a command's texture 0 is bound too
     for (const OverlayCommand& c : commands) {
         if (c.index_count == 0 || std::size_t(c.first_index) + c.index_count > indices.size()) continue;
-        // The clip rectangle in framebuffer pixels; GL's scissor counts rows from the bottom.
+        // The clip rectangle in framebuffer pixels, truncated as Dear ImGui's own backends do; GL's
+        // scissor counts rows from the bottom.
         const glm::vec2 lo = (glm::vec2(c.clip.x, c.clip.y) - display_pos_) * scale_;
         const glm::vec2 hi = (glm::vec2(c.clip.z, c.clip.w) - display_pos_) * scale_;
-        const int x0 = std::max(0, int(std::floor(lo.x))), y0 = std::max(0, int(std::floor(lo.y)));
-        const int x1 = std::min(framebuffer_.x, int(std::ceil(hi.x))), y1 = std::min(framebuffer_.y, int(std::ceil(hi.y)));
+        const int x0 = std::max(0, int(lo.x)), y0 = std::max(0, int(lo.y));
+        const int x1 = std::min(framebuffer_.x, int(hi.x)), y1 = std::min(framebuffer_.y, int(hi.y));
         if (x1 <= x0 || y1 <= y0) continue;
         glScissor(x0, framebuffer_.y - y1, x1 - x0, y1 - y0);
         if (c.texture != bound) glBindTexture(GL_TEXTURE_2D, bound = c.texture);

@@ -6,8 +6,10 @@
 // needs more than it ever has (reallocations() counts those), so that a frame's panel costs uploads
 // and draws alone.
 //
-// The buffers hold kRegions regions, written in turn a frame each (a ring), so a frame's upload does
-// not overwrite what the GPU may still be drawing from a frame before. Vertices are Dear ImGui's
+// The buffers hold kRegions regions, written in turn a frame each (a ring): GL orders the uploads
+// (glBufferSubData) after the draws queued before them anyway, and the ring spares the driver a wait
+// or a copy when the GPU is still drawing from the region a frame before. (Unsynchronised or
+// persistent mappings would need a fence a region.) Vertices are Dear ImGui's
 // ImDrawVert byte for byte (app/overlay.cpp asserts it): position in display pixels with a top-left
 // origin, texture coordinates, RGBA8 colour. Indices are 16-bit (ImDrawIdx); a list longer than
 // 65,536 vertices arrives as commands with vertex offsets (ImGuiBackendFlags_RendererHasVtxOffset).

@@ -292,6 +292,21 @@ TEST_CASE("ranryu profile lists the passes the scene does not run, and why, in i
     }
     CHECK_THAT(r.out, Contains("not timed: " + untimed + " ("));
     for (const char* named_elsewhere : {"dfsph.density", "wavelet", "pbf.lambda", "draw-particles"}) CHECK_THAT(untimed, !Contains(named_elsewhere));
+
+    // The ballistic model (the falling block) runs none of SPH's passes and says so by their names;
+    // its own integration is timed, under its own name.
+    const Result b = run_ranryu(tmp.path(), {"profile", "--scene", "falling-block", "--shading", "particles", "--size", "64x48",
+                                             "--frames", "2", "--warmup", "1", "--json", "b.json", "--quiet"});
+    INFO(b.out << b.err);
+    REQUIRE(b.exit_code == 0);
+    CHECK_THAT(b.out, Contains("not run: hash, sort.*, reorder, density, forces, integrate, dfsph.*, pbf.*: the SPH model's, since the "
+                               "scene uses the ballistic model, no SPH"));
+    const auto jb = nlohmann::json::parse(read_file(tmp / "b.json"));
+    std::set<std::string> ballistic_timed;
+    for (const auto& p : jb["passes"]) ballistic_timed.insert(p["name"].get<std::string>());
+    CHECK(ballistic_timed.count("ballistic.integrate"));
+    for (const char* absent : {"hash", "reorder", "integrate", "density"}) CHECK_FALSE(ballistic_timed.count(absent));
+    if (jb.contains("not_timed")) CHECK_THAT(jb["not_timed"].get<std::string>(), !Contains("hash") && !Contains("sort."));
 }
 
 TEST_CASE("ranryu profile prints a scene's sph.why, and says when --spacing or --solver changed the scene it speaks of",

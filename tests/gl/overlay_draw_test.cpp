@@ -1,12 +1,14 @@
 // The overlay's draw (render::OverlayDraw, glsl/render/overlay.vert, overlay.frag) against the CPU:
-// random axis-aligned quads in two lists, each with a random colour, a 1x1 texture of a random colour,
-// a random clip rectangle and (within its list) a vertex offset, drawn over a cleared target, must give
-// every pixel the CPU's composite: in draw order, where the pixel's centre lies inside the quad and
-// its clip rectangle,
+// random axis-aligned quads in two lists, each with a random colour, a 2x2 texture of random texels
+// sampled at one texel's centre, a random clip rectangle, and its own index offset within its list and
+// (every other quad) a vertex offset, drawn over a cleared target through a display rectangle at a
+// random offset with 1 or 2 framebuffer pixels a display pixel (a HiDPI window's), must give every
+// pixel the CPU's composite: in draw order, where the pixel's centre lies inside the quad and its
+// clip rectangle (both mapped to framebuffer pixels as (p − display_pos)·scale),
 //     src = colour · texel,   rgb ← src.rgb · src.a + rgb · (1 − src.a),   a ← src.a + a · (1 − src.a)
-// (Dear ImGui's blending), the display's y axis pointing down. Tolerance 2/255 a channel: each blend
-// is done in float and stored in 8 bits (0.5 of rounding), the CPU rounds alike, and a pixel under
-// several quads carries a rounding difference of one into the next blend.
+// (Dear ImGui's blending), the display's y axis pointing down and the texture's first row at v = 0.
+// Tolerance 2/255 a channel: each blend is done in float and stored in 8 bits (0.5 of rounding), the
+// CPU rounds alike, and a pixel under several quads carries a rounding difference of one into the next.
 // Then the buffers' contract: frames that fit reallocate nothing; a frame larger than any before
 // reallocates once and draws the same; lists holding more than begin() was given are refused.
 #include "support/gl_fixture.h"
@@ -33,10 +35,18 @@ using ranryu::shader::FileSource;
 constexpr int kWidth = 96, kHeight = 64;
 
 struct Quad {
-    glm::ivec4 rect;   // x0, y0, x1, y1 (display pixels, top-left origin)
+    glm::ivec4 rect;   // x0, y0, x1, y1 (framebuffer pixels, top-left origin)
     glm::ivec4 clip;
-    std::array<std::uint8_t, 4> colour, texel;
+    std::array<std::uint8_t, 4> colour;
+    std::array<std::array<std::uint8_t, 4>, 4> texels;   // the 2x2 texture, rows from the top
+    int texel = 0;                                       // the one sampled: row texel / 2, column texel % 2
     int list = 0;
+};
+
+// The display the quads are drawn through: framebuffer pixel p is display point p / scale + pos.
+struct Display {
+    glm::vec2 pos{0.0f};
+    float scale = 1.0f;
 };
 
 std::uint32_t pack(const std::array<std::uint8_t, 4>& c) {
@@ -55,7 +65,8 @@ std::vector<double> composite(const std::vector<Quad>& quads, const glm::dvec4& 
             const int x0 = std::max(q.rect.x, q.clip.x), x1 = std::min(q.rect.z, q.clip.z);
             const int y0 = std::max(q.rect.y, q.clip.y), y1 = std::min(q.rect.w, q.clip.w);
             double src[4];
-            for (int c = 0; c < 4; ++c) src[c] = (q.colour[c] / 255.0) * (q.texel[c] / 255.0);
+            const auto& texel = q.texels[std::size_t(q.texel)];
+            for (int c = 0; c < 4; ++c) src[c] = (q.colour[std::size_t(c)] / 255.0) * (texel[std::size_t(c)] / 255.0);
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     double* d = &img[(std::size_t(y) * kWidth + std::size_t(x)) * 4];
@@ -66,27 +77,35 @@ std::vector<double> composite(const std::vector<Quad>& quads, const glm::dvec4& 
     return img;
 }
 
-// Draws `quads` as two lists, every quad its own command with its own vertex offset (the quads'
-// vertices one after another in their list, the indices 0-5 of one quad shared by all).
-void draw(render::OverlayDraw& d, const std::vector<Quad>& quads, const std::vector<gl::Texture2D>& textures) {
+// Draws `quads` as two lists, every quad its own command: its six indices at its own index offset in
+// its list, and its vertices addressed either through the command's vertex offset (even quads:
+// indices 0-3) or by their place in the list (odd quads: no vertex offset).
+void draw(render::OverlayDraw& d, const std::vector<Quad>& quads, const std::vector<gl::Texture2D>& textures, const Display& display) {
     std::vector<render::OverlayVertex> vertices[2];
     std::vector<render::OverlayIndex> indices[2];
     std::vector<render::OverlayCommand> commands[2];
+    auto to_display = [&](glm::ivec4 r) {
+        return glm::vec4(glm::vec2(r.x, r.y) / display.scale + display.pos, glm::vec2(r.z, r.w) / display.scale + display.pos);
+    };
     for (std::size_t k = 0; k < quads.size(); ++k) {
         const Quad& q = quads[k];
         auto& v = vertices[q.list];
-        const auto first = std::uint32_t(v.size());
+        auto& i = indices[q.list];
+        const auto first = std::uint32_t(v.size()), first_index = std::uint32_t(i.size());
         const std::uint32_t rgba = pack(q.colour);
-        const float x0 = float(q.rect.x), y0 = float(q.rect.y), x1 = float(q.rect.z), y1 = float(q.rect.w);
-        v.push_back({x0, y0, 0.5f, 0.5f, rgba});
-        v.push_back({x1, y0, 0.5f, 0.5f, rgba});
-        v.push_back({x1, y1, 0.5f, 0.5f, rgba});
-        v.push_back({x0, y1, 0.5f, 0.5f, rgba});
-        if (indices[q.list].empty()) indices[q.list] = {0, 1, 2, 0, 2, 3};
-        commands[q.list].push_back({glm::vec4(q.clip), textures[k].id(), 0, 6, first});
+        const glm::vec4 r = to_display(q.rect);
+        const float u = q.texel % 2 ? 0.75f : 0.25f, t = q.texel / 2 ? 0.75f : 0.25f;
+        v.push_back({r.x, r.y, u, t, rgba});
+        v.push_back({r.z, r.y, u, t, rgba});
+        v.push_back({r.z, r.w, u, t, rgba});
+        v.push_back({r.x, r.w, u, t, rgba});
+        const bool offset = k % 2 == 0;
+        const auto base = render::OverlayIndex(offset ? 0 : first);
+        for (const int n : {0, 1, 2, 0, 2, 3}) i.push_back(render::OverlayIndex(base + n));
+        commands[q.list].push_back({to_display(q.clip), textures[k].id(), first_index, 6, offset ? first : 0u});
     }
-    d.begin(vertices[0].size() + vertices[1].size(), indices[0].size() + indices[1].size(), glm::vec2(0.0f),
-            glm::vec2(kWidth, kHeight), glm::vec2(1.0f));
+    d.begin(vertices[0].size() + vertices[1].size(), indices[0].size() + indices[1].size(), display.pos,
+            glm::vec2(kWidth, kHeight) / display.scale, glm::vec2(display.scale));
     for (int l = 0; l < 2; ++l) d.draw_list(vertices[l], indices[l], commands[l]);
     d.end();
 }
@@ -123,7 +142,11 @@ std::vector<Quad> random_quads(ranryu::test::Random& rng, int count) {
         const glm::ivec2 x = span(kWidth), y = span(kHeight), cx = span(kWidth), cy = span(kHeight);
         q.rect = {x.x, y.x, x.y, y.y};
         q.clip = k % 3 == 0 ? glm::ivec4(0, 0, kWidth, kHeight) : glm::ivec4(cx.x, cy.x, cx.y, cy.y);
-        for (int c = 0; c < 4; ++c) q.colour[std::size_t(c)] = std::uint8_t(rng.below(256)), q.texel[std::size_t(c)] = std::uint8_t(rng.below(256));
+        for (int c = 0; c < 4; ++c) {
+            q.colour[std::size_t(c)] = std::uint8_t(rng.below(256));
+            for (auto& t : q.texels) t[std::size_t(c)] = std::uint8_t(rng.below(256));
+        }
+        q.texel = int(rng.below(4));
         q.list = k < count / 2 ? 0 : 1;
         quads.push_back(q);
     }
@@ -132,14 +155,14 @@ std::vector<Quad> random_quads(ranryu::test::Random& rng, int count) {
 
 std::vector<gl::Texture2D> textures_of(const std::vector<Quad>& quads) {
     std::vector<gl::Texture2D> t;
-    for (const Quad& q : quads) t.push_back(render::OverlayDraw::texture(q.texel.data(), 1, 1));
+    for (const Quad& q : quads) t.push_back(render::OverlayDraw::texture(q.texels[0].data(), 2, 2));   // the four texels contiguous
     return t;
 }
 
 }  // namespace
 
-TEST_CASE("overlay draw: random quads in two lists, with vertex offsets, clip rectangles and textures, against the CPU's "
-          "composite within 2/255",
+TEST_CASE("overlay draw: random quads in two lists, with index and vertex offsets, clip rectangles, textures and a display "
+          "at an offset and scale 1 or 2, against the CPU's composite within 2/255",
           "[render][overlay]") {
     ranryu::test::context();
     ranryu::test::Random rng;
@@ -147,11 +170,15 @@ TEST_CASE("overlay draw: random quads in two lists, with vertex offsets, clip re
     render::OverlayDraw d(FileSource::embedded());
     gl::RenderTarget target(kWidth, kHeight);
     const glm::dvec4 background(0.1, 0.3, 0.8, 1.0);
-    for (int round = 0; round < 3; ++round) {   // three frames: each region of the ring once
+    for (int round = 0; round < 6; ++round) {   // each region of the ring twice; scale 1, then 2
         const std::vector<Quad> quads = random_quads(rng, 8);
         const std::vector<gl::Texture2D> textures = textures_of(quads);
+        // A display origin of whole and half pixels (exact in float), as a window's framebuffer scale
+        // makes them: the quads' corners and clips land on framebuffer pixel edges.
+        const Display display{glm::vec2(float(rng.below(64)) - 32.0f, float(rng.below(64)) * 0.5f), round < 3 ? 1.0f : 2.0f};
+        INFO("display at " << display.pos.x << ", " << display.pos.y << ", scale " << display.scale);
         clear(target, background);
-        draw(d, quads, textures);
+        draw(d, quads, textures, display);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         INFO("frame " << round);
         CHECK(largest_difference(target, composite(quads, background)) <= 2.0);
@@ -176,7 +203,7 @@ TEST_CASE("overlay draw: frames that fit reallocate nothing, one larger than any
         const std::vector<Quad> quads = random_quads(rng, count);
         const std::vector<gl::Texture2D> textures = textures_of(quads);
         clear(target, background);
-        draw(d, quads, textures);
+        draw(d, quads, textures, Display{});
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         return largest_difference(target, composite(quads, background));
     };
