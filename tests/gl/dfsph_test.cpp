@@ -355,12 +355,15 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
           "[dfsph]") {
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
-    // A compressed block against the floor and two walls (boundary terms), another in mid-tank.
+    // A compressed block against the floor and two walls (boundary terms), another in mid-tank; and one
+    // compressed so far (pitch 0.62: some 110 candidates a merged row) that runs hold neighbours 32 or more
+    // places in, which the walk visits after the hits' bits (glsl/sim/fluid/density_walk.glsl).
     const glm::vec3 corner = GENERATE(glm::vec3(0.0f), glm::vec3(0.02f, 0.03f, 0.025f));
-    INFO("block at " << corner.x << " " << corner.y << " " << corner.z);
+    const float pitch = GENERATE(0.95f, 0.62f);
+    INFO("block at " << corner.x << " " << corner.y << " " << corner.z << ", pitch " << pitch << " dx");
     Rig rig(R"("boundary_viscosity": 2e-3)");
     std::vector<glm::vec4> x, v;
-    block_state(rng, rig, corner, 0.95f, 0.15f, 0.5f, x, v);
+    block_state(rng, rig, corner, pitch, 0.15f, 0.5f, x, v);
     std::vector<glm::vec2> warm(x.size());
     for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
     const Stages s = run_stages(rig, x, v, warm, 4e-4f, 1);
@@ -382,10 +385,11 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
     const double dt = double(s.dt), h = p.h;
     REQUIRE(dt == Approx(4e-4).epsilon(1e-6));
 
-    int deficient = 0, walls = 0;
+    int deficient = 0, walls = 0, long_runs = 0;
     for (std::size_t i = 0; i < xs.size(); ++i) {
         INFO("particle " << i << " at " << xs[i].x << " " << xs[i].y << " " << xs[i].z);
         const double n = double(m.terms[i]) + 1.0;
+        long_runs += (flags_of(s.density[i]) & 1u) == 0u;   // kMasksComplete clear: a neighbour past a mask's 32
         // (2): Σ m W + Σ psi W, each W at most 8/(pi h^3) (the kernel's peak).
         const double w_peak = 8.0 / (3.14159265358979 * h * h * h);
         CHECK(std::abs(double(s.density[i].x) - rho[i]) <= (n + kC) * kU * (p.mass * n + 2.0 * rho[i]) * 1.0 + kU * w_peak * p.mass);
@@ -418,6 +422,8 @@ TEST_CASE("dfsph: the density pass's density, factor, flags, non-pressure accele
     // the compressed blocks full of neighbours but some at their faces.
     if (corner == glm::vec3(0.0f)) CHECK(walls > 100);
     CHECK(deficient < int(xs.size()));
+    INFO(long_runs << " particles with a neighbour 32 or more places into a run");
+    if (pitch < 0.9f) CHECK(long_runs > 0);
     // What the step leaves for the next one's warm starts: the density solve's kappa, and the divergence
     // solve's impulse dt kappa_v (D5), which the next step divides by its own dt.
     for (std::size_t i = 0; i < xs.size(); ++i) {

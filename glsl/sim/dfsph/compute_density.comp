@@ -36,6 +36,7 @@ layout(std430) writeonly buffer BoundaryList { uint boundary_list[]; };
 uint epoch_;
 #endif
 
+#define RANRYU_VISITS_FROM_HITS   // its visits are heavy (density_walk.glsl)
 #include "../fluid/density_walk.glsl"
 
 vec3 xi_, vi_, grad_fluid_, grad_wall_, viscous_, viscous_wall_, pressure_;

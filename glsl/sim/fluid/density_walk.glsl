@@ -17,6 +17,39 @@ layout(std430) writeonly buffer NeighbourMasks { uint neighbours[]; };
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
 
+// Where a run's candidates within h are visited. By default inside the candidates' loop. With
+// RANRYU_VISITS_FROM_HITS (a pass whose visits are heavy: DFSPH's density pass, PBF's lambda pass) the
+// loop only tests |d|² and keeps the hits as bits, and visit_hits() visits them after it, in the same
+// order: a warp's lanes test their candidates in step and most candidates lie outside h, so a visit
+// inside the loop runs its arithmetic for almost every candidate with few lanes active, where from the
+// bits a warp visits as many times as its lane with the most neighbours in the run (measured:
+// docs/PERFORMANCE.md "The density pass's visits from its hits").
+#ifdef RANRYU_VISITS_FROM_HITS
+const bool kVisitsFromHits = true;
+#else
+const bool kVisitsFromHits = false;
+#endif
+
+// Visits run [s, e)'s candidates within h (r² < h2) in the run's order: those whose bit j − s is set in
+// `hits` (the first 32), then any further ones, tested again (a run longer than 32 candidates is rare,
+// and a warp without one skips the second loop). Fluid candidates go to visit_fluid(), boundary ones to
+// visit_boundary().
+void visit_hits(vec3 xi, uvec2 run, uint hits, float h2, bool fluid) {
+    for (; hits != 0u; hits &= hits - 1u) {
+        uint j = run.x + uint(findLSB(hits));
+        vec3 d = xi - (fluid ? position[j].xyz : boundary[j].xyz);
+        if (fluid) visit_fluid(j, d, dot(d, d));
+        else visit_boundary(j, d, dot(d, d));
+    }
+    for (uint j = run.x + 32u; j < run.y; ++j) {
+        vec3 d = xi - (fluid ? position[j].xyz : boundary[j].xyz);
+        float r2 = dot(d, d);
+        if (r2 >= h2) continue;
+        if (fluid) visit_fluid(j, d, r2);
+        else visit_boundary(j, d, r2);
+    }
+}
+
 // Walks particle i's neighbours; returns its flags (kMasksComplete, kBoundaryNear and
 // kBoundaryMasksComplete of fluid.glsl) and in `count` how many neighbours it has within h, fluid
 // (j != i) and boundary.
@@ -43,13 +76,14 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
 #endif
     FOR_EACH_RUN {
         uvec2 run = NEIGHBOUR_RUN(c, true);
-        uint mask = 0u;
+        uint mask = 0u, hits = 0u;
         for (uint j = run.x; j < run.y; ++j) {   // |d|² first: most candidates lie outside h
             vec3 d = xi - position[j].xyz;
             float r2 = dot(d, d);
             if (r2 < h2) {
-                visit_fluid(j, d, r2);
                 uint bit = j - run.x;
+                if (!kVisitsFromHits) visit_fluid(j, d, r2);
+                else if (bit < 32u) hits |= 1u << bit;
                 if (j != i) {
                     ++count;
                     if (bit < 32u) mask |= 1u << bit;
@@ -57,17 +91,20 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
                 }
             }
         }
+        if (kVisitsFromHits) visit_hits(xi, run, hits, h2, true);
 #ifdef RANRYU_NEIGHBOUR_MASKS
         neighbours[2u * run_index * sph.particle_count + i] = run.x;
         neighbours[(2u * run_index + 1u) * sph.particle_count + i] = mask;
 #endif
         run = near_boundary ? NEIGHBOUR_RUN(c, false) : uvec2(0u);
         uint boundary_mask = 0u;
+        hits = 0u;
         for (uint b = run.x; b < run.y; ++b) {
             vec3 d = xi - boundary[b].xyz;
             float r2 = dot(d, d);
             if (r2 < h2) {
-                visit_boundary(b, d, r2);
+                if (!kVisitsFromHits) visit_boundary(b, d, r2);
+                else if (b - run.x < 32u) hits |= 1u << (b - run.x);
                 flags |= kBoundaryNear;
                 ++count;
             }
@@ -76,6 +113,7 @@ uint walk_neighbours(uint i, vec3 xi, out uint count) {
                 else flags &= ~kBoundaryMasksComplete;
             }
         }
+        if (kVisitsFromHits) visit_hits(xi, run, hits, h2, false);
 #ifdef RANRYU_BOUNDARY_MASKS
         if (near_boundary) {   // else kBoundaryNear stays clear and no walk reads them
             neighbours[2u * (kNeighbourRuns + run_index) * sph.particle_count + i] = run.x;

@@ -28,6 +28,7 @@ layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
 #ifdef RANRYU_BOUNDARY_SKIN
 layout(std430) writeonly buffer MaskOrigins { vec4 mask_origin[]; };   // where the boundary masks were recorded (pbf.glsl)
 #endif
+#define RANRYU_VISITS_FROM_HITS   // its visits are heavy (density_walk.glsl)
 #include "../fluid/density_walk.glsl"
 #else
 layout(std430) buffer Density { vec4 density[]; };
