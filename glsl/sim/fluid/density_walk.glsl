@@ -31,9 +31,9 @@ const bool kVisitsFromHits = false;
 #endif
 
 // Visits run [s, e)'s candidates within h (r² < h2) in the run's order: those whose bit j − s is set in
-// `hits` (the first 32), then any further ones, tested again (a run longer than 32 candidates is rare,
-// and a warp without one skips the second loop). Fluid candidates go to visit_fluid(), boundary ones to
-// visit_boundary().
+// `hits` (the first 32), then any further ones, tested again (a run longer than 32 candidates is found
+// where the fluid is compressed; a warp without one skips the second loop). Fluid candidates go to
+// visit_fluid(), boundary ones to visit_boundary().
 void visit_hits(vec3 xi, uvec2 run, uint hits, float h2, bool fluid) {
     for (; hits != 0u; hits &= hits - 1u) {
         uint j = run.x + uint(findLSB(hits));
