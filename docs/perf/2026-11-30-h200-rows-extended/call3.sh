@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The wall's drag tangential only (scratch/tan/glsl: the drag of (D7) with its component along the wall's
-# gradient sum removed, also in the force condition's |a|) against the shipped shaders: the dam break ten
-# seconds at about 250k and 1M, the front at a/dx = 40.
+# gradient sum removed, also in the force condition's |a|): the dam break ten seconds at about 250k and
+# 1M, the front at a/dx = 40. As run, the loop holds `tan` alone; the shipped shaders' runs it is set
+# against are call 1's (the same binary).
 set -u
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
 scripts/gpu/setup-and-build.sh ranryu > $OUT/build.txt 2>&1 || { tail -30 $OUT/build.txt; exit 1; }
