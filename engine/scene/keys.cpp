@@ -126,6 +126,8 @@ std::vector<Key> make_keys() {
                 "DFSPH: a density solve of fewer iterations than this lets the next steps grow by 1.1 (docs/DFSPH.md (D8))."),
         boolean("sph.divergence_solve", h.divergence_solve, "DFSPH: run the divergence solve (docs/DFSPH.md (D5)); false: the density solve alone."),
         boolean("sph.boundary_rows", h.boundary_rows, "DFSPH: the boundary particles near the fluid are rows of the solves with their own pressure (docs/DFSPH.md (D9)); false: Akinci's boundary term, the fluid particle's pressure once."),
+        boolean("sph.eliminate_boundary_rows", h.eliminate_boundary_rows,
+                "DFSPH: the density solve's boundary rows take the fluid's pressure extended to them and hand their excess to the fluid, instead of being unknowns of their own (docs/DFSPH.md (D13)); needs sph.boundary_rows. The tank at rest sets it."),
         number("sph.boundary_relaxation", "", h.boundary_relaxation, 0.05, 1.0, "DFSPH: the boundary rows' l1-Jacobi relaxation ω_b (docs/DFSPH.md (D9))."),
         number("sph.warm_start", "", h.warm_start, 0.0, 1.0, "DFSPH: the density solve's warm-start weight w (docs/DFSPH.md (D6))."),
         number("sph.divergence_warm_start", "", h.divergence_warm_start, 0.0, 1.0,

@@ -439,6 +439,9 @@ Scene parse(const std::string& text, const std::string& origin) {
                    "): every solve would shrink the step");
         h.divergence_solve = p.boolean("divergence_solve");
         h.boundary_rows = p.boolean("boundary_rows");
+        h.eliminate_boundary_rows = p.boolean("eliminate_boundary_rows");
+        if (h.eliminate_boundary_rows && !h.boundary_rows)
+            p.fail("\"sph.eliminate_boundary_rows\" needs \"sph.boundary_rows\": it changes how the rows of (D9) are solved");
         h.boundary_relaxation = float(p.number("boundary_relaxation"));
         h.warm_start = float(p.number("warm_start"));
         h.divergence_warm_start = float(p.number("divergence_warm_start"));

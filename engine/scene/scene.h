@@ -85,6 +85,7 @@ struct SphSettings {
     float pressure_stabilisation = 0.0f;  // gamma of (D12): the density solve's blend of the compact Laplacian; 0: off
     float boundary_viscosity = 0.0f;      // nu_b of (D7) (m^2/s); 0: free-slip walls
     bool boundary_rows = true;            // (D9): boundary particles as rows of the solves; false: Akinci's term
+    bool eliminate_boundary_rows = false; // (D13): the density solve's rows extended from the fluid's pressure
     float boundary_relaxation = 1.0f;     // omega_b of (D9)
     bool morton = false;            // neighbour-grid keys: Morton order instead of linear
     bool neighbour_masks = true;    // the density pass records which candidates of each neighbour run lie

@@ -192,7 +192,7 @@ RANRYU_STRUCT_END(DfsphParams, 96)
 
 // One solve's state on the GPU (std430 storage block Solve; one per solve, RANRYU_DFSPH_SOLVE_STRIDE
 // bytes apart), also the indirect arguments of its iterations: the last workgroup of each residual
-// pass sets dispatch.x and correct_groups to 0 once the solve has converged or reached its cap, so the
+// pass sets dispatch.x, correct_groups and rows_groups to 0 once the solve has converged or reached its cap, so the
 // iterations the CPU issued beyond that dispatch no work.
 RANRYU_STRUCT(SolveState) {
     uvec4 dispatch;      // xyz: workgroups of the next iteration's accelerate pass; w: unused
@@ -208,9 +208,12 @@ RANRYU_STRUCT(SolveState) {
     uint error_peak;     // this iteration's largest min(e_i/rho0, 1) over the particles, as its float's bits
                          // (atomicMax: non-negative floats order as their bits)
     float peak;          // the largest e_i/rho0 of the solve's last decided iteration
-    uint pad0, pad1;
+    uint rows_groups;    // with rows_y, rows_z: the indirect arguments of the eliminated rows' passes
+    uint rows_y;         // (docs/DFSPH.md (D13)): the rows' workgroups in a density solve with
+    uint rows_z;         // sph.eliminate_boundary_rows (set by its prepare pass), 0 once it has converged
+    uint pad0, pad1, pad2;
 }
-RANRYU_STRUCT_END(SolveState, 64)
+RANRYU_STRUCT_END(SolveState, 80)
 #define RANRYU_DFSPH_SOLVE_STRIDE 256   // bytes between the two SolveStates (a multiple of any offset alignment)
 
 // The boundary particles that are rows of the solve this step (docs/DFSPH.md (D9); std430 block

@@ -18,7 +18,7 @@
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
 //   SubparticleState:  dispatch, draw, counts, offsets, limits (a std430 storage block) 20 words
 //   DfsphParams:  its 20 scalars in order                                            20 words
-//   SolveState:   dispatch, then its 12 scalars in order (std430)                    16 words
+//   SolveState:   dispatch, then its 16 scalars in order (std430)                    20 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
 //   kMacros:      the RANRYU_* macros, in the order of the array below               25 words
@@ -102,7 +102,8 @@ void main() {
 
     put(solve.dispatch); put(solve.iterations); put(solve.error_sum); put(solve.groups_done); put(solve.solve);
     put(solve.weight); put(solve.correct_groups); put(solve.correct_y); put(solve.correct_z);
-    put(solve.error_peak); put(solve.peak); put(solve.pad0); put(solve.pad1);
+    put(solve.error_peak); put(solve.peak); put(solve.rows_groups); put(solve.rows_y); put(solve.rows_z);
+    put(solve.pad0); put(solve.pad1); put(solve.pad2);
 
     put(rows.dispatch); put(rows.rows); put(rows.count); put(rows.epoch); put(rows.pad0);
     put(pbf.epsilon); put(pbf.s_corr_scale); put(pbf.s_corr_n); put(pbf.inv_w_dq);

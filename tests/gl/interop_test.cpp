@@ -193,8 +193,12 @@ const std::map<std::string, Member>& cpp_members() {
         {"solve.correct_z", {offsetof(gpu::SolveState, correct_z), GL_UNSIGNED_INT}},
         {"solve.error_peak", {offsetof(gpu::SolveState, error_peak), GL_UNSIGNED_INT}},
         {"solve.peak", {offsetof(gpu::SolveState, peak), GL_FLOAT}},
+        {"solve.rows_groups", {offsetof(gpu::SolveState, rows_groups), GL_UNSIGNED_INT}},
+        {"solve.rows_y", {offsetof(gpu::SolveState, rows_y), GL_UNSIGNED_INT}},
+        {"solve.rows_z", {offsetof(gpu::SolveState, rows_z), GL_UNSIGNED_INT}},
         {"solve.pad0", {offsetof(gpu::SolveState, pad0), GL_UNSIGNED_INT}},
         {"solve.pad1", {offsetof(gpu::SolveState, pad1), GL_UNSIGNED_INT}},
+        {"solve.pad2", {offsetof(gpu::SolveState, pad2), GL_UNSIGNED_INT}},
 
         {"rows.dispatch", {offsetof(gpu::BoundaryRowsState, dispatch), GL_UNSIGNED_INT_VEC4}},
         {"rows.rows", {offsetof(gpu::BoundaryRowsState, rows), GL_UNSIGNED_INT}},
@@ -491,7 +495,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     ss.weight = d.f();
     for (std::uint32_t* u : {&ss.correct_groups, &ss.correct_y, &ss.correct_z, &ss.error_peak}) *u = d.u();
     ss.peak = d.f();
-    for (std::uint32_t* u : {&ss.pad0, &ss.pad1}) *u = d.u();
+    for (std::uint32_t* u : {&ss.rows_groups, &ss.rows_y, &ss.rows_z, &ss.pad0, &ss.pad1, &ss.pad2}) *u = d.u();
 
     gpu::BoundaryRowsState rs{};
     rs.dispatch = d.u4();
@@ -549,7 +553,8 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     const std::size_t dfsph_end = expect.w.size();
     expect.put(ss.dispatch); expect.put(ss.iterations); expect.put(ss.error_sum); expect.put(ss.groups_done);
     expect.put(ss.solve); expect.put(ss.weight); expect.put(ss.correct_groups); expect.put(ss.correct_y); expect.put(ss.correct_z);
-    expect.put(ss.error_peak); expect.put(ss.peak); expect.put(ss.pad0); expect.put(ss.pad1);
+    expect.put(ss.error_peak); expect.put(ss.peak); expect.put(ss.rows_groups); expect.put(ss.rows_y); expect.put(ss.rows_z);
+    expect.put(ss.pad0); expect.put(ss.pad1); expect.put(ss.pad2);
     const std::size_t solve_end = expect.w.size();
     expect.put(rs.dispatch); expect.put(rs.rows); expect.put(rs.count); expect.put(rs.epoch); expect.put(rs.pad0);
     const std::size_t rows_end = expect.w.size();

@@ -270,6 +270,75 @@ void correct_rows(const std::vector<dvec3>& x, const std::vector<dvec3>& a, cons
     }
 }
 
+std::vector<double> extended_pressure(const std::vector<dvec3>& x, const std::vector<double>& kappa, const std::vector<dvec3>& boundary,
+                                      const Params& params) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> kappa_b(boundary.size(), 0.0);
+    for (size_t b = 0; b < boundary.size(); ++b) {
+        double weight = 0.0, extended = 0.0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            const dvec3 d = boundary[b] - x[j];
+            const double distance = glm::length(d);
+            if (distance >= params.h) continue;
+            const double w = kernel.W(distance);
+            weight += w;
+            extended += w * (kappa[j] + (kappa[j] > 0.0 ? glm::dot(params.gravity, d) / params.rest_density : 0.0));
+        }
+        kappa_b[b] = weight > 0.0 ? std::max(extended / weight, 0.0) : 0.0;
+    }
+    return kappa_b;
+}
+
+std::vector<double> handed_excess(const std::vector<dvec3>& x, const std::vector<dvec3>& a, const Rows& rows,
+                                  const std::vector<dvec3>& boundary, const std::vector<double>& psi, const Params& params, double dt) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> q(boundary.size(), 0.0);
+    for (size_t b = 0; b < boundary.size(); ++b) {
+        double change = 0.0, weight = 0.0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            const double distance = glm::length(boundary[b] - x[j]);
+            if (distance >= params.h) continue;
+            change -= params.mass * glm::dot(a[j], kernel.gradW(boundary[b] - x[j]));
+            weight += kernel.W(distance);
+        }
+        if (weight > 0.0) q[b] = psi[b] / params.mass * std::max(dt * dt * change - rows.source[b], 0.0) / weight;
+    }
+    return q;
+}
+
+std::vector<double> handed_to_fluid(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const std::vector<double>& q,
+                                    const Params& params) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> handed(x.size(), 0.0);
+    for (size_t i = 0; i < x.size(); ++i)
+        for (size_t b = 0; b < boundary.size(); ++b) {
+            const double distance = glm::length(x[i] - boundary[b]);
+            if (distance < params.h) handed[i] += kernel.W(distance) * q[b];
+        }
+    return handed;
+}
+
+std::vector<double> eliminated_factors(const std::vector<dvec3>& x, const std::vector<dvec3>& boundary, const std::vector<double>& psi,
+                                       const Params& params) {
+    const CubicKernel kernel{params.h};
+    std::vector<double> factor(x.size(), 0.0);
+    for (size_t i = 0; i < x.size(); ++i) {
+        dvec3 fluid(0.0), wall(0.0);
+        double squares = 0.0;
+        for (size_t j = 0; j < x.size(); ++j) {
+            if (j == i || glm::length(x[i] - x[j]) >= params.h) continue;
+            const dvec3 g = params.mass * kernel.gradW(x[i] - x[j]);
+            fluid += g;
+            squares += glm::dot(g, g);
+        }
+        for (size_t b = 0; b < boundary.size(); ++b)
+            if (glm::length(x[i] - boundary[b]) < params.h) wall += psi[b] * kernel.gradW(x[i] - boundary[b]);
+        const double diagonal = glm::length(fluid + wall) * glm::length(fluid + 2.0 * wall) + squares;
+        factor[i] = diagonal > 0.0 ? 1.0 / diagonal : 0.0;
+    }
+    return factor;
+}
+
 std::vector<dvec3> pressure_accelerations(const std::vector<dvec3>& x, const std::vector<double>& kappa,
                                           const std::vector<dvec3>& boundary, const std::vector<double>& psi,
                                           const std::vector<double>& kappa_b, const Params& params) {

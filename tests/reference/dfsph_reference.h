@@ -127,6 +127,21 @@ Rows row_sources(Solve which, const std::vector<glm::dvec3>& x, const std::vecto
 void correct_rows(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& a, const Rows& rows,
                   const std::vector<glm::dvec3>& boundary, const Params& params, double omega_b, double dt,
                   std::vector<double>& kappa_b);
+// (D13), the density solve's rows eliminated: κ_b = max(Σ_j W_bj (κ_j + [κ_j > 0] g·(x_b − x_j)/ρ0) / Σ_j W_bj, 0),
+// the fluid's κ extended to each row with the hydrostatic offset from fluid that carries pressure; 0 where b is no row.
+std::vector<double> extended_pressure(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa,
+                                      const std::vector<glm::dvec3>& boundary, const Params& params);
+// (D13): each row's excess handed on, q_b = (ψ_b/m) max(r_b, 0) / Σ_j W_bj with (D9)'s r_b = dt² Σ_j m(0 − a_j)·∇W_bj − s_b
+// (rows.source), 0 where b is no row; and what particle i takes of them, Σ_b W_ib q_b, added to its residual.
+std::vector<double> handed_excess(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& a, const Rows& rows,
+                                  const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi, const Params& params, double dt);
+std::vector<double> handed_to_fluid(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary,
+                                    const std::vector<double>& q, const Params& params);
+// (D13)'s Jacobi diagonal, D_i = |A_i + B_i|·|A_i + 2B_i| + Σ_j m²|∇W_ij|² (A_i, B_i of (D2)): a particle alone at a
+// wall moves the rows it sees with it (κ_b = κ_i).
+std::vector<double> eliminated_factors(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& boundary,
+                                       const std::vector<double>& psi, const Params& params);
+
 // (D3) with (D9): a_i = −Σ_j m(κ_i + κ_j)∇W_ij − Σ_b ψ_b(κ_i + κ_b)∇W_ib (boundary_factor 1).
 std::vector<glm::dvec3> pressure_accelerations(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa,
                                                const std::vector<glm::dvec3>& boundary, const std::vector<double>& psi,

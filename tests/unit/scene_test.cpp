@@ -82,6 +82,17 @@ TEST_CASE("sph.dfsph_cfl: DFSPH's own Courant number, 0 for sph.cfl, refused bet
     CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"dfsph_cfl\": 1.5}}"), Catch::Contains("sph.dfsph_cfl") && Catch::Contains("out of range"));
 }
 
+TEST_CASE("sph.eliminate_boundary_rows: off by default, the tank at rest sets it, refused without the rows it eliminates") {
+    const Scene plain = parse("{" + kBlock + ", \"model\": \"sph\"}", "t");
+    CHECK_FALSE(plain.sph.eliminate_boundary_rows);
+    CHECK(load("hydrostatic").sph.eliminate_boundary_rows);
+    CHECK_FALSE(load("dam-break").sph.eliminate_boundary_rows);
+    const Scene s = parse("{" + kBlock + ", \"model\": \"sph\", \"sph\": {\"eliminate_boundary_rows\": true}}", "t");
+    CHECK(s.sph.eliminate_boundary_rows);
+    CHECK_THAT(error_of("{" + kBlock + ", \"sph\": {\"boundary_rows\": false, \"eliminate_boundary_rows\": true}}"),
+               Catch::Contains("sph.eliminate_boundary_rows") && Catch::Contains("needs") && Catch::Contains("sph.boundary_rows"));
+}
+
 TEST_CASE("an unknown bundled name lists the bundled scenes") {
     try {
         load("no-such-scene");

@@ -58,14 +58,17 @@ std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correct
            (rows ? "#define RANRYU_BOUNDARY_ROWS 1\n" : "") + (correction ? "#define RANRYU_GRADIENT_CORRECTION 1\n" : "");
 }
 
+// (D13): the passes that solve the density solve's rows eliminated, when the scene sets it.
+std::string eliminated(bool on) { return on ? "#define RANRYU_ELIMINATED_ROWS 1\n" : ""; }
+
 // (D12): the passes that take part in the density solve's pressure stabilisation, when the scene sets one.
 std::string stabilisation(const scene::Scene& scene) {
     return scene.sph.pressure_stabilisation > 0.0f ? "#define RANRYU_PRESSURE_STABILISATION 1\n" : "";
 }
 
 shader::Program rows_program(const shader::FileSource& shaders, const char* path, const Fluid& fluid, bool rows,
-                             bool divergence = false) {
-    return rows ? shader::Program::compute(shaders, path, defines(fluid, divergence, true, false)) : shader::Program{};
+                             bool divergence = false, bool eliminated_rows = false) {
+    return rows ? shader::Program::compute(shaders, path, defines(fluid, divergence, true, false) + eliminated(eliminated_rows)) : shader::Program{};
 }
 
 }  // namespace
@@ -99,15 +102,20 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       divergence_(scene.sph.divergence_solve),
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       correction_(scene.sph.gradient_correction),
-      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp", defines(fluid, divergence_, rows_, correction_))),
+      eliminated_(rows_ && scene.sph.eliminate_boundary_rows),
+      density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp",
+                                        defines(fluid, divergence_, rows_, correction_) + eliminated(eliminated_))),
       accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
-      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp", defines(fluid, false, rows_, false) + stabilisation(scene))),
+      correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp",
+                                        defines(fluid, false, rows_, false) + stabilisation(scene) + eliminated(eliminated_))),
       finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
       size_rows_(rows_program(shaders, "sim/dfsph/size_boundary_rows.comp", fluid, rows_)),
-      prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_, divergence_)),
+      prepare_rows_(rows_program(shaders, "sim/dfsph/prepare_boundary_rows.comp", fluid, rows_, divergence_, eliminated_)),
       wall_density_(rows_program(shaders, "sim/dfsph/compute_wall_density.comp", fluid, rows_)),
+      extend_rows_(rows_program(shaders, "sim/dfsph/extend_pressure.comp", fluid, eliminated_)),
+      hand_off_rows_(rows_program(shaders, "sim/dfsph/hand_off_excess.comp", fluid, eliminated_)),
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
@@ -147,6 +155,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         gpu::SolveState st{};
         st.dispatch = glm::uvec4(params_.groups, 1u, 1u, 0u);
         st.correct_groups = params_.groups, st.correct_y = 1u, st.correct_z = 1u;   // the rows' added by their prepare
+        st.rows_groups = 0u, st.rows_y = 1u, st.rows_z = 1u;   // (D13): set by the density solve's prepare
         st.solve = k;
         // (D10)'s first weight, w = 2/(2 - rho_c^2) (glsl/sim/dfsph/dfsph.glsl); unread while it is off.
         st.weight = 2.0f / (2.0f - params_.chebyshev * params_.chebyshev);
@@ -169,7 +178,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     // boundary particle); one float, bound but never read, when it is off.
     kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n + nb : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
     if (rows_) {
-        if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128)
+        if (prepare_rows_.local_size()[0] != 128 || correct_.local_size()[0] != 128 ||
+            (eliminated_ && (extend_rows_.local_size()[0] != 128 || hand_off_rows_.local_size()[0] != 128)))
             throw Error("DFSPH: the boundary-row passes must have 128 invocations a workgroup (size_boundary_rows.comp's kRowGroup)");
         boundary_list_ = gl::Buffer(nb * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_list");
         boundary_row_ = gl::Buffer(nb * sizeof(glm::vec2), GL_DYNAMIC_COPY, nullptr, "dfsph.boundary_row");
@@ -340,26 +350,46 @@ void Dfsph::prepare_rows(Fluid& fluid, int solve) {
 
 // A solve's (D6) iterations, timed as one pass: the first "correct" (the pass before it computed the
 // first accelerations), then `issued` − 1 pairs, all from the solve's indirect arguments, which the GPU
-// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9).
+// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9); with
+// (D13) the density solve's rows instead hand their excess on before each "correct" and take the
+// fluid's pressure before each "accelerate" and once after the last iteration.
 void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
     const shader::StorageSet set = state(fluid, solve);
     auto pass = timer_.scope(pass_id);
     const auto at = GLintptr(std::size_t(solve) * RANRYU_DFSPH_SOLVE_STRIDE);
     const auto accelerate_args = at + GLintptr(offsetof(gpu::SolveState, dispatch)),
-               correct_args = at + GLintptr(offsetof(gpu::SolveState, correct_groups));
+               correct_args = at + GLintptr(offsetof(gpu::SolveState, correct_groups)),
+               rows_args = at + GLintptr(offsetof(gpu::SolveState, rows_groups));
+    const bool eliminated = eliminated_ && solve == 0;
+    // The rows' pass of (D13) ahead of `next`, from the rows' indirect arguments (zero once converged).
+    auto rows_pass = [&](const shader::Program& program) {
+        if (!eliminated) return;
+        program.bind(set).use();
+        glDispatchComputeIndirect(rows_args);
+        glMemoryBarrier(kAfterAccelerate);
+    };
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
+    rows_pass(hand_off_rows_);
     correct_.bind(set).use();
     glDispatchComputeIndirect(correct_args);
     glMemoryBarrier(kAfterResidual);
     for (int k = 1; k < issued; ++k) {
+        rows_pass(extend_rows_);
         accelerate_.bind(set).use();
         glDispatchComputeIndirect(accelerate_args);
         glMemoryBarrier(kAfterAccelerate);
+        rows_pass(hand_off_rows_);
         correct_.bind(set).use();
         glDispatchComputeIndirect(correct_args);
         glMemoryBarrier(kAfterResidual);
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    // (D13): the rows at the solve's final kappa, which the integration's accelerations and the next
+    // step's warm start read (the in-loop passes stop with the solve, one iteration short of it).
+    if (eliminated) {
+        extend_rows_.bind(set);
+        dispatch_rows(extend_rows_);
+    }
 }
 
 void Dfsph::solve_divergence(Fluid& fluid) {

@@ -23,7 +23,10 @@
 // step's rows and size_boundary_rows.comp closes the list (both timed as "dfsph.density"), each solve
 // opens with "dfsph.boundary.prepare" (their sources, diagonals and warm start; the step's first also
 // records each row's neighbour masks), and every iteration's correct_pressure.comp updates the rows
-// too, in workgroups after the fluid's, walking the rows' masks.
+// too, in workgroups after the fluid's, walking the rows' masks. With sph.eliminate_boundary_rows the
+// density solve's rows are no unknowns (docs/DFSPH.md (D13)): each of its iterations runs
+// hand_off_excess.comp before correct_pressure.comp and extend_pressure.comp before accelerate.comp,
+// over the rows, and extend_pressure.comp once after the last; all timed as "dfsph.pressure.solve".
 //
 // Convergence is decided on the GPU (correct_pressure.comp): once a solve's mean error is at most its
 // bound after its minimum iterations, its remaining issued iterations dispatch zero workgroups. The
@@ -130,9 +133,10 @@ private:
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
         prepare_pass_, wall_pass_;
-    bool divergence_, rows_, correction_;
+    bool divergence_, rows_, correction_, eliminated_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
+    shader::Program extend_rows_, hand_off_rows_;               // (D13), built when eliminated_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
     bool fixed_caps_ = false;

@@ -14,6 +14,7 @@
 // With RANRYU_GRADIENT_CORRECTION, the step's kernel-gradient correction L_i of (D11) into
 // PressureAccel's tail, from M_i = (1/rho_i)[Σ_j m (x_j − x_i) ⊗ gradW_ij + Σ_b psi_b (x_b − x_i) ⊗ gradW_ib]
 // of the same walk; the divergence solve's first pressure accelerations already carry it.
+// With RANRYU_ELIMINATED_ROWS, the diagonal of (D13) in place of (D2)'s.
 // Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
@@ -124,7 +125,13 @@ void main() {
         if (count < dfsph.deficient_neighbours) flags |= kDeficient;
         float rho = sph.mass * fluid_sum_ + wall_sum_;
         vec3 sum = grad_fluid_ + grad_wall_;
+#ifdef RANRYU_ELIMINATED_ROWS
+        // (D13): the rows take the fluid's pressure (a particle alone at a wall gives kappa_b = kappa_i), so
+        // |A + B|² becomes |A + B|·|A + 2B|, the diagonal both solves read
+        float diagonal = length(sum) * length(sum + grad_wall_) + squares_;
+#else
         float diagonal = dot(sum, sum) + squares_;   // (D2)
+#endif
         density[i] = vec4(rho, 0.0, diagonal > 0.0 ? 1.0 / diagonal : 0.0, uintBitsToFloat(flags));
         store_correction(i, rho);
         vec3 a = sph.gravity.xyz + kViscosityFactor * (sph.viscosity * viscous_ + dfsph.boundary_viscosity * viscous_wall_);

@@ -33,6 +33,10 @@
 // The two read the same accelerations and write different kappa, so one dispatch serves both (and
 // one barrier, where two passes took two); the rows add nothing to the error, which is the fluid's.
 // A density solve that ends sets the step the next ones may take from its iterations (D8).
+// With RANRYU_ELIMINATED_ROWS the density solve's rows are no unknowns (docs/DFSPH.md (D13)): the solve
+// dispatches the fluid's workgroups alone, and each particle's residual takes the excess the rows
+// handed on before this pass, r_i ← r_i + Σ_b W_ib q_b (q_b in KAPPA_B(b, 1), free during the density
+// solve: the divergence solve's rows start each step from none); its error is that residual's.
 // With RANRYU_PRESSURE_STABILISATION the density solve's residual and diagonal blend in the compact
 // Laplacian's (D12): r_i = dt² [(1 − gamma) Σ(...) + gamma l_i] − s_i, l_i = Density.y from the
 // accelerate pass, and J_i = max(kappa_i + omega r_i / (dt² [(1 − gamma) D_i + gamma C_i]), 0),
@@ -84,6 +88,7 @@ void correct_row(uint k) {
 
 vec3 a_i_;
 float change_, diagonal_;   // diagonal_: Σ_j m c_ij + Σ_b psi_b c_ib of (D12)
+float handed_;   // (D13): Σ_b W_ib q_b, the rows' excess handed to particle i (hand_off_excess.comp)
 void visit_fluid(uint j, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2), sph.h);
     change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, g);
@@ -96,6 +101,9 @@ void visit_boundary(uint b, vec3 d, float r2) {
     change_ += boundary[b].w * dot(a_i_, g);
 #ifdef RANRYU_PRESSURE_STABILISATION
     diagonal_ += boundary[b].w * compact_weight(d, g, r2);
+#endif
+#ifdef RANRYU_ELIMINATED_ROWS
+    if (solve.solve == 0u) handed_ += kernel_w(sqrt(r2), sph.h) * KAPPA_B(b, 1u);   // (D13)
 #endif
 }
 
@@ -120,6 +128,7 @@ void decide() {
     if (converged || it >= cap) {
         solve.dispatch.x = 0u;
         solve.correct_groups = 0u;
+        solve.rows_groups = 0u;
         step.iterations[s] += it;
         if (s == 0u) step.issued += dfsph.issued;
         else step.issued_divergence += dfsph.issued_divergence;
@@ -149,6 +158,7 @@ void main() {
         change_ = 0.0;
         float factor = d.z;
         diagonal_ = 0.0;
+        handed_ = 0.0;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
         float dt2 = step.dt * step.dt;
 #ifdef RANRYU_PRESSURE_STABILISATION
@@ -159,7 +169,7 @@ void main() {
             factor = d.z > 0.0 && blended > 0.0 ? 1.0 / blended : 0.0;
         }
 #endif
-        float residual = dt2 * change_ - own.w;
+        float residual = dt2 * change_ - own.w + handed_;   // handed_: (D13), 0 without it
         uint k = solve.iterations;
         float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
         float next = max(kappa_i + dfsph.relaxation * residual * factor / dt2, 0.0);

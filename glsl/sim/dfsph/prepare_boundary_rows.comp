@@ -13,7 +13,10 @@
 // (s_b above warm_start_drop(), as for the fluid (D6)). The divergence solve's starts from none (its
 // first pressure accelerations come with the density pass, before the rows are listed).
 // Velocities: v_n (divergence) or v* (density). The first invocation sizes the solve's residual pass
-// (SolveState.correct_groups): the fluid's workgroups and the rows' (correct_pressure.comp).
+// (SolveState.correct_groups): the fluid's workgroups and the rows' (correct_pressure.comp); with
+// RANRYU_ELIMINATED_ROWS the density solve's residual pass the fluid's alone, and the rows' passes of
+// (D13) the rows' (SolveState.rows_groups). Their kappa_b's warm start is the same: the extension of the
+// last step's final kappa, which the solve's first accelerations read.
 // The wall's part Σ_b' psi_b' W_bb' depends on the boundary alone: compute_wall_density.comp keeps it in
 // BoundaryWall, and this pass walks the fluid alone (docs/PERFORMANCE.md "The boundary rows' prepare
 // passes").
@@ -41,10 +44,19 @@ void visit_row_fluid(uint j, vec3 d, float r) {
 }
 
 void main() {
-    uint k = gl_GlobalInvocationID.x;
-    if (k == 0u) solve.correct_groups = dfsph.groups + rows.dispatch.x;
+    uint k = gl_GlobalInvocationID.x, s = solve.solve;
+    if (k == 0u) {
+#ifdef RANRYU_ELIMINATED_ROWS
+        // (D13): the density solve's rows are no unknowns; their passes take the rows' workgroups
+        if (s == 0u) {
+            solve.correct_groups = dfsph.groups;
+            solve.rows_groups = rows.dispatch.x;
+        } else
+#endif
+        solve.correct_groups = dfsph.groups + rows.dispatch.x;
+    }
     if (k >= rows.rows) return;   // no barriers in this pass
-    uint entry = boundary_list[k], b = entry & ~kFreshRow, s = solve.solve;
+    uint entry = boundary_list[k], b = entry & ~kFreshRow;
     vec3 xb = boundary[b].xyz;
     rho_ = rate_ = diagonal_ = 0.0;
     // The step's first solve records the rows' masks; after the divergence solve the density solve's
