@@ -21,6 +21,7 @@ s = json.load(open(f"media/scenes/{sys.argv[1]}.json"))
 s.pop("$schema", None)
 s["name"] = sys.argv[1] + "-" + sys.argv[2]
 s.setdefault("sph", {})["boundary_rows"] = sys.argv[2] == "rows"
+if sys.argv[2] != "rows": s["sph"]["eliminate_boundary_rows"] = False   # (D13) needs the rows
 json.dump(s, open(sys.argv[3], "w"))
 PY
   done

@@ -102,7 +102,8 @@ public:
 
     // Per-particle arrays, in the fluid's current cell order (tests).
     // float: the solve's current kappa_i, count() of them; then, with the boundary rows of (D9),
-    // (kappa_b, kappa_v,b) per boundary particle, kept from step to step.
+    // (kappa_b, kappa_v,b) per boundary particle, kappa_b kept from step to step (with (D13) the
+    // extension of the last density solve's kappa, and the second slot its rows' q_b after a step).
     const gl::Buffer& kappa() const { return kappa_; }
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).

@@ -46,8 +46,9 @@ float next_iteration_dt(float stable_dt, uint iterations) {
 float warm_start_drop() { return 0.01 * sph.rest_density; }
 
 // The boundary rows of (D9): with RANRYU_BOUNDARY_ROWS each boundary particle b within h of the fluid
-// has its own kappa_b, kept from step to step (the walls do not move) after the fluid's in the Kappa
-// block: kappa[particle_count + 2b + s], s = 0 the density solve's, 1 the divergence solve's. A fluid
+// has its own kappa_b, the density solve's kept from step to step (the walls do not move), after the
+// fluid's in the Kappa block: kappa[particle_count + 2b + s], s = 0 the density solve's, 1 the divergence
+// solve's (with RANRYU_ELIMINATED_ROWS the density solve keeps its rows' q_b there, docs/DFSPH.md (D13)). A fluid
 // particle pairs with it as with a fluid neighbour,
 //     a_i −= psi_b (kappa_i + kappa_b) gradW_ib          (D3) with (D9)
 // Without it kappa_b = 0: Akinci's boundary term, kappa_i once. KAPPA_B reads the pass's Kappa block.

@@ -15,8 +15,9 @@
 // Velocities: v_n (divergence) or v* (density). The first invocation sizes the solve's residual pass
 // (SolveState.correct_groups): the fluid's workgroups and the rows' (correct_pressure.comp); with
 // RANRYU_ELIMINATED_ROWS the density solve's residual pass the fluid's alone, and the rows' passes of
-// (D13) the rows' (SolveState.rows_groups). Their kappa_b's warm start is the same: the extension of the
-// last step's final kappa, which the solve's first accelerations read.
+// (D13) the rows' (SolveState.rows_groups). Their kappa_b's warm start is (D9)'s rule on the extension of
+// the last step's final kappa, w·kappa_b, which the solve's first accelerations read (the extension of
+// the fluid's warm start w·kappa_j would differ by (1 − w) times the hydrostatic offset).
 // The wall's part Σ_b' psi_b' W_bb' depends on the boundary alone: compute_wall_density.comp keeps it in
 // BoundaryWall, and this pass walks the fluid alone (docs/PERFORMANCE.md "The boundary rows' prepare
 // passes").
