@@ -185,6 +185,11 @@ double compact_weight(const dvec3& d, const CubicKernel& kernel) {
 
 Compact compact_laplacian(const std::vector<dvec3>& x, const std::vector<double>& kappa, const std::vector<dvec3>& boundary,
                           const std::vector<double>& psi, const Params& params) {
+    return compact_laplacian(x, kappa, boundary, psi, std::vector<double>(boundary.size(), 0.0), params);
+}
+
+Compact compact_laplacian(const std::vector<dvec3>& x, const std::vector<double>& kappa, const std::vector<dvec3>& boundary,
+                          const std::vector<double>& psi, const std::vector<double>& kappa_b, const Params& params) {
     const CubicKernel kernel{params.h};
     const double rho0 = params.rest_density;
     Compact c{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
@@ -198,7 +203,7 @@ Compact compact_laplacian(const std::vector<dvec3>& x, const std::vector<double>
         for (size_t b = 0; b < boundary.size(); ++b) {
             if (glm::length(x[i] - boundary[b]) >= params.h) continue;
             const double w = psi[b] * compact_weight(x[i] - boundary[b], kernel);
-            c.change[i] -= rho0 * w * kappa[i];
+            c.change[i] += rho0 * w * (kappa_b[b] - kappa[i]);
             c.diagonal[i] += rho0 * w;
         }
     }

@@ -90,6 +90,9 @@ struct Compact {
 double compact_weight(const glm::dvec3& d, const CubicKernel& kernel);   // c_ij at d = x_i − x_j
 Compact compact_laplacian(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa, const std::vector<glm::dvec3>& boundary,
                           const std::vector<double>& psi, const Params& params);
+// The same with the rows' κ_b of (D9) or (D13) per boundary particle: ρ0 Σ_b ψ_b (κ_b − κ_i) c_ib.
+Compact compact_laplacian(const std::vector<glm::dvec3>& x, const std::vector<double>& kappa, const std::vector<glm::dvec3>& boundary,
+                          const std::vector<double>& psi, const std::vector<double>& kappa_b, const Params& params);
 
 // One solve of (D4)/(D5) with the Jacobi iteration of (D6), starting from kappa (the warm start,
 // updated in place; the first iteration drops it where the particle separates: deficient, or its
