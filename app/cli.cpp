@@ -23,7 +23,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
                 "--export-particles", "--video", "--no-png", "--records", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint",
                 "--resume"}},
     {"profile", {"--scene", "--spacing", "--solver", "--frames", "--size", "--warmup", "--json", "--csv", "--records",
-                 "--shading", "--overlay", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint", "--resume"}},
+                 "--shading", "--overlay", "--detail", "--quiet", "--shader-dir", "--gl-debug", "--checkpoint", "--resume"}},
     {"scenes", {"--schema", "--markdown"}},
     {"validate", {"--scene", "--spacing", "--solver", "--json", "--quiet", "--shader-dir", "--gl-debug", "--relax", "--settle", "--average"}},
     {"sweep", {"--out", "--quick", "--cases", "--solvers", "--spacings", "--factors", "--seconds", "--shard", "--list", "--quiet",
@@ -31,7 +31,7 @@ const std::map<std::string, std::set<std::string>> kAccepts = {
     {"export-field", {"--size", "--extent", "--octaves", "--beta", "--seed", "--out", "--force", "--shader-dir", "--gl-debug"}},
 };
 const std::set<std::string> kFlags = {"--force", "--gl-debug", "--export-mesh", "--no-png", "--quick", "--list", "--quiet", "--relax", "--schema", "--markdown",
-                                      "--overlay"};
+                                      "--overlay", "--detail"};
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -164,6 +164,7 @@ Options parse(const std::vector<std::string>& args) {
             o.save_particles = value;
         } else if (opt == "--budget") o.budget = parse_int(opt, value, 1, 64'000'000);
         else if (opt == "--overlay") o.overlay = true;
+        else if (opt == "--detail") o.detail = true;
         else if (opt == "--warmup") o.warmup = parse_int(opt, value, 0, 100'000);
         else if (opt == "--json") o.json = value;
         else if (opt == "--csv") o.csv = value;
@@ -373,6 +374,9 @@ std::string command_help(const std::string& cmd) {
   --overlay           also draw the window's panel (Dear ImGui) into the picture each frame: its GPU
                       time is the pass "overlay", its CPU time the line "overlay: CPU ... ms a frame"
                       (builds without Dear ImGui refuse it)
+  --detail            also time apart each dispatch of the passes that run within others (a solve's
+                      accelerate and correct passes, indented under it); the timestamps around each
+                      dispatch add GPU time, so fps and shares are those of a slower frame
   --checkpoint FILE   when the run ends (done, or stopped by Ctrl-C or SIGTERM: a batch job's time
                       limit), write its state to FILE, to go on from with --resume (replaces FILE;
                       not written after an instability)

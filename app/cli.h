@@ -28,6 +28,7 @@ struct Options {
     std::string save_particles;   // run: FILE.ply|.vtp of the last frame's particles, written at exit
     std::optional<int> budget;    // run: the emitter's particle budget (default: the scene's count x 2)
     bool overlay = false;         // profile: draw the window's panel into the offscreen target too
+    bool detail = false;          // profile: time apart the passes within others (profile::GpuTimer::set_detail)
     int warmup = 30;              // profile: frames run before timing
     std::string json, csv;        // profile: report files
     std::string records;          // record/profile: the simulation's per-frame records as CSV

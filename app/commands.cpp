@@ -430,6 +430,7 @@ int profile_cmd(const Options& o) {
 #endif
     auto ctx = headless(o);
     frame::Pipeline pipeline(scene, shaders, size.x, size.y, shading(o));
+    pipeline.timer().set_detail(o.detail);
     if (resumed) frame::load_checkpoint(pipeline, o.resume, "--resume " + o.resume);
     const std::uint64_t first = resumed ? resumed->frame : 0;
     SimulationLog log(pipeline, first + std::uint64_t(o.warmup), o.records);

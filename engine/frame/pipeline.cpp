@@ -140,7 +140,7 @@ std::vector<SkippedStage> Pipeline::skipped_stages() const {
         if (scene_.sph.solver != scene::Solver::dfsph) out.push_back({{"dfsph.*"}, "", solver});
         if (scene_.sph.solver != scene::Solver::pbf) out.push_back({{"pbf.*"}, "", solver});
         else if (scene_.sph.pbf.vorticity <= 0.0f) out.push_back({{"pbf.vorticity"}, "", "sph.pbf.vorticity is 0"});
-        if (scene_.sph.sort == "radix") out.push_back({{"sort.bitonic_local", "sort.bitonic_global"}, "", "sph.sort is radix"});
+        if (scene_.sph.sort == "radix") out.push_back({{"sort.bitonic_local", "sort.bitonic_global", "sort.bitonic_merge_local"}, "", "sph.sort is radix"});
         else out.push_back({{"sort.count", "sort.scan", "sort.scatter"}, "", "sph.sort is bitonic"});
         if (!sph_->turbulence()) out.push_back({{"wavelet", "turbulence-force"}, "", "turbulence.amplitude is 0"});
         if (!sub_) out.push_back({{"subparticles.*"}, "", sph_->turbulence() ? "turbulence.subparticles is off" : "turbulence is off"});
@@ -163,8 +163,12 @@ std::string Pipeline::untimed_passes() const {
         return false;
     };
     std::string out;
-    for (const profile::PassSamples& p : timer_.passes())
-        if (p.ms.empty() && !named(p.name)) out += (out.empty() ? "" : ", ") + p.name;
+    // A pass within another that ran untimed (GpuTimer::detail() off) is the report's, not this list's.
+    const auto& untimed = timer_.untimed_calls();
+    for (std::size_t k = 0; k < timer_.passes().size(); ++k) {
+        const profile::PassSamples& p = timer_.passes()[k];
+        if (p.ms.empty() && untimed[k] == 0 && !named(p.name)) out += (out.empty() ? "" : ", ") + p.name;
+    }
     return out;
 }
 

@@ -22,10 +22,23 @@ GpuTimer::GpuTimer(int frames_in_flight, int max_calls_per_frame) : max_calls_(s
 PassId GpuTimer::pass(std::string_view name) {
     for (std::size_t i = 0; i < passes_.size(); ++i)
         if (passes_[i].name == name) return PassId{std::uint16_t(i)};
-    passes_.push_back(PassSamples{std::string(name), {}, {}, {}});
+    passes_.push_back(PassSamples{std::string(name), -1, {}, {}, {}});
     scratch_ms_.push_back(0.0);
     scratch_calls_.push_back(0);
+    untimed_calls_.push_back(0);
     return PassId{std::uint16_t(passes_.size() - 1)};
+}
+
+PassId GpuTimer::pass(std::string_view name, PassId within) {
+    if (within.index >= passes_.size()) throw Error("pass " + std::string(name) + " named within a pass not named");
+    const bool known = std::any_of(passes_.begin(), passes_.end(), [&](const PassSamples& p) { return p.name == name; });
+    const PassId id = pass(name);
+    PassSamples& p = passes_[id.index];
+    if (known && p.within != int(within.index))
+        throw Error("pass " + p.name + " named again within " + passes_[within.index].name + " (it was named " +
+                    (p.within < 0 ? std::string("as a pass of its own") : "within " + passes_[std::size_t(p.within)].name) + ")");
+    p.within = int(within.index);
+    return id;
 }
 
 // The last pass's end first (among the last issued; nested passes end later): while the GPU is
@@ -127,6 +140,10 @@ void GpuTimer::end_frame() {
 std::uint32_t GpuTimer::begin(PassId id) {
     if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
     if (!timed_) return kUntimed;
+    if (passes_[id.index].within >= 0 && !detail_) {   // its time is its parent's (gpu_timer.h)
+        ++untimed_calls_[id.index];
+        return kUntimed;
+    }
     Slot& s = slots_[current_];
     if (2 * s.records.size() + 2 > s.queries.size()) {
         if (s.queries.size() >= (std::size_t(1) << 24)) throw Error("over 8 million timed passes in one frame");
@@ -154,6 +171,7 @@ void GpuTimer::reset_samples() {
         p.calls.clear();
         p.frames.clear();
     }
+    for (std::uint64_t& n : untimed_calls_) n = 0;
     order_.clear();
     frame_ms_.clear();
     frame_numbers_.clear();

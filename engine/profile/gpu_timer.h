@@ -9,6 +9,13 @@
 //
 // Every pass opens a KHR_debug group of the same name, so GPU debuggers show the frame as named
 // passes too.
+//
+// A pass named `within` another (pass(name, within)) is one of that pass's dispatches, e.g. an
+// iterative solve's accelerate and residual passes inside the solve: it always opens its debug group,
+// and takes a timestamp pair of its own only with set_detail(true) (`ranryu profile --detail`). A solve
+// issues some thousands of such dispatches a frame, and a pair each costs GPU time the frame rate
+// would show (docs/PERFORMANCE.md "Passes within passes"), so by default their time is their parent's.
+// Without detail, untimed_calls() counts the calls each made, so a report can name them.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -25,6 +32,7 @@ struct PassId {
 // What one pass took, over the frames that were read back.
 struct PassSamples {
     std::string name;
+    int within = -1;             // the index of the pass it runs within, or -1 (a pass of its own)
     std::vector<double> ms;      // per frame in which the pass ran: sum of its calls' times
     std::vector<int> calls;      // per frame in which the pass ran: number of calls
     std::vector<std::uint64_t> frames;   // per frame in which the pass ran: its number (0 = the timer's first)
@@ -38,7 +46,16 @@ public:
 
     // Names a pass. The same name always gives the same id; call at start-up.
     PassId pass(std::string_view name);
+    // Names a pass that runs only inside `within`'s scope (above): timed apart only with detail. The
+    // same name always gives the same id; naming it again within another pass is an Error.
+    PassId pass(std::string_view name, PassId within);
     const std::string& name(PassId id) const { return passes_[id.index].name; }
+    // Whether passes named within others take timestamps of their own (default: no).
+    void set_detail(bool on) { detail_ = on; }
+    bool detail() const { return detail_; }
+    // Per pass (by PassId index): calls made untimed since the last reset_samples(), by passes within
+    // others while detail is off (a pass of its own counts none: its calls are in its samples).
+    const std::vector<std::uint64_t>& untimed_calls() const { return untimed_calls_; }
 
     // Collects the frames whose results are available (never waits), then opens frame
     // `frames_begun()`: timed when its slot is free, otherwise skipped (counted).
@@ -106,6 +123,8 @@ private:
     std::vector<std::uint64_t> frame_numbers_;
     std::vector<double> scratch_ms_;   // per pass, for one frame: the last one read back
     std::vector<int> scratch_calls_;
+    std::vector<std::uint64_t> untimed_calls_;
+    bool detail_ = false;
     std::size_t current_ = 0;
     std::size_t max_calls_;   // initial pool per slot, in timestamp pairs
     std::size_t next_ = 0;     // the slot the next timed frame takes; slots fill in ring order

@@ -99,7 +99,33 @@ Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSu
         const double all_calls = std::accumulate(p.calls.begin(), p.calls.end(), 0.0);
         PassRow pr = row(p.name, p.ms, all_calls / nframes, total);
         pr.ms_per_call = std::accumulate(p.ms.begin(), p.ms.end(), 0.0) / std::max(all_calls, 1.0);
+        if (p.within >= 0) pr.within = timer.passes()[std::size_t(p.within)].name;
         r.passes.push_back(pr);
+    }
+    // A pass within another comes right after it (and after the others within it that ran first): rows
+    // ordered by their parent's first use, then their own.
+    {
+        std::vector<std::pair<std::size_t, std::size_t>> key(r.passes.size());
+        for (std::size_t k = 0; k < r.passes.size(); ++k) {
+            std::size_t parent = k;
+            for (std::size_t q = 0; q < r.passes.size(); ++q)
+                if (!r.passes[k].within.empty() && r.passes[q].name == r.passes[k].within) parent = q;
+            key[k] = {parent, k};
+        }
+        std::vector<std::size_t> order(r.passes.size());
+        std::iota(order.begin(), order.end(), std::size_t(0));
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+        std::vector<PassRow> sorted;
+        sorted.reserve(order.size());
+        for (const std::size_t k : order) sorted.push_back(std::move(r.passes[k]));
+        r.passes = std::move(sorted);
+    }
+    r.detail = timer.detail();
+    for (std::size_t k = 0; k < timer.passes().size(); ++k) {
+        const PassSamples& p = timer.passes()[k];
+        if (p.within < 0 || timer.untimed_calls()[k] == 0) continue;
+        r.untimed_within.push_back(
+            UntimedPass{p.name, timer.passes()[std::size_t(p.within)].name, double(timer.untimed_calls()[k]) / nframes});
     }
     r.frame = row("frame (GPU span)", frames, 1.0, total);
     r.frame.ms_per_call = total / nframes;
@@ -117,11 +143,13 @@ std::string table(const Report& r) {
         << (r.info.substeps > 0 ? std::to_string(r.info.substeps) + " substeps/frame"
                                 : std::string("adaptive substeps (see the simulation line)"))
         << "\n";
-    std::snprintf(line, sizeof line, "%-22s %9s %10s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
+    std::snprintf(line, sizeof line, "%-29s %9s %10s %10s %10s %10s %7s\n", "pass", "calls/fr", "min ms", "median ms",
                   "max ms", "ms/call", "share");
     out << line;
     auto print = [&](const PassRow& p) {
-        std::snprintf(line, sizeof line, "%-22s %9.2f %10.4f %10.4f %10.4f %10.4f %6.1f%%\n", p.name.c_str(),
+        // A pass within another is indented under it: its time is in its parent's row too.
+        const std::string name = (p.within.empty() ? "" : "  ") + p.name;
+        std::snprintf(line, sizeof line, "%-29s %9.2f %10.4f %10.4f %10.4f %10.4f %6.1f%%\n", name.c_str(),
                       p.calls_per_frame, p.min_ms, p.median_ms, p.max_ms, p.ms_per_call, 100.0 * p.share);
         out << line;
     };
@@ -130,6 +158,19 @@ std::string table(const Report& r) {
     if (r.frames_skipped)   // the GPU ran a whole timer ring behind: those frames went untimed, not waited for
         out << r.frames_skipped << " frames not timed (the timer's ring was full), " << r.frames_sampled << " timed\n";
     out << "\n";   // the table ends; what the run did follows
+    if (r.detail)
+        out << "--detail: the indented passes ran within the pass above them, each dispatch timed apart; their shares are in\n"
+               "  their parent's, and the timestamps around each add GPU time (docs/PERFORMANCE.md \"Passes within passes\")\n";
+    if (!r.untimed_within.empty()) {
+        out << "timed within their passes, not apart (profile --detail times each):";
+        const char* sep = " ";
+        for (const UntimedPass& u : r.untimed_within) {
+            std::snprintf(line, sizeof line, "%s%s %.1f calls/fr in %s", sep, u.name.c_str(), u.calls_per_frame, u.within.c_str());
+            out << line;
+            sep = ", ";
+        }
+        out << "\n";
+    }
     if (const auto& s = r.simulation) {
         std::snprintf(line, sizeof line, "simulation (%s): %.1f substeps/frame (most %u), %.4f simulated s/frame\n",
                       s->solver.c_str(), s->substeps_per_frame(), s->most_substeps,
@@ -168,13 +209,18 @@ std::string table(const Report& r) {
 
 nlohmann::json to_json(const Report& r) {
     auto pass = [](const PassRow& p) {
-        return nlohmann::json{{"name", p.name},       {"calls_per_frame", p.calls_per_frame},
-                              {"min_ms", p.min_ms},   {"median_ms", p.median_ms},
-                              {"max_ms", p.max_ms},   {"ms_per_call", p.ms_per_call},
-                              {"share", p.share}};
+        nlohmann::json j{{"name", p.name},       {"calls_per_frame", p.calls_per_frame},
+                         {"min_ms", p.min_ms},   {"median_ms", p.median_ms},
+                         {"max_ms", p.max_ms},   {"ms_per_call", p.ms_per_call},
+                         {"share", p.share}};
+        if (!p.within.empty()) j["within"] = p.within;
+        return j;
     };
     nlohmann::json passes = nlohmann::json::array();
     for (const PassRow& p : r.passes) passes.push_back(pass(p));
+    nlohmann::json untimed = nlohmann::json::array();
+    for (const UntimedPass& u : r.untimed_within)
+        untimed.push_back({{"name", u.name}, {"within", u.within}, {"calls_per_frame", u.calls_per_frame}});
     nlohmann::json j = {{"device", r.info.renderer},
             {"driver", r.info.driver},
             {"platform", r.info.platform},
@@ -190,6 +236,8 @@ nlohmann::json to_json(const Report& r) {
             {"substeps_per_frame", r.info.substeps},
             {"simulated_seconds_per_frame", r.info.frame_dt},
             {"passes", passes},
+            {"detail", r.detail},
+            {"untimed_within", untimed},
             {"frame", pass(r.frame)},
             {"fps_gpu", r.fps_gpu()},
             {"fps_wall", r.fps_wall()},
@@ -221,12 +269,13 @@ nlohmann::json to_json(const Report& r) {
 
 std::string to_csv(const Report& r) {
     std::ostringstream out;
-    out << "device,driver,date,scene,particles,width,height,frames,pass,calls_per_frame,min_ms,median_ms,max_ms,ms_per_call,share\n";
+    out << "device,driver,date,scene,particles,width,height,frames,pass,calls_per_frame,min_ms,median_ms,max_ms,ms_per_call,share,within\n";
     auto line = [&](const PassRow& p) {
         out << csv_field(r.info.renderer) << ',' << csv_field(r.info.driver) << ',' << r.info.date << ','
             << csv_field(r.info.scene) << ',' << r.info.particles << ',' << r.info.width << ',' << r.info.height << ','
             << r.info.frames << ',' << csv_field(p.name) << ',' << p.calls_per_frame << ',' << p.min_ms << ','
-            << p.median_ms << ',' << p.max_ms << ',' << p.ms_per_call << ',' << p.share << '\n';
+            << p.median_ms << ',' << p.max_ms << ',' << p.ms_per_call << ',' << p.share << ','
+            << csv_field(p.within) << '\n';
     };
     for (const PassRow& p : r.passes) line(p);
     line(r.frame);

@@ -29,6 +29,7 @@ struct RunInfo {
 
 struct PassRow {
     std::string name;
+    std::string within;   // the pass it runs within (GpuTimer::pass(name, within)), or "": its time is in that one's too
     double calls_per_frame = 0.0;
     double min_ms = 0.0, median_ms = 0.0, max_ms = 0.0;   // per frame, the pass's calls summed
     double ms_per_call = 0.0;                             // all its time over all its calls
@@ -61,9 +62,18 @@ struct SimulationSummary {
     double substeps_per_frame() const { return frames ? double(steps) / double(frames) : 0.0; }
 };
 
+// A pass that runs within another and was not timed apart (GpuTimer::set_detail(false)): its calls
+// are counted, its time is its parent's.
+struct UntimedPass {
+    std::string name, within;
+    double calls_per_frame = 0.0;
+};
+
 struct Report {
     RunInfo info;
-    std::vector<PassRow> passes;   // in order of first use
+    std::vector<PassRow> passes;   // in order of first use; a pass within another follows it
+    std::vector<UntimedPass> untimed_within;   // in the order they were named
+    bool detail = false;           // passes within others timed apart (GpuTimer::detail())
     PassRow frame;                 // the whole GPU span of a frame
     std::uint64_t frames_sampled = 0;   // frames whose timings came back (the rows' samples)
     std::uint64_t frames_skipped = 0;   // frames not timed: the timer's ring was full (GpuTimer)

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -200,6 +201,14 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         walls_pass_ = timer.pass("draw-walls");
         thickness_pass_ = timer.pass("liquid-thickness");
         compose_pass_ = timer.pass("compose");
+        for (auto [within, parent, name] : {std::tuple{&shadow_within_, shadow_pass_, "shadow-map."},
+                                            std::tuple{&thickness_within_, thickness_pass_, "liquid-thickness."}}) {
+            const std::string n = name;
+            within->fill = timer.pass(n + "fill", parent);
+            if (parent.index == shadow_pass_.index) within->size = timer.pass(n + "size", parent);   // sizes both
+            within->rasterise = timer.pass(n + "rasterise", parent);
+            within->decode = timer.pass(n + "decode", parent);
+        }
         sky_ = shader::Program::graphics(shaders, "render/sky.vert", "render/sky.frag");
         const std::string inline_shadow = water_.cache_scene ? "" : "#define SHADOW_INLINE\n";
         tiles_floor_ = shader::Program::graphics(shaders, "render/floor.vert", "render/tiles.frag", inline_shadow);
@@ -463,13 +472,24 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
         if (surface && water_.raster == WaterOptions::Raster::compute) {
             // (R14): the sizes of both passes' dispatches, the map cleared to the encodings of s_near =
             // 1e30 and d_sun = 0 (0 is 0.0's bits), the triangles, and the floats the readers read.
-            size_raster(*surface);
-            fill(shadow_near_, std::bit_cast<float>(surface::ordered_bits(1e30f)));
-            fill(shadow_thickness_, 0.0f);
+            {
+                auto within = timer_.scope(shadow_within_.size);
+                size_raster(*surface);
+            }
+            {
+                auto within = timer_.scope(shadow_within_.fill);
+                fill(shadow_near_, std::bit_cast<float>(surface::ordered_bits(1e30f)));
+                fill(shadow_thickness_, 0.0f);
+            }
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            rasterise(*surface, raster_shadow_, raster_shadow_large_, shadow_thickness_, &shadow_near_);
+            {
+                auto within = timer_.scope(shadow_within_.rasterise);
+                rasterise(*surface, raster_shadow_, raster_shadow_large_, shadow_thickness_, &shadow_near_);
+            }
+            auto within = timer_.scope(shadow_within_.decode);
             decode(decode_shadow_, shadow_thickness_, &shadow_near_);
         } else {
+            auto within = timer_.scope(shadow_within_.fill);
             fill(shadow_near_, 1e30f);
             fill(shadow_thickness_, 0.0f);
             glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -489,11 +509,18 @@ void Renderer::draw_water(const gl::RenderTarget& target, const SurfaceMesh* sur
     {
         // (R5): the thickness of the liquid in front of the opaque scene, at 1/thickness_divisor of the size.
         auto pass = timer_.scope(thickness_pass_);
-        fill(thickness_, 0.0f);   // also the fixed-point 0 of the compute raster (R14)
+        {
+            auto within = timer_.scope(thickness_within_.fill);
+            fill(thickness_, 0.0f);   // also the fixed-point 0 of the compute raster (R14)
+        }
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         if (surface && water_.raster == WaterOptions::Raster::compute) {
             // The dispatch size_raster() wrote in "shadow-map".
-            rasterise(*surface, raster_thickness_, raster_thickness_large_, thickness_, nullptr);
+            {
+                auto within = timer_.scope(thickness_within_.rasterise);
+                rasterise(*surface, raster_thickness_, raster_thickness_large_, thickness_, nullptr);
+            }
+            auto within = timer_.scope(thickness_within_.decode);
             decode(decode_thickness_, thickness_, nullptr);
         } else if (surface) {
             glBlendEquation(GL_FUNC_ADD);

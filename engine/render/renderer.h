@@ -190,6 +190,12 @@ private:
     // generation_, which set_frame() and resize() advance.
     WaterOptions water_;
     profile::PassId shadow_pass_{}, sky_pass_{}, walls_pass_{}, thickness_pass_{}, compose_pass_{};
+    // The compute passes within "shadow-map" and "liquid-thickness" (profile::GpuTimer::pass(name, within)):
+    // fill_image.comp, size_raster.comp, rasterise_layers.comp and decode_raster.comp.
+    struct RasterPasses {
+        profile::PassId fill, size, rasterise, decode;
+    };
+    RasterPasses shadow_within_{}, thickness_within_{};
     shader::Program shadow_, sky_, tiles_floor_, tiles_walls_, thickness_prog_, compose_, fill_;
     gl::Texture2D shadow_near_, shadow_thickness_, lit_color_, scene_color_, scene_depth_, thickness_;
     gl::Framebuffer shadow_fbo_, scene_fbo_, thickness_fbo_;

@@ -65,6 +65,7 @@ KeySort::KeySort(const shader::FileSource& shaders, profile::GpuTimer& timer, st
       scatter_pass_(timer.pass("sort.scatter")),
       bitonic_local_pass_(timer.pass("sort.bitonic_local")),
       bitonic_global_pass_(timer.pass("sort.bitonic_global")),
+      bitonic_merge_local_pass_(timer.pass("sort.bitonic_merge_local")),
       capacity_(capacity) {
     const unsigned driver = driver_subgroup_size();
     switch (mode) {
@@ -224,7 +225,7 @@ void KeySort::sort_bitonic(std::size_t count) {
         }
         glProgramUniform2ui(bitonic_merge_local_.id(), RANRYU_LOC_STAGE, GLuint(k), 0u);
         {
-            auto pass = timer_.scope(bitonic_local_pass_);
+            auto pass = timer_.scope(bitonic_merge_local_pass_);
             bitonic_merge_local_.bind(buffers).use();
             glDispatchCompute(tiles, 1, 1);
         }

@@ -7,7 +7,7 @@
 //            "sort.scan", "sort.scatter". Only the ceil(bit_width(max_key) / 8) low digits are
 //            sorted: a 64^3 grid (18-bit keys) takes 3 passes, full 32-bit keys 4.
 //   bitonic  Batcher's bitonic network (AFIPS 1968) on (key, value), in place, padded in the kernel
-//            to the next power of two; passes "sort.bitonic_local" and "sort.bitonic_global".
+//            to the next power of two; passes "sort.bitonic_local", "sort.bitonic_global" and "sort.bitonic_merge_local".
 //            O(n log^2 n): the simple reference method.
 //
 // Both give the same order when value = the pair's original index (the neighbour search's case):
@@ -86,7 +86,7 @@ private:
     void sort_bitonic(std::size_t count);
 
     profile::GpuTimer& timer_;
-    profile::PassId count_pass_, scan_pass_, scatter_pass_, bitonic_local_pass_, bitonic_global_pass_;
+    profile::PassId count_pass_, scan_pass_, scatter_pass_, bitonic_local_pass_, bitonic_global_pass_, bitonic_merge_local_pass_;
     std::size_t capacity_ = 0;
     unsigned subgroup_size_ = 0;
     bool emulated_ = false;

@@ -203,6 +203,7 @@ std::size_t LevelSet::bytes_for(const LevelSetSettings& s) {
 LevelSet::LevelSet(const shader::FileSource& shaders, profile::GpuTimer& timer, const LevelSetSettings& settings)
     : timer_(timer),
       bounds_pass_(timer.pass("surface.bounds")),
+      place_grid_pass_(timer.pass("surface.place-grid", bounds_pass_)),
       level_set_pass_(timer.pass("level-set")),
       find_bounds_(shader::Program::compute(shaders, "surface/find_bounds.comp")),
       place_grid_(shader::Program::compute(shaders, "surface/place_grid.comp")),
@@ -296,6 +297,7 @@ void LevelSet::compute(sim::NeighbourGrid& grid, const gl::Buffer& sorted_positi
         // With anisotropic kernels, the box of the smoothed centres (the kernels' centres).
         find_bounds_.bind(settings_.anisotropic ? buffers.with("Positions", centres_) : buffers).dispatch(count);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        auto within = timer_.scope(place_grid_pass_);
         place_grid_.bind(buffers).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);

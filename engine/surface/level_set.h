@@ -180,7 +180,7 @@ public:
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId bounds_pass_, level_set_pass_, splat_pass_{}, anisotropy_pass_{}, particle_splat_pass_{};
+    profile::PassId bounds_pass_, place_grid_pass_, level_set_pass_, splat_pass_{}, anisotropy_pass_{}, particle_splat_pass_{};   // place_grid_pass_ within bounds_pass_
     shader::Program find_bounds_, place_grid_, compute_, splat_, anisotropy_, particle_splat_;
     LevelSetSettings settings_;
     std::size_t max_nodes_;

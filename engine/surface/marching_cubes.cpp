@@ -75,6 +75,8 @@ MarchingCubes::MarchingCubes(const shader::FileSource& shaders, profile::GpuTime
       classify_pass_(timer.pass("mc.classify")),
       compact_pass_(timer.pass("mc.compact")),
       emit_pass_(timer.pass("mc.emit")),
+      setup_pass_(timer.pass("mc.setup", classify_pass_)),
+      scan_pass_(timer.pass("mc.scan", compact_pass_)),
       setup_(shader::Program::compute(shaders, "surface/mc_setup.comp", dispatch_defines(capacity))),
       classify_(shader::Program::compute(shaders, "surface/mc_classify.comp", dispatch_defines(capacity))),
       scan_(shader::Program::compute(shaders, "surface/mc_scan_blocks.comp", dispatch_defines(capacity))),
@@ -116,18 +118,24 @@ void MarchingCubes::polygonise(const gl::Buffer& phi, const gl::Buffer& grid) {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state_.id());
     {
         auto pass = timer_.scope(classify_pass_);
-        setup_.bind(buffers).use();
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        {
+            auto within = timer_.scope(setup_pass_);
+            setup_.bind(buffers).use();
+            glDispatchCompute(1, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        }
         classify_.bind(buffers).use();
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
         auto pass = timer_.scope(compact_pass_);
-        scan_.bind(buffers).use();
-        glDispatchCompute(1, 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        {
+            auto within = timer_.scope(scan_pass_);
+            scan_.bind(buffers).use();
+            glDispatchCompute(1, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        }
         compact_.bind(buffers).use();
         glDispatchComputeIndirect(GLintptr(offsetof(gpu::MeshState, cell_dispatch)));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

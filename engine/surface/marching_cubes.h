@@ -74,7 +74,7 @@ public:
 
 private:
     profile::GpuTimer& timer_;
-    profile::PassId classify_pass_, compact_pass_, emit_pass_;
+    profile::PassId classify_pass_, compact_pass_, emit_pass_, setup_pass_, scan_pass_;   // setup within classify, scan within compact
     shader::Program setup_, classify_, scan_, compact_, emit_;
     std::size_t max_cells_, max_vertices_, max_active_, max_blocks_;
     gl::Buffer state_, cell_vertices_, blocks_, active_, vertices_, triangles_;

@@ -447,3 +447,78 @@ TEST_CASE("ranryu profile --records writes a frame's record a row, whose steps, 
     CHECK(s["least_iteration_dt"].get<double>() == Approx(least).epsilon(1e-6));
     CHECK(s["peak_density_error"].get<double>() == Approx(peak).epsilon(1e-6));
 }
+
+TEST_CASE("ranryu profile --detail times each solve's dispatches apart under it, as many a frame as the records issued; without it names them",
+          "[cli][profile]") {
+    // The tank at rest at 0.025 m with DFSPH (its density solve's rows eliminated, docs/DFSPH.md (D13)):
+    // the density solve's residual pass runs once an issued iteration, so its calls a frame are the
+    // records' issued iterations a step times the steps a frame, whether counted (no --detail: the line
+    // "timed within their passes" and the JSON's untimed_within) or timed (--detail: a row indented under
+    // "dfsph.pressure.solve", "within" in JSON and CSV). So are (D13)'s hand-off's.
+    TempDir tmp;
+    const std::vector<std::string> args = {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025",
+                                           "--size", "64x48", "--shading", "particles", "--frames", "4", "--warmup", "0"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> a = args;
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    };
+    const Result counted = run_ranryu(tmp.path(), with({"--json", "counted.json"}));
+    const Result timed = run_ranryu(tmp.path(), with({"--detail", "--json", "timed.json", "--csv", "timed.csv"}));
+    INFO(counted.describe() << "\n" << timed.describe());
+    REQUIRE(counted.exit_code == 0);
+    REQUIRE(timed.exit_code == 0);
+    const nlohmann::json c = nlohmann::json::parse(read_file(tmp / "counted.json"));
+    const nlohmann::json t = nlohmann::json::parse(read_file(tmp / "timed.json"));
+    // Issued density iterations a frame, from the GPU's records (the same trajectory both times).
+    auto issued_a_frame = [](const nlohmann::json& j) {
+        const nlohmann::json& s = j.at("simulation");
+        return s.at("issued_iterations_per_step").get<double>() * s.at("steps").get<double>() / s.at("frames").get<double>();
+    };
+    const double issued = issued_a_frame(c);
+    REQUIRE(issued > 0.0);
+    CHECK(issued_a_frame(t) == Approx(issued));
+
+    CHECK_THAT(counted.out, Contains("timed within their passes, not apart (profile --detail times each):"));
+    CHECK_THAT(counted.out, !Contains("  dfsph.pressure.correct "));
+    CHECK(c.at("detail") == false);
+    std::map<std::string, nlohmann::json> untimed;
+    for (const auto& u : c.at("untimed_within")) untimed[u.at("name").get<std::string>()] = u;
+    for (const char* name : {"dfsph.pressure.correct", "dfsph.pressure.hand-off"}) {
+        INFO(name);
+        REQUIRE(untimed.count(name) == 1);
+        CHECK(untimed[name].at("within") == "dfsph.pressure.solve");
+        CHECK(untimed[name].at("calls_per_frame").get<double>() == Approx(issued));
+    }
+    for (const auto& p : c.at("passes")) CHECK_FALSE(p.contains("within"));
+    CHECK(c.at("not_timed").get<std::string>().find("dfsph.pressure.correct") == std::string::npos);
+
+    CHECK(t.at("detail") == true);
+    CHECK(t.at("untimed_within").empty());
+    CHECK_THAT(timed.out, Contains("\n  dfsph.pressure.correct ") && Contains("\n  dfsph.pressure.accelerate ") &&
+                              Contains("\n  dfsph.pressure.hand-off ") && Contains("\n  dfsph.pressure.extend "));
+    const Table table = parse_table(timed.out);   // the notes on --detail come after the table's blank line
+    std::map<std::string, Row> rows;
+    for (const Row& r : table.rows) rows[r.name] = r;
+    for (const char* name : {"dfsph.pressure.correct", "dfsph.pressure.hand-off"}) {
+        INFO(name);
+        REQUIRE(rows.count(name) == 1);
+        CHECK(rows[name].calls == Approx(issued).epsilon(0.01));   // printed to two decimals
+        const auto& passes = t.at("passes");
+        const auto it = std::find_if(passes.begin(), passes.end(), [&](const nlohmann::json& p) { return p.at("name") == name; });
+        REQUIRE(it != passes.end());
+        CHECK(it->at("within") == "dfsph.pressure.solve");
+        CHECK(it->at("calls_per_frame").get<double>() == Approx(issued));
+        CHECK(it->at("ms_per_call").get<double>() >= 0.0);
+    }
+    const auto csv = parse_csv(read_file(tmp / "timed.csv"));
+    REQUIRE(!csv.empty());
+    REQUIRE(csv[0].back() == "within");
+    bool found = false;
+    for (const auto& row : csv)
+        if (row.size() == csv[0].size() && row[8] == "dfsph.pressure.correct") {
+            found = true;
+            CHECK(row.back() == "dfsph.pressure.solve");
+        }
+    CHECK(found);
+}

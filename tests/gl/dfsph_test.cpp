@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -28,6 +29,7 @@
 
 #include <glm/glm.hpp>
 
+#include "profile/report.h"
 #include "reference/dfsph_reference.h"
 #include "reference/sph_reference.h"
 #include "scene/scene.h"
@@ -1872,4 +1874,103 @@ TEST_CASE("dfsph: benchmark of issued iterations", "[.][dfsph-bench]") {
                         name.c_str(), ms_a, a.steps, ms_b, b.steps, 1e3 * (ms_b - ms_a) / double(issued_x - lean_x));
         }
     }
+}
+
+// profile --detail (profile::GpuTimer::pass(name, within)): each solve's dispatches are passes within
+// it, and their counts are the iterations the GPU's records say were issued: a frame of S steps issues
+// each step its cap, so the density solve's "correct" runs `issued` times a frame and its "accelerate"
+// issued − S (the first accelerations are the prediction's); the divergence solve's likewise; with
+// (D13) the hand-off runs before each "correct" and the extension before each "accelerate" and once
+// after a step's last iteration (issued − S + S); the rows' sizing once a step. Without detail the
+// same calls are counted and none is timed; with it each is, inside its solve's span.
+TEST_CASE("dfsph: each solve's dispatches are passes within it, timed apart with detail, as many a frame as the records issued",
+          "[dfsph]") {
+    Rig rig(R"("boundary_rows": true, "eliminate_boundary_rows": true)");
+    ranryu::profile::GpuTimer& t = rig.timer;
+    std::vector<gpu::StepState> records;
+    rig.fluid.set_record_sink([&](const gpu::StepState& r) { records.push_back(r); });
+    const auto index = [&](const std::string& name) {
+        for (std::size_t k = 0; k < t.passes().size(); ++k)
+            if (t.passes()[k].name == name) return k;
+        FAIL("no pass " << name);
+        return std::size_t(0);
+    };
+    const std::size_t density = index("dfsph.density"), solve = index("dfsph.pressure.solve"),
+                      divergence = index("dfsph.divergence.solve");
+    struct Within {
+        std::string name;
+        std::size_t parent;
+        std::function<std::uint32_t(const gpu::StepState&)> calls;   // a frame's, from its record
+    };
+    const std::vector<Within> within = {
+        {"dfsph.pressure.correct", solve, [](const gpu::StepState& r) { return r.issued; }},
+        {"dfsph.pressure.accelerate", solve, [](const gpu::StepState& r) { return r.issued - r.frame_substeps; }},
+        {"dfsph.pressure.hand-off", solve, [](const gpu::StepState& r) { return r.issued; }},
+        {"dfsph.pressure.extend", solve, [](const gpu::StepState& r) { return r.issued; }},
+        {"dfsph.divergence.correct", divergence, [](const gpu::StepState& r) { return r.issued_divergence; }},
+        {"dfsph.divergence.accelerate", divergence, [](const gpu::StepState& r) { return r.issued_divergence - r.frame_substeps; }},
+        {"dfsph.boundary.size", density, [](const gpu::StepState& r) { return r.frame_substeps; }},
+    };
+    for (const Within& w : within) CHECK(t.passes()[index(w.name)].within == int(w.parent));
+
+    // Three frames counted, not timed apart: the solves' own spans are all the time there is.
+    t.reset_samples();
+    CHECK_FALSE(t.detail());
+    for (std::uint64_t f = 0; f < 3; ++f) rig.frame(f), rig.finish();   // drained each frame: none skipped
+    REQUIRE(records.size() == 3u);
+    for (const Within& w : within) {
+        INFO(w.name);
+        std::uint64_t expected = 0;
+        for (const gpu::StepState& r : records) expected += w.calls(r);
+        CHECK(expected > 0u);
+        CHECK(t.untimed_calls()[index(w.name)] == expected);
+        CHECK(t.passes()[index(w.name)].ms.empty());
+    }
+    CHECK(t.passes()[solve].calls == std::vector<int>(3, int(records[0].frame_substeps)));
+    const ranryu::profile::Report counted = ranryu::profile::summarize(t, {});
+    CHECK(counted.untimed_within.size() == within.size());
+    for (const auto& row : counted.passes) CHECK(row.within.empty());
+
+    // Three frames with each dispatch timed apart, in the frame its record names.
+    t.reset_samples();
+    records.clear();
+    t.set_detail(true);
+    for (std::uint64_t f = 3; f < 6; ++f) rig.frame(f), rig.finish();
+    REQUIRE(records.size() == 3u);
+    for (const Within& w : within) {
+        INFO(w.name);
+        const ranryu::profile::PassSamples& p = t.passes()[index(w.name)];
+        CHECK(t.untimed_calls()[index(w.name)] == 0u);
+        REQUIRE(p.frames.size() == records.size());
+        for (std::size_t k = 0; k < records.size(); ++k) {
+            INFO("frame " << records[k].frame << ", " << records[k].frame_substeps << " steps, " << records[k].issued << " issued");
+            CHECK(p.frames[k] == t.passes()[solve].frames[k]);   // every pass of the frame's sample in the same frame
+            CHECK(std::uint32_t(p.calls[k]) == w.calls(records[k]));
+            CHECK(p.ms[k] >= 0.0);
+        }
+    }
+    // The passes within a solve lie inside its span: in each frame their times add up to at most its own.
+    for (const std::size_t parent : {solve, divergence}) {
+        for (std::size_t k = 0; k < records.size(); ++k) {
+            double sum = 0.0;
+            for (const Within& w : within)
+                if (w.parent == parent) sum += t.passes()[index(w.name)].ms[k];
+            INFO(t.passes()[parent].name << ", frame " << k);
+            CHECK(sum <= t.passes()[parent].ms[k] + 1e-6);
+        }
+    }
+    const ranryu::profile::Report timed = ranryu::profile::summarize(t, {});
+    CHECK(timed.detail);
+    CHECK(timed.untimed_within.empty());
+    for (std::size_t k = 0; k < timed.passes.size(); ++k) {
+        const auto& row = timed.passes[k];
+        if (row.within.empty()) continue;
+        INFO(row.name << " within " << row.within);
+        // Listed after its parent and the parent's other passes within it, before the next pass of its own.
+        std::size_t parent = k;
+        while (parent > 0 && !timed.passes[parent].within.empty()) --parent;
+        CHECK(timed.passes[parent].name == row.within);
+    }
+    t.set_detail(false);
+    ranryu::test::require_no_gl_errors();
 }

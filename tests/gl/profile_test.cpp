@@ -385,3 +385,98 @@ TEST_CASE("profile: a pass that throws leaves the debug-group stack as it found 
     while (after-- > before) glPopDebugGroup();   // leave the shared context as the next case expects
     ranryu::test::require_no_gl_errors();
 }
+
+// A pass within another (GpuTimer::pass(name, within); `ranryu profile --detail`): without detail its
+// calls are counted and untimed, its time its parent's; with detail it has samples of its own, which lie
+// inside its parent's span, and the reports list it under its parent, marked, in every format. Either
+// way it opens its debug group.
+TEST_CASE("profile: a pass within another is timed apart only with detail, its calls counted either way, and reported under it") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    GpuTimer timer(4, 8);
+    const auto first = timer.pass("first");
+    const auto parent = timer.pass("parent");
+    const auto child = timer.pass("child", parent);
+    CHECK(timer.pass("child", parent).index == child.index);   // named again within the same: the same pass
+    CHECK(timer.pass("child").index == child.index);
+    CHECK_THROWS_AS(timer.pass("child", first), ranryu::Error);    // within another than it was named in
+    CHECK_THROWS_AS(timer.pass("first", parent), ranryu::Error);   // a pass of its own named within one
+    CHECK_THROWS_AS(timer.pass("orphan", ranryu::profile::PassId{99}), ranryu::Error);
+    CHECK(timer.passes()[child.index].within == int(parent.index));
+    CHECK(timer.passes()[parent.index].within == -1);
+
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer);
+    glBufferData(GL_COPY_WRITE_BUFFER, 1 << 16, nullptr, GL_STATIC_DRAW);
+    GLint before = 0, deepest = 0, after = 0;
+    glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &before);
+    // A frame: "first" once, then "parent" around `n` calls of "child", each with some work to time.
+    auto frame = [&](int n) {
+        timer.begin_frame();
+        { auto s = timer.scope(first); }
+        {
+            auto s = timer.scope(parent);
+            for (int k = 0; k < n; ++k) {
+                auto c = timer.scope(child);
+                glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &deepest);
+                const std::uint32_t zero = 0;
+                glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+            }
+        }
+        timer.end_frame();
+        timer.drain();   // each frame timed: none skipped
+    };
+    std::vector<int> calls;
+    for (int f = 0; f < 3; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back());
+    CHECK(deepest == before + 2);   // the child's group inside the parent's
+    CHECK(timer.passes()[child.index].ms.empty());
+    CHECK(timer.untimed_calls()[child.index] == std::uint64_t(calls[0] + calls[1] + calls[2]));
+    CHECK(timer.untimed_calls()[parent.index] == 0u);
+    ranryu::profile::RunInfo info;
+    info.frames = 3;
+    ranryu::profile::Report r = ranryu::profile::summarize(timer, info);
+    REQUIRE(r.passes.size() == 2u);
+    CHECK_FALSE(r.detail);
+    REQUIRE(r.untimed_within.size() == 1u);
+    CHECK(r.untimed_within[0].name == "child");
+    CHECK(r.untimed_within[0].within == "parent");
+    CHECK(r.untimed_within[0].calls_per_frame == Approx(double(calls[0] + calls[1] + calls[2]) / 3.0));
+    CHECK_THAT(ranryu::profile::table(r), Catch::Contains("not apart") && Catch::Contains("child"));
+    CHECK(ranryu::profile::to_json(r).at("untimed_within").at(0).at("within") == "parent");
+
+    timer.reset_samples();
+    CHECK(timer.untimed_calls()[child.index] == 0u);
+    timer.set_detail(true);
+    calls.clear();
+    for (int f = 0; f < 3; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back());
+    const PassSamples& c = timer.passes()[child.index];
+    CHECK(c.calls == calls);
+    CHECK(timer.untimed_calls()[child.index] == 0u);
+    for (std::size_t k = 0; k < c.ms.size(); ++k) CHECK(c.ms[k] <= timer.passes()[parent.index].ms[k] + 1e-6);
+    r = ranryu::profile::summarize(timer, info);
+    CHECK(r.detail);
+    CHECK(r.untimed_within.empty());
+    REQUIRE(r.passes.size() == 3u);
+    CHECK(r.passes[0].name == "first");
+    CHECK(r.passes[1].name == "parent");
+    CHECK(r.passes[2].name == "child");
+    CHECK(r.passes[2].within == "parent");
+    CHECK(r.passes[2].calls_per_frame == Approx(double(calls[0] + calls[1] + calls[2]) / 3.0));
+    const std::string text = ranryu::profile::table(r);
+    INFO(text);
+    CHECK_THAT(text, Catch::Contains("\n  child "));   // indented under its parent
+    CHECK_THAT(text, Catch::Contains("--detail"));
+    const nlohmann::json j = ranryu::profile::to_json(r);
+    CHECK(j.at("passes").at(2).at("within") == "parent");
+    CHECK_FALSE(j.at("passes").at(1).contains("within"));
+    CHECK(j.at("detail") == true);
+    const std::string csv = ranryu::profile::to_csv(r);
+    CHECK(csv.substr(0, csv.find('\n')).ends_with(",within"));
+    CHECK_THAT(csv, Catch::Contains(",child,") && Catch::Contains(",parent\n"));
+    glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &after);
+    CHECK(after == before);
+    glDeleteBuffers(1, &buffer);
+    ranryu::test::require_no_gl_errors();
+}

@@ -122,6 +122,17 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       fluid_(fluid),
       warm_(fluid.carry("Warm", kWarmWords, initial_warm_start(scene))),
       frame_pressure_(fluid.carry("FramePressure", kFramePressureWords, std::vector<std::uint32_t>(kFramePressureWords, 0u))) {
+    accelerate_passes_[0] = timer.pass("dfsph.pressure.accelerate", pressure_solve_);
+    correct_passes_[0] = timer.pass("dfsph.pressure.correct", pressure_solve_);
+    if (divergence_) {
+        accelerate_passes_[1] = timer.pass("dfsph.divergence.accelerate", divergence_solve_);
+        correct_passes_[1] = timer.pass("dfsph.divergence.correct", divergence_solve_);
+    }
+    if (rows_) size_rows_pass_ = timer.pass("dfsph.boundary.size", density_pass_);
+    if (eliminated_) {
+        extend_pass_ = timer.pass("dfsph.pressure.extend", pressure_solve_);
+        hand_off_pass_ = timer.pass("dfsph.pressure.hand-off", pressure_solve_);
+    }
     if (accelerate_.local_size()[0] != correct_.local_size()[0])
         throw Error("DFSPH: the accelerate and correct passes must share a workgroup size (one indirect dispatch serves both)");
     const std::size_t n = std::max<std::size_t>(fluid.count(), 1);
@@ -325,6 +336,7 @@ void Dfsph::compute_density(Fluid& fluid) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     fluid.set_neighbour_masks_current(true);
     if (rows_) {   // (D9): the rows the density pass listed become this step's
+        auto within = timer_.scope(size_rows_pass_);
         size_rows_.bind(state(fluid, 1)).use();
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -348,9 +360,10 @@ void Dfsph::prepare_rows(Fluid& fluid, int solve) {
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);   // it sized the solve's residual pass
 }
 
-// A solve's (D6) iterations, timed as one pass: the first "correct" (the pass before it computed the
-// first accelerations), then `issued` − 1 pairs, all from the solve's indirect arguments, which the GPU
-// sets to zero workgroups once it has converged. "correct" also updates the boundary rows (D9); with
+// A solve's (D6) iterations, timed as one pass (each dispatch also a pass within it, timed apart with
+// profile --detail): the first "correct" (the pass before it computed the first accelerations), then
+// `issued` − 1 pairs, all from the solve's indirect arguments, which the GPU sets to zero workgroups
+// once it has converged. "correct" also updates the boundary rows (D9); with
 // (D13) the density solve's rows instead hand their excess on before each "correct" and take the
 // fluid's pressure before each "accelerate" and once after the last iteration.
 void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id) {
@@ -362,31 +375,38 @@ void Dfsph::iterate(Fluid& fluid, int solve, int issued, profile::PassId pass_id
                rows_args = at + GLintptr(offsetof(gpu::SolveState, rows_groups));
     const bool eliminated = eliminated_ && solve == 0;
     // The rows' pass of (D13) ahead of `next`, from the rows' indirect arguments (zero once converged).
-    auto rows_pass = [&](const shader::Program& program) {
+    auto rows_pass = [&](const shader::Program& program, profile::PassId within) {
         if (!eliminated) return;
+        auto scope = timer_.scope(within);
         program.bind(set).use();
         glDispatchComputeIndirect(rows_args);
         glMemoryBarrier(kAfterAccelerate);
     };
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
-    rows_pass(hand_off_rows_);
-    correct_.bind(set).use();
-    glDispatchComputeIndirect(correct_args);
-    glMemoryBarrier(kAfterResidual);
-    for (int k = 1; k < issued; ++k) {
-        rows_pass(extend_rows_);
-        accelerate_.bind(set).use();
-        glDispatchComputeIndirect(accelerate_args);
-        glMemoryBarrier(kAfterAccelerate);
-        rows_pass(hand_off_rows_);
+    auto correct = [&] {
+        auto scope = timer_.scope(correct_passes_[std::size_t(solve)]);
         correct_.bind(set).use();
         glDispatchComputeIndirect(correct_args);
         glMemoryBarrier(kAfterResidual);
+    };
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, solve_.id());
+    rows_pass(hand_off_rows_, hand_off_pass_);
+    correct();
+    for (int k = 1; k < issued; ++k) {
+        rows_pass(extend_rows_, extend_pass_);
+        {
+            auto scope = timer_.scope(accelerate_passes_[std::size_t(solve)]);
+            accelerate_.bind(set).use();
+            glDispatchComputeIndirect(accelerate_args);
+            glMemoryBarrier(kAfterAccelerate);
+        }
+        rows_pass(hand_off_rows_, hand_off_pass_);
+        correct();
     }
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     // (D13): the rows at the solve's final kappa, which the integration's accelerations and the next
     // step's warm start read (the in-loop passes stop with the solve, one iteration short of it).
     if (eliminated) {
+        auto scope = timer_.scope(extend_pass_);
         extend_rows_.bind(set);
         dispatch_rows(extend_rows_);
     }

@@ -134,6 +134,11 @@ private:
     profile::GpuTimer& timer_;
     profile::PassId density_pass_, divergence_solve_, divergence_finish_, predict_pass_, pressure_solve_, integrate_pass_,
         prepare_pass_, wall_pass_;
+    // The dispatches within those passes (GpuTimer::pass(name, within): timed apart with profile
+    // --detail): each solve's accelerate and correct passes by solve (0 the density solve), the rows'
+    // sizing within the density pass, and (D13)'s two passes within the density solve.
+    std::array<profile::PassId, 2> accelerate_passes_{}, correct_passes_{};
+    profile::PassId size_rows_pass_, extend_pass_, hand_off_pass_;
     bool divergence_, rows_, correction_, eliminated_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
