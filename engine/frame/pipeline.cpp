@@ -164,7 +164,7 @@ std::string Pipeline::untimed_passes() const {
     };
     std::string out;
     // A pass within another that ran untimed (GpuTimer::detail() off) is the report's, not this list's.
-    const auto& untimed = timer_.untimed_calls();
+    const std::vector<std::uint64_t> untimed = timer_.untimed_calls();
     for (std::size_t k = 0; k < timer_.passes().size(); ++k) {
         const profile::PassSamples& p = timer_.passes()[k];
         if (p.ms.empty() && untimed[k] == 0 && !named(p.name)) out += (out.empty() ? "" : ", ") + p.name;

@@ -22,15 +22,17 @@ GpuTimer::GpuTimer(int frames_in_flight, int max_calls_per_frame) : max_calls_(s
 PassId GpuTimer::pass(std::string_view name) {
     for (std::size_t i = 0; i < passes_.size(); ++i)
         if (passes_[i].name == name) return PassId{std::uint16_t(i)};
-    passes_.push_back(PassSamples{std::string(name), -1, {}, {}, {}});
+    passes_.push_back(PassSamples{std::string(name), -1, {}, {}, {}, {}, {}});
     scratch_ms_.push_back(0.0);
     scratch_calls_.push_back(0);
-    untimed_calls_.push_back(0);
+    for (Slot& s : slots_) s.untimed.push_back(0);   // at start-up: the frame path never names a pass
     return PassId{std::uint16_t(passes_.size() - 1)};
 }
 
 PassId GpuTimer::pass(std::string_view name, PassId within) {
     if (within.index >= passes_.size()) throw Error("pass " + std::string(name) + " named within a pass not named");
+    if (passes_[within.index].within >= 0)
+        throw Error("pass " + std::string(name) + " named within " + passes_[within.index].name + ", itself within a pass: passes nest one level");
     const bool known = std::any_of(passes_.begin(), passes_.end(), [&](const PassSamples& p) { return p.name == name; });
     const PassId id = pass(name);
     PassSamples& p = passes_[id.index];
@@ -78,6 +80,10 @@ void GpuTimer::collect(Slot& s) {
             final = std::max<std::uint64_t>(final, t1);
         }
         for (std::size_t p = 0; p < passes_.size(); ++p) {
+            if (s.untimed[p]) {   // within a parent timed this frame, so with the frame read back
+                passes_[p].untimed.push_back(s.untimed[p]);
+                passes_[p].untimed_frames.push_back(s.frame);
+            }
             if (!scratch_calls_[p]) continue;
             passes_[p].ms.push_back(scratch_ms_[p]);
             passes_[p].calls.push_back(scratch_calls_[p]);
@@ -92,14 +98,23 @@ void GpuTimer::collect(Slot& s) {
             frame_ms_.erase(frame_ms_.begin(), frame_ms_.begin() + half);
             frame_numbers_.erase(frame_numbers_.begin(), frame_numbers_.begin() + half);
             for (PassSamples& p : passes_) {
-                const auto drop = std::min<std::ptrdiff_t>(half, std::ptrdiff_t(p.ms.size()));
+                // A pass's samples are of the frames it ran in: those before the oldest frame kept go.
+                const std::uint64_t oldest = frame_numbers_.front();
+                const auto kept = [&](const std::vector<std::uint64_t>& f) {
+                    return std::lower_bound(f.begin(), f.end(), oldest) - f.begin();
+                };
+                const auto drop = kept(p.frames);
                 p.ms.erase(p.ms.begin(), p.ms.begin() + drop);
                 p.calls.erase(p.calls.begin(), p.calls.begin() + drop);
                 p.frames.erase(p.frames.begin(), p.frames.begin() + drop);
+                const auto drop_untimed = kept(p.untimed_frames);
+                p.untimed.erase(p.untimed.begin(), p.untimed.begin() + drop_untimed);
+                p.untimed_frames.erase(p.untimed_frames.begin(), p.untimed_frames.begin() + drop_untimed);
             }
         }
     }
     s.records.clear();
+    std::fill(s.untimed.begin(), s.untimed.end(), 0u);
     s.pending = false;
 }
 
@@ -141,7 +156,7 @@ std::uint32_t GpuTimer::begin(PassId id) {
     if (!in_frame_) throw Error("pass " + name(id) + " ran outside a frame");
     if (!timed_) return kUntimed;
     if (passes_[id.index].within >= 0 && !detail_) {   // its time is its parent's (gpu_timer.h)
-        ++untimed_calls_[id.index];
+        ++slots_[current_].untimed[id.index];
         return kUntimed;
     }
     Slot& s = slots_[current_];
@@ -161,6 +176,13 @@ void GpuTimer::end(std::uint32_t begin_query) {
     glQueryCounter(slots_[current_].queries[begin_query + 1u], GL_TIMESTAMP);
 }
 
+std::vector<std::uint64_t> GpuTimer::untimed_calls() const {
+    std::vector<std::uint64_t> n(passes_.size(), 0);
+    for (std::size_t p = 0; p < passes_.size(); ++p)
+        for (const std::uint32_t c : passes_[p].untimed) n[p] += c;
+    return n;
+}
+
 void GpuTimer::drain() {
     for (std::size_t k = 0; k < slots_.size(); ++k) collect(slots_[(next_ + k) % slots_.size()]);   // oldest first
 }
@@ -171,25 +193,33 @@ void GpuTimer::reset_samples() {
         p.calls.clear();
         p.frames.clear();
     }
-    for (std::uint64_t& n : untimed_calls_) n = 0;
+    for (PassSamples& p : passes_) {
+        p.untimed.clear();
+        p.untimed_frames.clear();
+    }
     order_.clear();
     frame_ms_.clear();
     frame_numbers_.clear();
     skipped_ = 0;
 }
 
-GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t) {
+GpuTimer::Scope::Scope(GpuTimer& t, PassId id) : timer_(t), outer_(t.open_) {
     query_ = timer_.begin(id);   // throws before anything needs undoing
     const std::string& n = t.name(id);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, id.index, GLsizei(n.size()), n.c_str());
     gl::check_gl_error(gl::current_pass());   // an error raised between passes is named by the one before
     gl::set_current_pass(n);
+    timer_.open_ = int(id.index);
 }
 
 GpuTimer::Scope::~Scope() {
     timer_.end(query_);
     glPopDebugGroup();
     gl::check_gl_error(gl::current_pass());   // with error checks on (gl/faults.h): the pass that raised it
+    // The rest of the pass this one ran within is that pass's again (a pass of its own leaves the
+    // name, so that an error between passes is named by the one before, as above).
+    timer_.open_ = outer_;
+    if (outer_ >= 0) gl::set_current_pass(timer_.name(PassId{std::uint16_t(outer_)}));
 }
 
 }  // namespace ranryu::profile

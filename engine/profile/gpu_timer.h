@@ -12,10 +12,12 @@
 //
 // A pass named `within` another (pass(name, within)) is one of that pass's dispatches, e.g. an
 // iterative solve's accelerate and residual passes inside the solve: it always opens its debug group,
-// and takes a timestamp pair of its own only with set_detail(true) (`ranryu profile --detail`). A solve
-// issues some thousands of such dispatches a frame, and a pair each costs GPU time the frame rate
-// would show (docs/PERFORMANCE.md "Passes within passes"), so by default their time is their parent's.
-// Without detail, untimed_calls() counts the calls each made, so a report can name them.
+// and takes a timestamp pair of its own only with set_detail(true) (`ranryu profile --detail`). A
+// solve issues some thousands of such dispatches a frame, and a pair each costs GPU time the frame
+// rate would show (docs/PERFORMANCE.md "Passes within passes, timed apart"), so by default their time
+// is their parent's. Without detail its calls are counted, frame by frame as the timed ones are, so a
+// report can name them (untimed_calls()). Passes nest one level: a pass within a pass within another
+// is an Error.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -33,6 +35,10 @@ struct PassId {
 struct PassSamples {
     std::string name;
     int within = -1;             // the index of the pass it runs within, or -1 (a pass of its own)
+    // Per frame read back in which it ran within its parent without detail (GpuTimer::set_detail):
+    // its calls, and the frame's number. Trimmed with the rest of the history.
+    std::vector<std::uint32_t> untimed;
+    std::vector<std::uint64_t> untimed_frames;
     std::vector<double> ms;      // per frame in which the pass ran: sum of its calls' times
     std::vector<int> calls;      // per frame in which the pass ran: number of calls
     std::vector<std::uint64_t> frames;   // per frame in which the pass ran: its number (0 = the timer's first)
@@ -47,15 +53,17 @@ public:
     // Names a pass. The same name always gives the same id; call at start-up.
     PassId pass(std::string_view name);
     // Names a pass that runs only inside `within`'s scope (above): timed apart only with detail. The
-    // same name always gives the same id; naming it again within another pass is an Error.
+    // same name always gives the same id; naming it again within another pass, or within a pass that
+    // is itself within one, is an Error. `within` must be a pass named before (an id from pass()).
     PassId pass(std::string_view name, PassId within);
     const std::string& name(PassId id) const { return passes_[id.index].name; }
     // Whether passes named within others take timestamps of their own (default: no).
     void set_detail(bool on) { detail_ = on; }
     bool detail() const { return detail_; }
-    // Per pass (by PassId index): calls made untimed since the last reset_samples(), by passes within
-    // others while detail is off (a pass of its own counts none: its calls are in its samples).
-    const std::vector<std::uint64_t>& untimed_calls() const { return untimed_calls_; }
+    // Per pass (by PassId index): the calls a pass within another made untimed (detail off) in the
+    // frames read back since the last reset_samples(), as frame_ms() counts frames (a frame the timer
+    // skipped counts none; a pass of its own none either: its calls are in its samples).
+    std::vector<std::uint64_t> untimed_calls() const;
 
     // Collects the frames whose results are available (never waits), then opens frame
     // `frames_begun()`: timed when its slot is free, otherwise skipped (counted).
@@ -98,6 +106,7 @@ public:
     private:
         GpuTimer& timer_;
         std::uint32_t query_;
+        int outer_;   // the pass open around this one (GpuTimer::open_), restored at its end
     };
     Scope scope(PassId id) { return Scope(*this, id); }
 
@@ -109,6 +118,7 @@ private:
     struct Slot {
         gl::Queries queries;
         std::vector<Record> records;   // reserved once; cleared, never shrunk
+        std::vector<std::uint32_t> untimed;   // per pass: calls untimed this frame (sized by pass())
         std::uint64_t frame = 0;       // the frame whose queries these are
         bool pending = false;          // ended, not yet collected
     };
@@ -123,8 +133,8 @@ private:
     std::vector<std::uint64_t> frame_numbers_;
     std::vector<double> scratch_ms_;   // per pass, for one frame: the last one read back
     std::vector<int> scratch_calls_;
-    std::vector<std::uint64_t> untimed_calls_;
     bool detail_ = false;
+    int open_ = -1;   // the innermost open Scope's pass, or -1: the one GL errors are named after
     std::size_t current_ = 0;
     std::size_t max_calls_;   // initial pool per slot, in timestamp pairs
     std::size_t next_ = 0;     // the slot the next timed frame takes; slots fill in ring order

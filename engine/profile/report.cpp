@@ -121,11 +121,11 @@ Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSu
         r.passes = std::move(sorted);
     }
     r.detail = timer.detail();
+    const std::vector<std::uint64_t> untimed = timer.untimed_calls();
     for (std::size_t k = 0; k < timer.passes().size(); ++k) {
         const PassSamples& p = timer.passes()[k];
-        if (p.within < 0 || timer.untimed_calls()[k] == 0) continue;
-        r.untimed_within.push_back(
-            UntimedPass{p.name, timer.passes()[std::size_t(p.within)].name, double(timer.untimed_calls()[k]) / nframes});
+        if (p.within < 0 || untimed[k] == 0) continue;
+        r.untimed_within.push_back(UntimedPass{p.name, timer.passes()[std::size_t(p.within)].name, double(untimed[k]) / nframes});
     }
     r.frame = row("frame (GPU span)", frames, 1.0, total);
     r.frame.ms_per_call = total / nframes;
@@ -160,7 +160,7 @@ std::string table(const Report& r) {
     out << "\n";   // the table ends; what the run did follows
     if (r.detail)
         out << "--detail: the indented passes ran within the pass above them, each dispatch timed apart; their shares are in\n"
-               "  their parent's, and the timestamps around each add GPU time (docs/PERFORMANCE.md \"Passes within passes\")\n";
+               "  their parent's, and the timestamps around each add GPU time (docs/PERFORMANCE.md \"Passes within passes, timed apart\")\n";
     if (!r.untimed_within.empty()) {
         out << "timed within their passes, not apart (profile --detail times each):";
         const char* sep = " ";

@@ -201,10 +201,13 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         walls_pass_ = timer.pass("draw-walls");
         thickness_pass_ = timer.pass("liquid-thickness");
         compose_pass_ = timer.pass("compose");
+        // The compute raster's passes where it runs (the draw raster fills the targets alone).
+        const bool compute = water_.raster == WaterOptions::Raster::compute;
         for (auto [within, parent, name] : {std::tuple{&shadow_within_, shadow_pass_, "shadow-map."},
                                             std::tuple{&thickness_within_, thickness_pass_, "liquid-thickness."}}) {
             const std::string n = name;
             within->fill = timer.pass(n + "fill", parent);
+            if (!compute) continue;
             if (parent.index == shadow_pass_.index) within->size = timer.pass(n + "size", parent);   // sizes both
             within->rasterise = timer.pass(n + "rasterise", parent);
             within->decode = timer.pass(n + "decode", parent);

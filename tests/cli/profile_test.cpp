@@ -522,3 +522,72 @@ TEST_CASE("ranryu profile --detail times each solve's dispatches apart under it,
         }
     CHECK(found);
 }
+
+TEST_CASE("ranryu profile --detail names the surface's, the raster's and the bitonic sort's small passes under their parents, and only those that run",
+          "[cli][profile]") {
+    // Each compute program has a pass of its own (docs/PERFORMANCE.md "Passes within passes, timed
+    // apart"): place_grid within surface.bounds, the marching cubes' setup and scan within their
+    // classify and compact, the compute raster's size, fill, rasterise and decode within shadow-map and
+    // liquid-thickness (once a frame each), and the bitonic sort's local merge a pass of its own. With
+    // the draw raster (RANRYU_WATER_RASTER=draw) only the fills run, and the compute raster's passes are
+    // neither timed, nor counted, nor said to be "not timed".
+    TempDir tmp;
+    const std::vector<std::string> water = {"profile", "--scene", "hydrostatic", "--solver", "dfsph", "--spacing", "0.025", "--size",
+                                            "64x48", "--shading", "water", "--frames", "2", "--warmup", "0"};
+    auto with = [](std::vector<std::string> a, std::vector<std::string> extra) {
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    };
+    const Result compute = run_ranryu(tmp.path(), with(water, {"--detail", "--json", "compute.json"}));
+    RunOptions draw_raster;
+    draw_raster.set_env = {{"RANRYU_WATER_RASTER", "draw"}};
+    const Result draw = run_ranryu(tmp.path(), with(water, {"--json", "draw.json"}), draw_raster);
+    write_file(tmp / "bitonic.json", R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
+        "sph": {"solver": "dfsph", "sort": "bitonic"},
+        "particles": {"spacing": 0.015, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})");   // 4,096: past one tile
+    const Result bitonic = run_ranryu(tmp.path(), {"profile", "--scene", "bitonic.json", "--size", "64x48", "--shading", "particles",
+                                                   "--frames", "2", "--warmup", "0", "--detail", "--json", "bitonic.json.out"});
+    INFO(compute.describe() << "\n" << draw.describe() << "\n" << bitonic.describe());
+    REQUIRE(compute.exit_code == 0);
+    REQUIRE(draw.exit_code == 0);
+    REQUIRE(bitonic.exit_code == 0);
+    auto rows = [](const nlohmann::json& j) {
+        std::map<std::string, nlohmann::json> m;
+        for (const auto& p : j.at("passes")) m[p.at("name").get<std::string>()] = p;
+        return m;
+    };
+    const auto c = rows(nlohmann::json::parse(read_file(tmp / "compute.json")));
+    const std::vector<std::pair<std::string, std::string>> within = {
+        {"surface.place-grid", "surface.bounds"},     {"mc.setup", "mc.classify"},
+        {"mc.scan", "mc.compact"},                    {"shadow-map.size", "shadow-map"},
+        {"shadow-map.fill", "shadow-map"},            {"shadow-map.rasterise", "shadow-map"},
+        {"shadow-map.decode", "shadow-map"},          {"liquid-thickness.fill", "liquid-thickness"},
+        {"liquid-thickness.rasterise", "liquid-thickness"}, {"liquid-thickness.decode", "liquid-thickness"}};
+    for (const auto& [name, parent] : within) {
+        INFO(name);
+        REQUIRE(c.count(name) == 1);
+        CHECK(c.at(name).at("within") == parent);
+        CHECK(c.at(name).at("calls_per_frame").get<double>() == Approx(1.0));
+        REQUIRE(c.count(parent) == 1);
+        CHECK_FALSE(c.at(parent).contains("within"));
+    }
+
+    const nlohmann::json d = nlohmann::json::parse(read_file(tmp / "draw.json"));
+    const std::string not_timed = d.at("not_timed").get<std::string>();
+    CHECK(not_timed.find("shadow-map.") == std::string::npos);
+    CHECK(not_timed.find("liquid-thickness.") == std::string::npos);
+    std::set<std::string> untimed;
+    for (const auto& u : d.at("untimed_within")) untimed.insert(u.at("name").get<std::string>());
+    CHECK(untimed.count("shadow-map.fill") == 1);
+    CHECK(untimed.count("liquid-thickness.fill") == 1);
+    for (const char* name : {"shadow-map.size", "shadow-map.rasterise", "shadow-map.decode", "liquid-thickness.rasterise"})
+        CHECK(untimed.count(name) == 0);
+
+    const auto b = rows(nlohmann::json::parse(read_file(tmp / "bitonic.json.out")));
+    for (const char* name : {"sort.bitonic_local", "sort.bitonic_merge_local"}) {
+        INFO(name);
+        REQUIRE(b.count(name) == 1);
+        CHECK_FALSE(b.at(name).contains("within"));
+        CHECK(b.at(name).at("calls_per_frame").get<double>() > 0.0);
+    }
+}

@@ -1946,7 +1946,6 @@ TEST_CASE("dfsph: each solve's dispatches are passes within it, timed apart with
             INFO("frame " << records[k].frame << ", " << records[k].frame_substeps << " steps, " << records[k].issued << " issued");
             CHECK(p.frames[k] == t.passes()[solve].frames[k]);   // every pass of the frame's sample in the same frame
             CHECK(std::uint32_t(p.calls[k]) == w.calls(records[k]));
-            CHECK(p.ms[k] >= 0.0);
         }
     }
     // The passes within a solve lie inside its span: in each frame their times add up to at most its own.

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "frame/pipeline.h"
+#include "gl/faults.h"
 #include "gl/gl.h"
 #include "profile/gpu_timer.h"
 #include "profile/report.h"
@@ -387,9 +388,10 @@ TEST_CASE("profile: a pass that throws leaves the debug-group stack as it found 
 }
 
 // A pass within another (GpuTimer::pass(name, within); `ranryu profile --detail`): without detail its
-// calls are counted and untimed, its time its parent's; with detail it has samples of its own, which lie
-// inside its parent's span, and the reports list it under its parent, marked, in every format. Either
-// way it opens its debug group.
+// calls are counted, frame by frame, and untimed, its time its parent's; with detail it has samples of
+// its own, which lie inside its parent's span, and the reports list it right under its parent, marked,
+// in every format, even when it first ran frames after the passes that follow its parent. Either way it
+// opens its debug group, and once it ends, a GL error is named after its parent again.
 TEST_CASE("profile: a pass within another is timed apart only with detail, its calls counted either way, and reported under it") {
     ranryu::test::context();
     ranryu::test::Random rng;
@@ -398,10 +400,12 @@ TEST_CASE("profile: a pass within another is timed apart only with detail, its c
     const auto first = timer.pass("first");
     const auto parent = timer.pass("parent");
     const auto child = timer.pass("child", parent);
+    const auto last = timer.pass("last");
     CHECK(timer.pass("child", parent).index == child.index);   // named again within the same: the same pass
     CHECK(timer.pass("child").index == child.index);
     CHECK_THROWS_AS(timer.pass("child", first), ranryu::Error);    // within another than it was named in
     CHECK_THROWS_AS(timer.pass("first", parent), ranryu::Error);   // a pass of its own named within one
+    CHECK_THROWS_AS(timer.pass("grandchild", child), ranryu::Error);   // passes nest one level
     CHECK_THROWS_AS(timer.pass("orphan", ranryu::profile::PassId{99}), ranryu::Error);
     CHECK(timer.passes()[child.index].within == int(parent.index));
     CHECK(timer.passes()[parent.index].within == -1);
@@ -412,7 +416,8 @@ TEST_CASE("profile: a pass within another is timed apart only with detail, its c
     glBufferData(GL_COPY_WRITE_BUFFER, 1 << 16, nullptr, GL_STATIC_DRAW);
     GLint before = 0, deepest = 0, after = 0;
     glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &before);
-    // A frame: "first" once, then "parent" around `n` calls of "child", each with some work to time.
+    std::string name_after_child;
+    // A frame: "first" once, then "parent" around `n` calls of "child", each with some work, then "last".
     auto frame = [&](int n) {
         timer.begin_frame();
         { auto s = timer.scope(first); }
@@ -424,46 +429,60 @@ TEST_CASE("profile: a pass within another is timed apart only with detail, its c
                 const std::uint32_t zero = 0;
                 glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
             }
+            name_after_child = ranryu::gl::current_pass();
         }
+        { auto s = timer.scope(last); }
         timer.end_frame();
-        timer.drain();   // each frame timed: none skipped
     };
+    // Six frames in a row, no drain between them: the ring of four skips some, and the counts are of
+    // the frames read back only, as the timed samples are.
     std::vector<int> calls;
-    for (int f = 0; f < 3; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back());
+    for (int f = 0; f < 6; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back());
+    timer.drain();
     CHECK(deepest == before + 2);   // the child's group inside the parent's
+    CHECK(name_after_child == "parent");
     CHECK(timer.passes()[child.index].ms.empty());
-    CHECK(timer.untimed_calls()[child.index] == std::uint64_t(calls[0] + calls[1] + calls[2]));
+    std::uint64_t counted = 0;
+    for (const std::uint64_t f : timer.frame_numbers()) counted += std::uint64_t(calls[std::size_t(f)]);
+    CHECK(timer.untimed_calls()[child.index] == counted);
+    CHECK(timer.passes()[child.index].untimed_frames == timer.frame_numbers());
     CHECK(timer.untimed_calls()[parent.index] == 0u);
     ranryu::profile::RunInfo info;
-    info.frames = 3;
     ranryu::profile::Report r = ranryu::profile::summarize(timer, info);
-    REQUIRE(r.passes.size() == 2u);
+    REQUIRE(r.passes.size() == 3u);
     CHECK_FALSE(r.detail);
     REQUIRE(r.untimed_within.size() == 1u);
     CHECK(r.untimed_within[0].name == "child");
     CHECK(r.untimed_within[0].within == "parent");
-    CHECK(r.untimed_within[0].calls_per_frame == Approx(double(calls[0] + calls[1] + calls[2]) / 3.0));
+    CHECK(r.untimed_within[0].calls_per_frame == Approx(double(counted) / double(timer.frames_read())));
     CHECK_THAT(ranryu::profile::table(r), Catch::Contains("not apart") && Catch::Contains("child"));
     CHECK(ranryu::profile::to_json(r).at("untimed_within").at(0).at("within") == "parent");
 
+    // With detail, after a frame in which the parent ran no child: the child's first sample comes back
+    // after "last"'s, and the report still lists it under its parent.
+    timer.drain();
     timer.reset_samples();
     CHECK(timer.untimed_calls()[child.index] == 0u);
     timer.set_detail(true);
+    frame(0);
+    timer.drain();
     calls.clear();
-    for (int f = 0; f < 3; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back());
+    for (int f = 0; f < 3; ++f) calls.push_back(1 + int(rng.below(9))), frame(calls.back()), timer.drain();
+    CHECK(timer.first_use_order() == std::vector<std::uint16_t>{first.index, parent.index, last.index, child.index});
     const PassSamples& c = timer.passes()[child.index];
     CHECK(c.calls == calls);
     CHECK(timer.untimed_calls()[child.index] == 0u);
-    for (std::size_t k = 0; k < c.ms.size(); ++k) CHECK(c.ms[k] <= timer.passes()[parent.index].ms[k] + 1e-6);
+    for (std::size_t k = 0; k < c.ms.size(); ++k) CHECK(c.ms[k] <= timer.passes()[parent.index].ms[k + 1] + 1e-6);
     r = ranryu::profile::summarize(timer, info);
     CHECK(r.detail);
     CHECK(r.untimed_within.empty());
-    REQUIRE(r.passes.size() == 3u);
+    REQUIRE(r.passes.size() == 4u);
     CHECK(r.passes[0].name == "first");
     CHECK(r.passes[1].name == "parent");
     CHECK(r.passes[2].name == "child");
+    CHECK(r.passes[3].name == "last");
     CHECK(r.passes[2].within == "parent");
-    CHECK(r.passes[2].calls_per_frame == Approx(double(calls[0] + calls[1] + calls[2]) / 3.0));
+    CHECK(r.passes[2].calls_per_frame == Approx(double(calls[0] + calls[1] + calls[2]) / 4.0));   // over the 4 frames read
     const std::string text = ranryu::profile::table(r);
     INFO(text);
     CHECK_THAT(text, Catch::Contains("\n  child "));   // indented under its parent
@@ -477,6 +496,7 @@ TEST_CASE("profile: a pass within another is timed apart only with detail, its c
     CHECK_THAT(csv, Catch::Contains(",child,") && Catch::Contains(",parent\n"));
     glGetIntegerv(GL_DEBUG_GROUP_STACK_DEPTH, &after);
     CHECK(after == before);
+    timer.set_detail(false);
     glDeleteBuffers(1, &buffer);
     ranryu::test::require_no_gl_errors();
 }
