@@ -117,8 +117,8 @@ public:
     // The passes the timer knows (named by the scene's parts) that took no time sample since its last
     // reset and that skipped_stages() does not name: those that ran before (at start-up, in the
     // warm-up), or run only on an event (the emitter, a paddle, a view change) or a command (the noise
-    // export) the run did not have; not a pass within another that ran untimed (profile::Report::untimed_within names
-    // those). Comma-separated, in the order they were named; empty when none.
+    // export) the run did not have; not a pass within another that ran untimed (the report's
+    // untimed_within names those). Comma-separated, in the order they were named; empty when none.
     std::string untimed_passes() const;
     const gl::RenderTarget& target() const { return target_; }
     std::size_t particle_count() const;
