@@ -48,7 +48,14 @@ layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Density { vec4 density[]; };
 layout(std430) buffer Kappa { float kappa[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
-layout(std430) coherent buffer Solve { SolveState solve; };
+// Not `coherent`: the workgroups add their parts by atomics and the one that decides reads them by
+// atomics; the other fields are written by that one invocation and read by later dispatches, behind
+// their barriers. Declared coherent, each invocation's reads of the iteration, the solve and the
+// Chebyshev weight went past the cache: 2-3 % of a density iteration on the H200 (docs/PERFORMANCE.md
+// "Passes within passes, timed apart"). Step (fluid.glsl) stays coherent: a workgroup that raised a
+// maximum by atomicMax then writes where its particle is, and without it the NVIDIA driver let a slower
+// workgroup's write land last more often (tests/gl/guard_test.cpp "the frame's fastest particle").
+layout(std430) buffer Solve { SolveState solve; };
 // The density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle.
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };
 
