@@ -192,8 +192,6 @@ void GpuTimer::reset_samples() {
         p.ms.clear();
         p.calls.clear();
         p.frames.clear();
-    }
-    for (PassSamples& p : passes_) {
         p.untimed.clear();
         p.untimed_frames.clear();
     }

@@ -120,7 +120,7 @@ Report summarize(const GpuTimer& timer, RunInfo info, std::optional<SimulationSu
         for (const std::size_t k : order) sorted.push_back(std::move(r.passes[k]));
         r.passes = std::move(sorted);
     }
-    r.detail = timer.detail();
+    r.detail = std::any_of(r.passes.begin(), r.passes.end(), [](const PassRow& p) { return !p.within.empty(); });
     const std::vector<std::uint64_t> untimed = timer.untimed_calls();
     for (std::size_t k = 0; k < timer.passes().size(); ++k) {
         const PassSamples& p = timer.passes()[k];

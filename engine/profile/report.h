@@ -73,7 +73,7 @@ struct Report {
     RunInfo info;
     std::vector<PassRow> passes;   // in order of first use; a pass within another follows it
     std::vector<UntimedPass> untimed_within;   // in the order they were named
-    bool detail = false;           // passes within others timed apart (GpuTimer::detail())
+    bool detail = false;           // some pass within another was timed apart: a row has `within`
     PassRow frame;                 // the whole GPU span of a frame
     std::uint64_t frames_sampled = 0;   // frames whose timings came back (the rows' samples)
     std::uint64_t frames_skipped = 0;   // frames not timed: the timer's ring was full (GpuTimer)
