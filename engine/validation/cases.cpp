@@ -174,8 +174,13 @@ constexpr double kRelaxAcceleration = 0.01;
 
 }  // namespace
 
-CompressionMeter::CompressionMeter(const shader::FileSource& shaders, std::size_t count, float rest_density, Consumer on_value)
-    : count_(count),
+CompressionMeter::CompressionMeter(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t count, float rest_density,
+                                   Consumer on_value)
+    : timer_(timer),
+      pass_(timer.pass("mean-compression")),
+      partials_pass_(timer.pass("mean-compression.partials", pass_)),
+      total_pass_(timer.pass("mean-compression.total", pass_)),
+      count_(count),
       groups_(std::uint32_t(std::clamp<std::size_t>((count + 255) / 256, 1, 1024))),
       on_value_(std::move(on_value)),
       partials_(shader::Program::compute(shaders, "validation/mean_compression.comp")),
@@ -193,10 +198,17 @@ CompressionMeter::CompressionMeter(const shader::FileSource& shaders, std::size_
 }
 
 void CompressionMeter::measure(const gl::Buffer& densities, std::uint64_t tag) {
+    auto pass = timer_.scope(pass_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // the densities the passes before wrote
-    partials_.bind({{"Densities", &densities}, {"Partials", &partial_sums_}}).dispatch(std::size_t(groups_) * 256u);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    total_.bind({{"Partials", &partial_sums_}, {"Total", &total_sum_}}).dispatch(256);
+    {
+        auto within = timer_.scope(partials_pass_);
+        partials_.bind({{"Densities", &densities}, {"Partials", &partial_sums_}}).dispatch(std::size_t(groups_) * 256u);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        auto within = timer_.scope(total_pass_);
+        total_.bind({{"Partials", &partial_sums_}, {"Total", &total_sum_}}).dispatch(256);
+    }
     readback_.copy(total_sum_, 0, tag);   // with the barrier the copy needs
 }
 
@@ -476,17 +488,13 @@ SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& sh
     double sum = 0.0;
     int measured = 0;
     // Frame f's value (the pipeline's frames count from 0 here) is the state at t = (f + 1)·frame_dt.
-    CompressionMeter meter(shaders, fluid.count(), scene.sph.rest_density, [&](std::uint64_t frame, double c) {
+    CompressionMeter meter(shaders, pipeline.timer(), fluid.count(), scene.sph.rest_density, [&](std::uint64_t frame, double c) {
         sum += c;
         ++measured;
         if (c > r.peak_mean_compression) r.peak_mean_compression = c, r.peak_time = double(frame + 1) * scene.frame_dt;
     });
-    const profile::PassId pass = pipeline.timer().pass("mean-compression");
     frame::FrameHooks hooks = progress ? progress->hooks() : frame::FrameHooks{};
-    hooks.after_draw = [&](frame::Pipeline& p) {   // after the frame's last step, in the frame
-        auto timed = p.timer().scope(pass);
-        meter.measure(fluid.densities(), p.frames());
-    };
+    hooks.after_draw = [&](frame::Pipeline& p) { meter.measure(fluid.densities(), p.frames()); };   // after the frame's last step, in the frame
     hooks.after = [&meter, progress_after = hooks.after](frame::Pipeline& p) {
         meter.poll();
         if (progress_after) progress_after(p);

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "gl/objects.h"
 #include "gl/readback.h"
+#include "profile/gpu_timer.h"
 #include "scene/scene.h"
 #include "shader/program.h"
 #include "shader/source.h"
@@ -179,7 +180,9 @@ class CompressionMeter {
 public:
     using Consumer = std::function<void(std::uint64_t tag, double mean)>;
     static constexpr int kDepth = 4;
-    CompressionMeter(const shader::FileSource& shaders, std::size_t count, float rest_density, Consumer on_value);
+    // Timed as the pass "mean-compression" (its two dispatches "mean-compression.partials" and
+    // "mean-compression.total" within it); measure() runs inside `timer`'s frames.
+    CompressionMeter(const shader::FileSource& shaders, profile::GpuTimer& timer, std::size_t count, float rest_density, Consumer on_value);
     CompressionMeter(const CompressionMeter&) = delete;   // the readback's consumer holds `this`
     CompressionMeter& operator=(const CompressionMeter&) = delete;
 
@@ -190,6 +193,8 @@ public:
     std::size_t drain();   // waits for every queued one: end of a run and tests only
 
 private:
+    profile::GpuTimer& timer_;
+    profile::PassId pass_, partials_pass_, total_pass_;
     std::size_t count_;
     std::uint32_t groups_;   // workgroups of the first pass (at most 1024)
     Consumer on_value_;

@@ -14,6 +14,7 @@
 #include "frame/loop.h"
 #include "frame/pipeline.h"
 #include "gl/objects.h"
+#include "profile/gpu_timer.h"
 #include "scene/scene.h"
 #include "shader/source.h"
 #include "sim/simulation.h"
@@ -49,7 +50,8 @@ TEST_CASE("validation: the GPU's mean compression equals the CPU's of the same d
         INFO(n << " particles, rho0 " << rest);
         std::map<std::uint64_t, double> got;
         std::vector<std::uint64_t> order;
-        validation::CompressionMeter meter(shader::FileSource::embedded(), n, rest, [&](std::uint64_t tag, double mean) {
+        profile::GpuTimer timer(4, 64);
+        validation::CompressionMeter meter(shader::FileSource::embedded(), timer, n, rest, [&](std::uint64_t tag, double mean) {
             order.push_back(tag);
             got[tag] = mean;
         });
@@ -77,9 +79,17 @@ TEST_CASE("validation: the GPU's mean compression equals the CPU's of the same d
             }
             densities.upload(d.data(), d.size() * sizeof(glm::vec4));
             expect.push_back(cpu_mean_compression(densities.read<glm::vec4>(n), double(rest)));
+            timer.begin_frame();
             meter.measure(densities, 100 + std::uint64_t(m));
+            timer.end_frame();
         }
         meter.drain();
+        timer.drain();
+        // Its two dispatches named within its pass (not timed apart without detail): one call each a measurement.
+        const profile::PassId parent = timer.pass("mean-compression");
+        const std::vector<std::uint64_t> calls = timer.untimed_calls();
+        CHECK(calls.at(timer.pass("mean-compression.partials", parent).index) == std::uint64_t(measures));
+        CHECK(calls.at(timer.pass("mean-compression.total", parent).index) == std::uint64_t(measures));
         REQUIRE(order.size() == std::size_t(measures));
         for (int m = 0; m < measures; ++m) {
             INFO("measurement " << m);
@@ -106,7 +116,7 @@ TEST_CASE("validation: scene_run's per-frame compression is that of each frame's
     frame::Pipeline pipeline(scene, shader::FileSource::embedded(), view);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     std::map<std::uint64_t, double> gpu, cpu;
-    validation::CompressionMeter meter(shader::FileSource::embedded(), fluid.count(), scene.sph.rest_density,
+    validation::CompressionMeter meter(shader::FileSource::embedded(), pipeline.timer(), fluid.count(), scene.sph.rest_density,
                                        [&](std::uint64_t frame, double c) { gpu[frame] = c; });
     frame::FrameHooks hooks;
     hooks.after_draw = [&](frame::Pipeline& p) { meter.measure(fluid.densities(), p.frames()); };
