@@ -88,6 +88,11 @@ std::size_t Fluid::carried_bytes(std::size_t count, std::uint32_t words) {
 // raw, zeros, zeros_sorted, weighted: start-up's, kept for the run with a paddle (bytes_for counts them then).
 std::size_t Fluid::transient_bytes(std::size_t boundary) { return 4 * vec4_array_bytes(boundary); }
 
+std::size_t Fluid::step_bytes(std::size_t count) {
+    const std::size_t spans = (count + RANRYU_EXTREME_SPAN - 1) / RANRYU_EXTREME_SPAN;
+    return sizeof(gpu::StepState) + 2 * spans * sizeof(gpu::FrameExtreme);
+}
+
 std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size_t boundary) {
     const GridLayout g = fluid_grid(s, kernel_support(s.spacing), layers_of(s));
     std::size_t b = 6 * vec4_array_bytes(count)                      // position, velocity (two each), density, accel
@@ -96,7 +101,7 @@ std::size_t Fluid::bytes_for(const scene::Scene& s, std::size_t count, std::size
                     + std::size_t(g.key_count) * sizeof(std::uint32_t)   // boundary_near
                     + 2 * NeighbourGrid::ranges_bytes(g)             // fluid and boundary cell ranges
                     + NeighbourGrid::bytes_for(sort_capacity(count, boundary));
-    b += sizeof(gpu::SphParams) + sizeof(gpu::StepState) + obstacle_shapes(s).size() * sizeof(glm::vec4);
+    b += sizeof(gpu::SphParams) + step_bytes(count) + obstacle_shapes(s).size() * sizeof(glm::vec4);
     if (s.paddle_radius > 0.0f) b += transient_bytes(boundary);
     if (s.particle_budget > 0) b += sizeof(std::uint32_t);   // the emitter's slot counter
     return b;
@@ -180,6 +185,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       begin_pass_(timer.pass("begin-frame")),
       step_pass_(timer.pass("choose-time-step")),
       integrate_pass_(timer.pass("integrate")),
+      extremes_pass_(timer.pass("record-extremes")),
       diag_pass_(timer.pass("diagnostics")),
       boundary_pass_(timer.pass("boundary-volume")),
       boundary_cells_pass_(timer.pass("boundary-cells")),
@@ -191,6 +197,7 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       begin_(shader::Program::compute(shaders, "sim/fluid/begin_frame.comp")),
       choose_(shader::Program::compute(shaders, "sim/fluid/choose_time_step.comp")),
       integrate_(shader::Program::compute(shaders, "sim/fluid/integrate_particles.comp")),
+      record_extremes_(shader::Program::compute(shaders, "sim/fluid/record_extremes.comp")),
       boundary_volume_(shader::Program::compute(shaders, "sim/boundary/compute_boundary_volume.comp", defines_)),
       flag_boundary_(shader::Program::compute(shaders, "sim/boundary/flag_boundary_cells.comp", defines_)),
       emit_(scene.particle_budget > 0 ? shader::Program::compute(shaders, "sim/fluid/emit_particles.comp") : shader::Program()),
@@ -255,7 +262,10 @@ Fluid::Fluid(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     s.iteration_dt = params_.dt_max;   // DFSPH's (D8) lowers it from its solves' iterations
     s.nan_index = s.escaped_index = 0xFFFFFFFFu;
     s.live_count = std::uint32_t(scene_count_);
-    step_ = gl::Buffer(sizeof s, GL_DYNAMIC_COPY, &s, "fluid.step");
+    // The record, then the FrameExtreme entries (zero: none kept yet).
+    std::vector<char> initial(step_bytes(count_), 0);
+    std::memcpy(initial.data(), &s, sizeof s);
+    step_ = gl::Buffer(initial.size(), GL_DYNAMIC_COPY, initial.data(), "fluid.step");
     dt_estimate_ = std::min(params_.cfl * params_.spacing / (params_.sound_speed + scene.speed_estimate()), params_.dt_max);
     compute_boundary(wall);
 }
@@ -476,6 +486,12 @@ void Fluid::set_viscosity_and_cfl(float viscosity, float cfl) {
 void Fluid::end_frame() {
     if (!open_) throw Error("Fluid::end_frame: no frame is open (begin_frame)");
     open_ = false;
+    {
+        auto pass = timer_.scope(extremes_pass_);
+        params_ubo_.bind_base(GL_UNIFORM_BUFFER, RANRYU_UBO_SPH);
+        record_extremes_.bind(bind_state()).dispatch(1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);   // the copy below reads it
+    }
     auto pass = timer_.scope(diag_pass_);
     readback_.copy(step_, 0, opened_ - 1);
 }
@@ -497,7 +513,11 @@ void Fluid::persist(StateIo& io) {
     io.buffer("fluid.velocities", velocity_[current_], count());
     io.buffer("fluid.densities", density_);
     io.buffer("fluid.accelerations", accel_);
-    io.buffer("fluid.step", step_);
+    // The record only: the FrameExtreme entries after it are zero between frames (record_extremes.comp).
+    gpu::StepState record{};
+    if (!io.loading()) step_.read_bytes(&record, sizeof record);
+    io.value("fluid.step", record);
+    if (io.loading()) step_.upload_value(record);
     for (Carried& c : carried_) io.buffer("fluid.carried." + c.block, c.buffer[carried_current_]);
     if (emit_claimed_) io.buffer("fluid.emit_claimed", emit_claimed_);
     bool has_last = last_.has_value();

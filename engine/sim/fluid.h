@@ -11,7 +11,8 @@
 //     carried arrays                 per-particle arrays that the reorder moves with the particles
 //     grid, cell ranges, boundary    the neighbour grid, and the boundary particles with their psi_b
 //     step record (StepState)        the adaptive time step, the guard's findings, the solver's
-//                                    iteration record; read back frames late (planning_record())
+//                                    iteration record; read back frames late (planning_record());
+//                                    after it the frame's extremes per span of particles (FrameExtreme)
 //
 // and the passes that belong to the state, not to a solver:
 //
@@ -22,7 +23,8 @@
 //     emit()              "emit"               the emitter pours a sheet of parked particles (run)
 //     move_paddle()       "hash", "sort.*", "reorder", "boundary-volume", "boundary-cells": the
 //                         boundary re-sorted about the paddle, docs/SPH.md (9) (run)
-//     end_frame()         "diagnostics"        queues the record's readback
+//     end_frame()         "record-extremes"    the frame's fastest and densest particles into the record
+//                         "diagnostics"        queues the record's readback
 //
 // The CPU reads nothing back in the frame: the substeps a frame are planned from the record of the
 // frame plan_lag() frames before it (enough at the smallest stable dt it saw), which the readback ring's
@@ -90,6 +92,8 @@ public:
     // sort (frame/memory.h). `transient`: what start-up holds besides, and frees.
     static std::size_t bytes_for(const scene::Scene& scene, std::size_t count, std::size_t boundary);
     static std::size_t transient_bytes(std::size_t boundary);
+    // The step record's buffer: the StepState and its FrameExtreme entries for `count` particles.
+    static std::size_t step_bytes(std::size_t count);
     // The boundary particles a Fluid of `scene` samples: sample_boundary()'s count at its layers.
     static std::size_t boundary_count(const scene::Scene& scene);
     // Runs a neighbour walk visits in `scene`: 9 merged x-rows, or 27 cells (glsl/sim/fluid/fluid.glsl).
@@ -239,9 +243,9 @@ private:
     void rebuild_boundary();   // raw_ into boundary_: the sort, psi_b, the near-boundary cells
 
     profile::GpuTimer& timer_;
-    profile::PassId begin_pass_, step_pass_, integrate_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_, emit_pass_;
+    profile::PassId begin_pass_, step_pass_, integrate_pass_, extremes_pass_, diag_pass_, boundary_pass_, boundary_cells_pass_, emit_pass_;
     std::string defines_;
-    shader::Program begin_, choose_, integrate_, boundary_volume_, flag_boundary_, emit_;
+    shader::Program begin_, choose_, integrate_, record_extremes_, boundary_volume_, flag_boundary_, emit_;
     EmitterShape emitter_;
     gl::Buffer emit_claimed_;   // the emit pass's slot counter (a uint), with a budget only
     std::size_t scene_count_ = 0;

@@ -6,7 +6,8 @@
 //     begin_frame(frame)        "begin-frame"; the fluid and the solver plan the frame (substeps,
 //                               iteration caps) from the fluid's planning_record()
 //     step() × substeps         the solver's step, with the turbulence as its hooks
-//     end_frame()               "diagnostics": the frame's record is queued for readback
+//     end_frame()               "record-extremes": the frame's fastest and densest particles into its
+//                               record; "diagnostics": the record is queued for readback
 //
 // advance() runs the three. Nothing here reads the GPU back; end_frame() waits only as the fluid's
 // readback ring's back-pressure (sim/fluid.h end_frame()).

@@ -124,16 +124,16 @@ RANRYU_STRUCT(StepState) {
     uint substeps_left;       // substeps issued for this frame that have not run yet
     uint max_speed;           // bits of max |v| over the last substep (input of the time step)
     uint max_accel;           // bits of max |a| over the last substep (WCSPH: all forces; DFSPH: non-pressure)
-    uint frame_max_speed;     // bits of max |v| over this frame
-    uint frame_max_density;   // bits of max rho/rho0 over this frame
+    uint frame_max_speed;     // bits of max |v| over this frame so far
+    uint frame_max_density;   // bits of max rho/rho0 over this frame so far
     float frame_min_dt;       // smallest stable dt (CFL and force conditions) this frame (s)
     uint frame_substeps;      // substeps run this frame
     uint nan_count;           // particle updates with a non-finite value this frame
     uint nan_index;           // lowest index among them (sorted order), or 0xFFFFFFFF
     uint escaped_count;       // particles outside the domain this frame
     uint escaped_index;       // lowest index among them, or 0xFFFFFFFF
-    uint speed_index;         // a particle at the frame's max speed
-    uint density_index;       // a particle at the frame's max density
+    uint speed_index;         // a particle at the frame's max speed (FrameExtreme: set at the frame's end)
+    uint density_index;       // a particle at the frame's max density (likewise)
     uint front;               // bits of the surge front: max (x - domain_min.x) of particles within front_band of domain_min.y
     uint frame;               // frame number these findings belong to
     uint steps;               // substeps since the start
@@ -159,6 +159,26 @@ RANRYU_STRUCT(StepState) {
     uint pad0, pad1, pad2;
 }
 RANRYU_STRUCT_END(StepState, 192)
+
+// The frame's fastest and densest particles, kept per span of RANRYU_EXTREME_SPAN particles after the
+// StepState in the Step block (glsl/sim/fluid/fluid.glsl: Step.extreme[]): entry 2 s + kind (kind
+// RANRYU_EXTREME_SPEED or RANRYU_EXTREME_DENSITY) holds the largest value this frame of the workgroups
+// that begin at particle s · RANRYU_EXTREME_SPAN (its float's bits, as StepState keeps maxima), a
+// particle that has it and where that particle was. Each entry has one writer, its workgroup's
+// invocation 0, since every recording pass's local size is a multiple of the span
+// (glsl/sim/fluid/extremes.glsl): no two workgroups race on an index or a position, which a
+// maximum raised by atomicMax and the index written after it did. record_extremes.comp folds them
+// into StepState's frame_max_*, *_index and *_position at the frame's end and clears them.
+RANRYU_STRUCT(FrameExtreme) {
+    uint bits;       // the largest value of the entry's workgroups this frame (0: none yet)
+    uint index;      // a particle that has it (sorted index at its step)
+    uint pad0, pad1;
+    vec4 position;   // xyz: where that particle was when its value was recorded (m)
+}
+RANRYU_STRUCT_END(FrameExtreme, 32)
+#define RANRYU_EXTREME_SPAN 128    // particles an entry covers; every recording pass's local size is a multiple
+#define RANRYU_EXTREME_SPEED 0     // |v| at a step's end (the integrations, glsl/sim/fluid/motion.glsl)
+#define RANRYU_EXTREME_DENSITY 1   // rho/rho0 (the density passes)
 
 // ---- DFSPH (engine/sim/solvers/dfsph.h, glsl/sim/dfsph/; docs/DFSPH.md) ----
 #define RANRYU_UBO_DFSPH 8   // DfsphParams

@@ -21,7 +21,7 @@
 //   SolveState:   dispatch, then its 16 scalars in order (std430)                    20 words
 //   BoundaryRowsState: dispatch, rows, count, epoch, pad0 (std430)                 8 words
 //   PbfParams:    its 8 scalars in order                                              8 words
-//   kMacros:      the RANRYU_* macros, in the order of the array below               25 words
+//   kMacros:      the RANRYU_* macros, in the order of the array below               28 words
 #include "../shared/bindings.h"
 
 layout(local_size_x = 1) in;
@@ -40,7 +40,7 @@ layout(std430) readonly buffer BoundaryRows { BoundaryRowsState rows; };
 layout(std140, binding = RANRYU_UBO_PBF) uniform PbfBlock { PbfParams pbf; };
 layout(std430) buffer ProbeOut { uint words[]; };
 
-const uint kMacros[25] = uint[25](
+const uint kMacros[28] = uint[28](
     RANRYU_UBO_FRAME, RANRYU_UBO_SIM, RANRYU_UBO_GRID, RANRYU_UBO_SPH, RANRYU_UBO_PROBE,
     RANRYU_UBO_SURFACE, RANRYU_UBO_NOISE,
     RANRYU_LOC_COUNT, RANRYU_LOC_SHIFT, RANRYU_LOC_STAGE, RANRYU_LOC_AUX,
@@ -48,7 +48,8 @@ const uint kMacros[25] = uint[25](
     RANRYU_SORT_RADIX_BITS, RANRYU_SORT_RADIX_ITEMS_PER_THREAD, RANRYU_SORT_BITONIC_ITEMS_PER_THREAD,
     RANRYU_UBO_SUBPARTICLES, RANRYU_LOC_SUBPARTICLE_GROUP,
     RANRYU_SUBPARTICLE_MAX_LEVEL, RANRYU_SUBPARTICLE_SPLIT_SHIFT, uint(RANRYU_SUBPARTICLE_SPLAT_SCALE),
-    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF, floatBitsToUint(RANRYU_PBF_WARM_CAP));
+    RANRYU_UBO_DFSPH, RANRYU_DFSPH_SOLVE_STRIDE, RANRYU_UBO_PBF, floatBitsToUint(RANRYU_PBF_WARM_CAP),
+    RANRYU_EXTREME_SPAN, RANRYU_EXTREME_SPEED, RANRYU_EXTREME_DENSITY);
 
 uint k = 0u;
 void put(float x) { words[k++] = floatBitsToUint(x); }

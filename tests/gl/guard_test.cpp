@@ -408,6 +408,180 @@ TEST_CASE("guard: the frame's fastest particle is named with where its step ende
     ranryu::test::require_no_gl_errors();
 }
 
+TEST_CASE("guard: the frame's fastest and densest particles are named exactly across workgroups and frames", "[guard]") {
+    // 13,824 particles (a 24³ jittered lattice at dx = 0.0125 m): 108 workgroups of the density pass
+    // (54 of WCSPH's and DFSPH's integrations), 108 spans of FrameExtreme entries (shared/bindings.h). The speeds grow with
+    // height (with a random part), and the particles are sorted by cell, so most workgroups in turn
+    // raise the maximum: where the index was written after an atomicMax, two workgroups wrote in
+    // either order and the record could name a slower particle (it did on the NVIDIA driver). One
+    // substep a frame (frame_dt 0.2 ms: a particle moves less than 0.02 dx); the second frame is
+    // slower and sparser (the block spread by 3 %), so its record is its own only if the first frame's
+    // entries were cleared. Reference: the state read back, the record exact (the fastest particle's
+    // speed, index and end position; the densest particle's density within float ties) and where the
+    // density pass read the densest particle: within 0.25 dx of its end position and, for WCSPH and
+    // DFSPH, one of the uploaded positions bit for bit (the sort moves them bitwise; PBF's density is
+    // that of its last iteration's predicted positions).
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    const std::string solver = GENERATE(as<std::string>(), "wcsph", "dfsph", "pbf");
+    INFO(solver);
+    Rig rig(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}, "time": {"frame_dt": 0.0002},
+               "sph": {"solver": ")" + solver + R"("},
+               "particles": {"spacing": 0.0125, "blocks": [{"min": [0.1, 0.02, 0.1], "max": [0.4, 0.32, 0.4]}]}})");
+    REQUIRE(rig.fluid.count() == 13824u);
+    const float dx = rig.scene.spacing;
+    std::vector<glm::vec4> x = rig.scene.initial_positions();
+    for (auto& p : x) p += glm::vec4(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), 0.0f) * dx;
+    const float rho0 = rig.fluid.params().rest_density;
+    float first_speed = 0.0f, first_ratio = 0.0f;
+    for (int frame = 0; frame < 2; ++frame) {
+        INFO("frame " << frame);
+        if (frame == 1)
+            for (auto& p : x) p = glm::vec4(glm::vec3(0.25f, 0.02f, 0.25f) + 1.03f * (glm::vec3(p) - glm::vec3(0.25f, 0.02f, 0.25f)), 0.0f);
+        const float top = frame == 0 ? 0.5f : 0.2f, bottom = frame == 0 ? 0.25f : 0.0f;   // m/s
+        std::vector<glm::vec4> v(x.size());
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            const float up = (x[k].y - 0.02f) / 0.3f;
+            const glm::vec3 dir = glm::normalize(glm::vec3(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f)) + 1e-3f);
+            v[k] = glm::vec4(dir * (bottom + (top - bottom) * (0.9f * up + 0.1f * rng.uniform(0.0f, 1.0f))), 0.0f);
+        }
+        rig.fluid.upload_state(x, v);
+        rig.fluid.set_fixed_dt(rig.scene.frame_dt);
+        rig.frame(std::uint64_t(frame));
+        const gpu::StepState record = rig.step();
+        const auto xs = rig.read(rig.fluid.positions()), vs = rig.read(rig.fluid.velocities()), density = rig.read(rig.fluid.densities());
+        rig.finish();
+        REQUIRE(record.frame_substeps == 1u);
+        std::uint32_t fastest = 0, densest = 0;
+        for (std::uint32_t k = 1; k < vs.size(); ++k) {
+            if (glm::length(glm::vec3(vs[k])) > glm::length(glm::vec3(vs[fastest]))) fastest = k;
+            if (density[k].x > density[densest].x) densest = k;
+        }
+        float speed, ratio;
+        std::memcpy(&speed, &record.frame_max_speed, sizeof speed);
+        std::memcpy(&ratio, &record.frame_max_density, sizeof ratio);
+        INFO("fastest " << fastest << " at " << glm::length(glm::vec3(vs[fastest])) << " m/s, record " << record.speed_index << " at " << speed);
+        if (frame == 1) {   // the case's premise: the first frame's maxima exceed the second's
+            REQUIRE(glm::length(glm::vec3(vs[fastest])) < first_speed);
+            REQUIRE(density[densest].x / rho0 < first_ratio);
+        }
+        CHECK(speed == Approx(glm::length(glm::vec3(vs[fastest]))).epsilon(1e-6));
+        CHECK(record.speed_index == fastest);
+        CHECK(glm::vec3(record.speed_position) == glm::vec3(xs[fastest]));
+        INFO("densest " << densest << " at " << density[densest].x / rho0 << ", record " << record.density_index << " at " << ratio);
+        CHECK(ratio == Approx(density[densest].x / rho0).epsilon(1e-6));
+        REQUIRE(record.density_index < density.size());
+        CHECK(density[record.density_index].x == Approx(density[densest].x).epsilon(1e-6));
+        const glm::vec3 at(record.density_position);
+        CHECK(glm::length(at - glm::vec3(xs[record.density_index])) < 0.25f * dx);
+        if (solver != "pbf") CHECK(std::any_of(x.begin(), x.end(), [&](const glm::vec4& p) { return glm::vec3(p) == at; }));
+        first_speed = speed;
+        first_ratio = ratio;
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: the frame's fastest particle is kept from the step it was fastest in, not the frame's last", "[guard]") {
+    // Two substeps a frame. One particle shot upwards at 2.5-3 m/s, farther than h from every other
+    // particle and from the walls, slows a step (a = g exactly: no neighbour), so the frame's fastest
+    // is that particle at the end of the first substep; the second substep's smaller value must not
+    // replace it in its workgroup's entry. The second substep (its dt the record's) took it from x1,
+    // v1 to x2 = x1 + dt v2, v2 = v1 + dt g (symplectic Euler, docs/SPH.md (6)), so the record must hold
+    // |v2 − dt g| and x2 − dt v2. The block below moves far slower.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    std::string json = scene_json();
+    json.insert(1, R"("time": {"frame_dt": 0.002}, )");   // two substeps of 1 ms
+    Rig rig(json);
+    std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
+    const std::size_t shot = rng.below(unsigned(x.size()));
+    const glm::vec3 x0(rng.uniform(0.12f, 0.18f), 0.29f, rng.uniform(0.12f, 0.18f));
+    const glm::vec3 v0(rng.uniform(-0.1f, 0.1f), rng.uniform(2.5f, 3.0f), rng.uniform(-0.1f, 0.1f));
+    x[shot] = glm::vec4(x0, 0.0f);
+    v[shot] = glm::vec4(v0, 0.0f);
+    const float h = 2.0f * rig.scene.spacing;
+    for (std::size_t k = 0; k < x.size(); ++k)
+        if (k != shot) REQUIRE(glm::length(glm::vec3(x[k]) - x0) > h);   // the block's top is below 0.23 m
+    rig.fluid.upload_state(x, v);
+    rig.fluid.set_fixed_dt(0.001f);   // two substeps; each as long as the CFL condition allows
+    rig.frame(0);
+    const gpu::StepState record = rig.step();
+    const auto xs = rig.read(rig.fluid.positions()), vs = rig.read(rig.fluid.velocities());
+    rig.finish();
+    REQUIRE(record.frame_substeps == 2u);
+    std::size_t fastest = 0;   // after the second substep: the shot particle (sorted index)
+    for (std::size_t k = 1; k < vs.size(); ++k)
+        if (glm::length(glm::vec3(vs[k])) > glm::length(glm::vec3(vs[fastest]))) fastest = k;
+    const float dt = record.dt;
+    const glm::vec3 g = rig.scene.gravity, x2(xs[fastest]), v2(vs[fastest]), v1 = v2 - dt * g, x1 = x2 - dt * v2;
+    float speed;
+    std::memcpy(&speed, &record.frame_max_speed, sizeof speed);
+    INFO("dt " << dt << " s; recorded " << speed << " m/s, the first substep's " << glm::length(v1) << ", the second's "
+               << glm::length(v2));
+    REQUIRE(glm::length(glm::vec3(x0) - x2) < 0.01f);                  // the premise: that is the shot particle,
+    REQUIRE(glm::length(v2) < glm::length(v1) - 0.5f * 9.81f * dt);   // and it slowed
+    CHECK(speed == Approx(glm::length(v1)).epsilon(1e-5));
+    CHECK(glm::length(glm::vec3(record.speed_position) - x1) < 1e-6f);
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("guard: the frame's extremes fold to the largest entry, ties to the lowest, and are cleared", "[guard]") {
+    // record_extremes.comp against a CPU fold of fresh random FrameExtreme entries: 64,000 particles,
+    // 500 spans (two rounds of the pass's 256 invocations), values from a set of eight so that ties
+    // are common, a fifth of the entries empty; where a kind has no entry at all (second round), its
+    // record is zero. The entries are read back zero afterwards, the particles' state untouched.
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    Rig rig(R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}, "sph": {"solver": "wcsph"},
+               "particles": {"spacing": 0.01, "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.4, 0.4]}]}})");
+    REQUIRE(rig.fluid.count() == 64000u);
+    const std::size_t spans = (rig.fluid.count() + RANRYU_EXTREME_SPAN - 1) / RANRYU_EXTREME_SPAN;
+    REQUIRE(spans == 500u);
+    REQUIRE(rig.fluid.step_state().size() == sizeof(gpu::StepState) + 2 * spans * sizeof(gpu::FrameExtreme));
+    for (int round = 0; round < 2; ++round) {
+        INFO("round " << round);
+        std::vector<gpu::FrameExtreme> e(2 * spans);
+        std::uint32_t values[8];
+        for (std::uint32_t& b : values) b = bits(rng.uniform(0.5f, 2.0f));
+        for (std::size_t k = 0; k < e.size(); ++k) {
+            const bool empty = rng.uniform(0.0f, 1.0f) < 0.2f || (round == 1 && k % 2 == RANRYU_EXTREME_DENSITY);
+            e[k].bits = empty ? 0u : values[rng.below(8)];
+            e[k].index = std::uint32_t(rng.below(64000));
+            e[k].position = glm::vec4(rng.uniform(0.0f, 0.5f), rng.uniform(0.0f, 0.5f), rng.uniform(0.0f, 0.5f), 0.0f);
+        }
+        const auto before = rig.read(rig.fluid.positions());
+        glBindBuffer(GL_COPY_WRITE_BUFFER, rig.fluid.step_state().id());
+        glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(sizeof(gpu::StepState)), GLsizeiptr(e.size() * sizeof e[0]), e.data());
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        rig.timer.begin_frame();
+        rig.fluid.begin_frame(std::uint64_t(round));
+        rig.fluid.end_frame();
+        rig.timer.end_frame();
+        rig.fluid.poll_records();
+        const gpu::StepState r = rig.step();
+        const auto after = rig.fluid.step_state().read<gpu::FrameExtreme>(2 * spans, sizeof(gpu::StepState));
+        CHECK(rig.read(rig.fluid.positions()) == before);
+        rig.finish();
+        for (std::uint32_t kind : {std::uint32_t(RANRYU_EXTREME_SPEED), std::uint32_t(RANRYU_EXTREME_DENSITY)}) {
+            INFO("kind " << kind);
+            std::size_t best = e.size();
+            for (std::size_t k = kind; k < e.size(); k += 2)
+                if (e[k].bits != 0u && (best == e.size() || e[k].bits > e[best].bits)) best = k;
+            const bool any = best != e.size();
+            const std::uint32_t want_bits = any ? e[best].bits : 0u, want_index = any ? e[best].index : 0u;
+            const glm::vec4 want_at = any ? e[best].position : glm::vec4(0.0f);
+            const bool speed = kind == RANRYU_EXTREME_SPEED;
+            CHECK((speed ? r.frame_max_speed : r.frame_max_density) == want_bits);
+            CHECK((speed ? r.speed_index : r.density_index) == want_index);
+            CHECK((speed ? r.speed_position : r.density_position) == want_at);
+        }
+        std::size_t left = 0;
+        for (const gpu::FrameExtreme& f : after) left += f.bits != 0u;
+        CHECK(left == 0u);
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
 TEST_CASE("guard: a NaN written into one velocity is reported as non-finite", "[guard]") {
     // One substep (fixed dt = frame_dt): the poisoned particle's update is NaN, and so is each
     // neighbour's, through the viscous term (v_ij · x_ij with v_i NaN) over pairs closer than h. So

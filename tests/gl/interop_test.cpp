@@ -272,6 +272,9 @@ const std::vector<std::pair<const char*, std::uint32_t>> kMacros = {
     {"RANRYU_DFSPH_SOLVE_STRIDE", RANRYU_DFSPH_SOLVE_STRIDE},
     {"RANRYU_UBO_PBF", RANRYU_UBO_PBF},
     {"RANRYU_PBF_WARM_CAP", std::bit_cast<std::uint32_t>(float(RANRYU_PBF_WARM_CAP))},
+    {"RANRYU_EXTREME_SPAN", RANRYU_EXTREME_SPAN},
+    {"RANRYU_EXTREME_SPEED", RANRYU_EXTREME_SPEED},
+    {"RANRYU_EXTREME_DENSITY", RANRYU_EXTREME_DENSITY},
 };
 
 const Program& probe() {
@@ -377,6 +380,28 @@ TEST_CASE("every member of the shared structs sits where C++ puts it") {
     }
     // And every member C++ knows was reported by GL.
     CHECK(seen.size() == cpp_members().size());
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("the FrameExtreme entries follow the StepState in the Step block as the passes declare it") {
+    // shared/bindings.h: entry k of Step.extreme[] at sizeof(StepState) + k·sizeof(FrameExtreme), its
+    // members at their offsetof; read from the program that folds them (every member it uses is active).
+    ranryu::test::context();
+    const Program p = Program::compute(FileSource::embedded(), "sim/fluid/record_extremes.comp");
+    const std::pair<const char*, std::size_t> members[] = {{"extreme[0].bits", offsetof(gpu::FrameExtreme, bits)},
+                                                           {"extreme[0].index", offsetof(gpu::FrameExtreme, index)},
+                                                           {"extreme[0].position", offsetof(gpu::FrameExtreme, position)}};
+    for (const auto& [name, offset] : members) {
+        INFO(name);
+        const GLuint var = glGetProgramResourceIndex(p.id(), GL_BUFFER_VARIABLE, name);
+        REQUIRE(var != GL_INVALID_INDEX);
+        CHECK(std::size_t(resource(p.id(), GL_BUFFER_VARIABLE, var, GL_OFFSET)) == sizeof(gpu::StepState) + offset);
+        CHECK(std::size_t(resource(p.id(), GL_BUFFER_VARIABLE, var, GL_TOP_LEVEL_ARRAY_STRIDE)) == sizeof(gpu::FrameExtreme));
+        const GLuint block = glGetProgramResourceIndex(p.id(), GL_SHADER_STORAGE_BLOCK, "Step");
+        CHECK(resource(p.id(), GL_BUFFER_VARIABLE, var, GL_BLOCK_INDEX) == GLint(block));
+    }
+    CHECK(GLenum(resource(p.id(), GL_BUFFER_VARIABLE, glGetProgramResourceIndex(p.id(), GL_BUFFER_VARIABLE, "extreme[0].position"), GL_TYPE)) ==
+          GL_FLOAT_VEC4);
     ranryu::test::require_no_gl_errors();
 }
 

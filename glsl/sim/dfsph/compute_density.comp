@@ -15,10 +15,11 @@
 // PressureAccel's tail, from M_i = (1/rho_i)[Σ_j m (x_j − x_i) ⊗ gradW_ij + Σ_b psi_b (x_b − x_i) ⊗ gradW_ib]
 // of the same walk; the divergence solve's first pressure accelerations already carry it.
 // With RANRYU_ELIMINATED_ROWS, the diagonal of (D13) in place of (D2)'s.
-// Guard: the frame's largest rho/rho0; the time step: the largest |a_i| (D8).
+// Guard: the frame's largest rho/rho0 and a particle that has it (extremes.glsl); the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
+#include "../fluid/extremes.glsl"
 layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) writeonly buffer Density { vec4 density[]; };
@@ -145,10 +146,7 @@ void main() {
         magnitude = length(a);
     }
     uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
-    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) {
-        step.density_index = m.y;
-        step.density_position = vec4(position[m.y].xyz, 0.0);
-    }
+    if (gl_LocalInvocationIndex == 0u && m.x != 0u) keep_extreme(RANRYU_EXTREME_DENSITY, m, position[m.y].xyz);
     m = workgroup_max(live ? max_bits(magnitude) : 0u, i);
     if (gl_LocalInvocationIndex == 0u) atomicMax(step.max_accel, m.x);
 }

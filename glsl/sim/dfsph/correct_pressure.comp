@@ -52,9 +52,10 @@ layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };
 // atomics; the other fields are written by that one invocation and read by later dispatches, behind
 // their barriers. Declared coherent, each invocation's reads of the iteration, the solve and the
 // Chebyshev weight went past the cache: 2-3 % of a density iteration on the H200 (docs/PERFORMANCE.md
-// "Passes within passes, timed apart"). Step (fluid.glsl) stays coherent: a workgroup that raised a
-// maximum by atomicMax then writes where its particle is, and without it the NVIDIA driver let a slower
-// workgroup's write land last more often (tests/gl/guard_test.cpp "the frame's fastest particle").
+// "Passes within passes, timed apart"). Step (fluid.glsl) stays coherent, as measured: made not
+// coherent too it gave 0.1 % more, measured while the frame's fastest particle was still written after
+// an atomicMax (a race since removed: docs/PERFORMANCE.md "The frame's fastest and densest particles,
+// without a race").
 layout(std430) buffer Solve { SolveState solve; };
 // The density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle.
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };

@@ -5,7 +5,7 @@
 
 layout(std140, binding = RANRYU_UBO_GRID) uniform GridBlock { GridParams grid; };
 layout(std140, binding = RANRYU_UBO_SPH) uniform SphBlock { SphParams sph; };
-layout(std430) coherent buffer Step { StepState step; };
+layout(std430) coherent buffer Step { StepState step; FrameExtreme extreme[]; };   // extreme[]: extremes.glsl
 layout(std430) readonly buffer CellRange { uvec2 cell_range[]; }; // per key: first sorted index of the cell, one past its last
 layout(std430) readonly buffer SortedKeys { uint sorted_keys[]; }; // per sorted index: the key (validates ranges)
 layout(std430) readonly buffer Boundary { vec4 boundary[]; };      // xyz, w: psi_b, in cell order

@@ -1,6 +1,6 @@
 // The end of a step, shared by every solver's integration (docs/SPH.md (6), (8)): the last-resort
 // projection out of the tank's walls and the obstacles, and the guard's records. Needs fluid.glsl and
-// declares the Obstacles block.
+// the pass's local size before it, and declares the Obstacles block.
 //
 // The projection: a particle whose centre the step put more than kSlack spacings inside a solid (the
 // tank's walls and floor, and the obstacles) goes back to that depth, and the part of its velocity
@@ -12,6 +12,8 @@
 // engine/sim/boundary.h obstacle_shapes(): (count, 0, 0, 0), then per obstacle a box as (min, 0),
 // (max, 0) or a sphere as (center, 1), (radius, 0, 0, 0); the paddle as (center, 2), (radius, velocity).
 layout(std430) readonly buffer Obstacles { vec4 obstacle[]; };
+
+#include "extremes.glsl"
 
 const float kSlack = 0.25;   // spacings a centre may lie inside a solid before it is projected
 
@@ -163,20 +165,19 @@ uvec2 record_particle(uint i, vec3 x, vec3 v) {
     return uvec2(max_bits(length(v)), front);
 }
 
-// The workgroup's largest speed and front into StepState: one atomic a workgroup. Every invocation
-// calls it (barriers); `bits` is record_particle()'s result, or 0 for invocations past the count.
-// The fastest particle's position goes with its index (the second workgroup_max's barriers order the
-// winner's shared write before invocation 0 reads it).
+// The workgroup's largest speed and front: into StepState by one atomic a workgroup each (the step's
+// max_speed, the time step's input, and the front), and the fastest particle with its position into the
+// workgroup's FrameExtreme entry (extremes.glsl). Every invocation calls it (barriers); `bits` is
+// record_particle()'s result, or 0 for invocations past the count. The fastest particle's position goes
+// with its index (the second workgroup_max's barriers order the winner's shared write before
+// invocation 0 reads it).
 void record_maxima(uvec2 bits, uint i) {
     uvec2 s = workgroup_max(bits.x, i);
     if (s.x != 0u && i == s.y) wg_fastest_x_ = recorded_x_;
     uvec2 f = workgroup_max(bits.y, i);
     if (gl_LocalInvocationIndex == 0u) {
         atomicMax(step.max_speed, s.x);
-        if (s.x > atomicMax(step.frame_max_speed, s.x)) {
-            step.speed_index = s.y;
-            step.speed_position = vec4(wg_fastest_x_, 0.0);
-        }
+        if (s.x != 0u) keep_extreme(RANRYU_EXTREME_SPEED, s, wg_fastest_x_);
         atomicMax(step.front, f.x);
     }
 }

@@ -19,6 +19,7 @@
 #include "pbf.glsl"
 
 layout(local_size_x = 128) in;
+#include "../fluid/extremes.glsl"
 layout(location = RANRYU_LOC_AUX) uniform uint last;   // 1 in the step's last iteration
 layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) writeonly buffer Lambda { float lambda[]; };
@@ -92,9 +93,6 @@ void main() {
     }
     if (last != 0u) {   // dynamically uniform: workgroup_max()'s barriers are met by every invocation
         uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
-        if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) {
-            step.density_index = m.y;
-            step.density_position = vec4(position[m.y].xyz, 0.0);
-        }
+        if (gl_LocalInvocationIndex == 0u && m.x != 0u) keep_extreme(RANRYU_EXTREME_DENSITY, m, position[m.y].xyz);
     }
 }

@@ -6,10 +6,11 @@
 // forces gathers the pair terms of its neighbours (8 bytes, not 16) and saves a division a pair. The
 // flags (fluid.glsl) and, with RANRYU_NEIGHBOUR_MASKS, the neighbour masks (density_walk.glsl) let
 // the passes after it skip the candidate tests.
-// Guard: the frame's largest rho/rho0 and a particle that has it.
+// Guard: the frame's largest rho/rho0 and a particle that has it (extremes.glsl).
 #include "../fluid/fluid.glsl"
 
 layout(local_size_x = 128) in;
+#include "../fluid/extremes.glsl"
 layout(std430) readonly buffer Positions { vec4 position[]; };
 layout(std430) writeonly buffer Density { vec4 density[]; };
 layout(std430) writeonly buffer PairTerms { vec2 pair_terms[]; };
@@ -37,8 +38,5 @@ void main() {
         pair_terms[i] = vec2(rho, p_term);
     }
     uvec2 m = workgroup_max(live ? max_bits(ratio) : 0u, i);
-    if (gl_LocalInvocationIndex == 0u && m.x > atomicMax(step.frame_max_density, m.x)) {
-        step.density_index = m.y;
-        step.density_position = vec4(position[m.y].xyz, 0.0);
-    }
+    if (gl_LocalInvocationIndex == 0u && m.x != 0u) keep_extreme(RANRYU_EXTREME_DENSITY, m, position[m.y].xyz);
 }
