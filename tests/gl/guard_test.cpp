@@ -410,8 +410,8 @@ TEST_CASE("guard: the frame's fastest particle is named with where its step ende
 
 TEST_CASE("guard: the frame's fastest and densest particles are named exactly across workgroups and frames", "[guard]") {
     // 13,824 particles (a 24³ jittered lattice at dx = 0.0125 m): 108 workgroups of the density pass
-    // (54 of WCSPH's and DFSPH's integrations), 108 spans of FrameExtreme entries (shared/bindings.h). The speeds grow with
-    // height (with a random part), and the particles are sorted by cell, so most workgroups in turn
+    // (54 of WCSPH's and DFSPH's integrations), 108 spans of FrameExtreme entries (shared/bindings.h).
+    // The speeds grow with height (with a random part), and the particles are sorted by cell, so most workgroups in turn
     // raise the maximum: where the index was written after an atomicMax, two workgroups wrote in
     // either order and the record could name a slower particle (it did on the NVIDIA driver). One
     // substep a frame (frame_dt 0.2 ms: a particle moves less than 0.02 dx); the second frame is
@@ -491,7 +491,7 @@ TEST_CASE("guard: the frame's fastest particle is kept from the step it was fast
     ranryu::test::Random rng;
     INFO("seed " << rng.seed());
     std::string json = scene_json();
-    json.insert(1, R"("time": {"frame_dt": 0.002}, )");   // two substeps of 1 ms
+    json.insert(1, R"("time": {"frame_dt": 0.002}, )");   // a frame of 2 ms, in two substeps (below)
     Rig rig(json);
     std::vector<glm::vec4> x = jittered(rng, rig), v(x.size(), glm::vec4(0.0f));
     const std::size_t shot = rng.below(unsigned(x.size()));
