@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <numbers>
 #include <string>
 
 #include "core/error.h"
@@ -120,6 +121,10 @@ gpu::SphParams sph_params(const scene::Scene& s, std::size_t count, std::size_t 
     p.domain_max = glm::vec4(s.tank_max.x + dx, s.tank_closed ? s.tank_max.y + dx : s.tank_max.y + v * v / (2.0f * g),
                              s.tank_max.z + dx, s.tank_closed ? 1.0f : 0.0f);
     p.h = h;
+    // Eq. (1)'s constants, which the walks read instead of deriving them from h a pair (bindings.h)
+    p.inv_h = 1.0f / h;
+    p.w_scale = float(8.0 / std::numbers::pi) * p.inv_h * p.inv_h * p.inv_h;
+    p.grad_scale = float(48.0 / std::numbers::pi) * p.inv_h * p.inv_h * p.inv_h * p.inv_h;
     p.mass = rho0 * dx * dx * dx;
     p.rest_density = rho0;
     p.stiffness = rho0 * c * c / 7.0f;

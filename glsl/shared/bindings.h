@@ -108,9 +108,12 @@ RANRYU_STRUCT(SphParams) {
     uint boundary_count;
     float front_band;     // surge front: particles below floor + this count (m)
     float artificial_viscosity;   // WCSPH: alpha of eq. (5a), Monaghan's on approaching pairs; 0: none
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    // The kernel's constants, from h (sim::sph_params): 1/h, 8/(pi h^3) of W and 48/(pi h^4) of grad W
+    // (eq. (1)). Read as operands in the neighbour walks (glsl/sim/fluid/fluid.glsl kernel_w(r),
+    // kernel_grad(d, r)), where constants derived from h in the loop were recomputed every pair.
+    float inv_h;
+    float w_scale;
+    float grad_scale;
 }
 RANRYU_STRUCT_END(SphParams, 128)
 

@@ -76,7 +76,7 @@ void main() {
     put(sph.sound_speed); put(sph.spacing); put(sph.cfl); put(sph.force_factor); put(sph.dt_max);
     put(sph.dt_floor); put(sph.density_limit); put(sph.speed_limit); put(sph.particle_count);
     put(sph.boundary_count); put(sph.front_band); put(sph.artificial_viscosity);
-    put(sph.pad0); put(sph.pad1); put(sph.pad2);
+    put(sph.inv_h); put(sph.w_scale); put(sph.grad_scale);
 
     put(step.dt); put(step.time); put(step.frame_left); put(step.substeps_left); put(step.max_speed);
     put(step.max_accel); put(step.frame_max_speed); put(step.frame_max_density); put(step.frame_min_dt);

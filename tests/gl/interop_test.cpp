@@ -98,9 +98,9 @@ const std::map<std::string, Member>& cpp_members() {
         {"sph.boundary_count", {offsetof(gpu::SphParams, boundary_count), GL_UNSIGNED_INT}},
         {"sph.front_band", {offsetof(gpu::SphParams, front_band), GL_FLOAT}},
         {"sph.artificial_viscosity", {offsetof(gpu::SphParams, artificial_viscosity), GL_FLOAT}},
-        {"sph.pad0", {offsetof(gpu::SphParams, pad0), GL_UNSIGNED_INT}},
-        {"sph.pad1", {offsetof(gpu::SphParams, pad1), GL_UNSIGNED_INT}},
-        {"sph.pad2", {offsetof(gpu::SphParams, pad2), GL_UNSIGNED_INT}},
+        {"sph.inv_h", {offsetof(gpu::SphParams, inv_h), GL_FLOAT}},
+        {"sph.w_scale", {offsetof(gpu::SphParams, w_scale), GL_FLOAT}},
+        {"sph.grad_scale", {offsetof(gpu::SphParams, grad_scale), GL_FLOAT}},
 
         {"step.dt", {offsetof(gpu::StepState, dt), GL_FLOAT}},
         {"step.time", {offsetof(gpu::StepState, time), GL_FLOAT}},
@@ -461,9 +461,9 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     hp.boundary_count = d.u();
     hp.front_band = d.f();
     hp.artificial_viscosity = d.f();
-    hp.pad0 = d.u();
-    hp.pad1 = d.u();
-    hp.pad2 = d.u();
+    hp.inv_h = d.f();
+    hp.w_scale = d.f();
+    hp.grad_scale = d.f();
 
     gpu::StepState st{};
     st.dt = d.f();
@@ -549,7 +549,7 @@ TEST_CASE("random values in the shared structs reach GLSL bit for bit, and the m
     expect.put(hp.spacing); expect.put(hp.cfl); expect.put(hp.force_factor); expect.put(hp.dt_max);
     expect.put(hp.dt_floor); expect.put(hp.density_limit); expect.put(hp.speed_limit); expect.put(hp.particle_count);
     expect.put(hp.boundary_count); expect.put(hp.front_band); expect.put(hp.artificial_viscosity);
-    expect.put(hp.pad0); expect.put(hp.pad1); expect.put(hp.pad2);
+    expect.put(hp.inv_h); expect.put(hp.w_scale); expect.put(hp.grad_scale);
     const std::size_t sph_end = expect.w.size();
     expect.put(st.dt); expect.put(st.time); expect.put(st.frame_left); expect.put(st.substeps_left);
     expect.put(st.max_speed); expect.put(st.max_accel); expect.put(st.frame_max_speed); expect.put(st.frame_max_density);

@@ -20,7 +20,7 @@ void main() {
     ivec3 c = grid_cell(xb);
     FOR_EACH_RUN {
         uvec2 run = NEIGHBOUR_RUN(c, false);
-        for (uint k = run.x; k < run.y; ++k) sum += kernel_w(length(xb - boundary[k].xyz), sph.h);
+        for (uint k = run.x; k < run.y; ++k) sum += kernel_w(length(xb - boundary[k].xyz));
     }
     float cell = boundary[b].w > 0.0 ? boundary[b].w : sph.spacing * sph.spacing * sph.spacing;
     weighted[b] = vec4(xb, sph.rest_density * min(1.0 / sum, cell));

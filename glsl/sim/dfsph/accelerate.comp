@@ -25,7 +25,7 @@ float kappa_i_, compact_;
 vec3 a_;
 void visit_fluid(uint j, vec3 d, float r2) {
     float kj = kappa[j];
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     a_ -= sph.mass * (kappa_i_ + kj) * g;
 #ifdef RANRYU_PRESSURE_STABILISATION
     compact_ += sph.mass * (kj - kappa_i_) * compact_weight(d, g, r2);
@@ -33,7 +33,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
 }
 void visit_boundary(uint b, vec3 d, float r2) {
     float kb = KAPPA_B(b, solve.solve);
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     a_ -= (kappa_i_ + kb) * boundary[b].w * g;
 #ifdef RANRYU_PRESSURE_STABILISATION
     compact_ += boundary[b].w * (kb - kappa_i_) * compact_weight(d, g, r2);

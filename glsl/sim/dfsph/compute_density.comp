@@ -71,8 +71,8 @@ void store_correction(uint i, float rho) {
 
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
-    fluid_sum_ += kernel_w(r, sph.h);
-    vec3 g = kernel_grad(d, r, sph.h);   // 0 for j = i
+    fluid_sum_ += kernel_w(r);
+    vec3 g = kernel_grad(d, r);   // 0 for j = i
     vec3 vj = velocity[j].xyz;
     grad_fluid_ += sph.mass * g;
     squares_ += sph.mass * sph.mass * dot(g, g);
@@ -87,8 +87,8 @@ void visit_fluid(uint j, vec3 d, float r2) {
 
 void visit_boundary(uint b, vec3 d, float r2) {
     float r = sqrt(r2), psi = boundary[b].w;
-    wall_sum_ += psi * kernel_w(r, sph.h);
-    vec3 g = kernel_grad(d, r, sph.h);
+    wall_sum_ += psi * kernel_w(r);
+    vec3 g = kernel_grad(d, r);
     grad_wall_ += psi * g;
     rate_ += psi * dot(vi_, g);
     viscous_wall_ += (psi / sph.rest_density) * dot(vi_, d) / (r2 + 0.01 * sph.h * sph.h) * g;

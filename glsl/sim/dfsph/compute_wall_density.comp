@@ -19,7 +19,7 @@ void main() {
         uvec2 run = NEIGHBOUR_RUN(c, false);
         for (uint q = run.x; q < run.y; ++q) {
             vec3 d = xb - boundary[q].xyz;
-            if (dot(d, d) < h2) sum += boundary[q].w * kernel_w(length(d), sph.h);
+            if (dot(d, d) < h2) sum += boundary[q].w * kernel_w(length(d));
         }
     }
     wall[b] = sum;

@@ -76,7 +76,7 @@ layout(std430) readonly buffer BoundaryRow { vec2 row[]; };   // (s_b, 1/D_b), p
 layout(std430) readonly buffer RowMasks { uint row_masks[]; };   // the prepare pass's (boundary_rows.glsl)
 #include "boundary_rows.glsl"
 float row_change_;
-void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r, sph.h)); }
+void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r)); }
 
 // Row k's update (above).
 void correct_row(uint k) {
@@ -98,20 +98,20 @@ vec3 a_i_;
 float change_, diagonal_;   // diagonal_: Σ_j m c_ij + Σ_b psi_b c_ib of (D12)
 float handed_;   // (D13): Σ_b W_ib q_b, the rows' excess handed to particle i (hand_off_excess.comp)
 void visit_fluid(uint j, vec3 d, float r2) {
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     change_ += sph.mass * dot(a_i_ - pressure_accel[j].xyz, g);
 #ifdef RANRYU_PRESSURE_STABILISATION
     diagonal_ += sph.mass * compact_weight(d, g, r2);
 #endif
 }
 void visit_boundary(uint b, vec3 d, float r2) {
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     change_ += boundary[b].w * dot(a_i_, g);
 #ifdef RANRYU_PRESSURE_STABILISATION
     diagonal_ += boundary[b].w * compact_weight(d, g, r2);
 #endif
 #ifdef RANRYU_ELIMINATED_ROWS
-    if (solve.solve == 0u) handed_ += kernel_w(sqrt(r2), sph.h) * KAPPA_B(b, 1u);   // (D13)
+    if (solve.solve == 0u) handed_ += kernel_w(sqrt(r2)) * KAPPA_B(b, 1u);   // (D13)
 #endif
 }
 

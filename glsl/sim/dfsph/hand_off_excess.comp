@@ -19,8 +19,8 @@ layout(std430) readonly buffer RowMasks { uint row_masks[]; };
 
 float change_, weight_;
 void visit_row_fluid(uint j, vec3 d, float r) {
-    change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r, sph.h));
-    weight_ += kernel_w(r, sph.h);
+    change_ -= sph.mass * dot(pressure_accel[j].xyz, kernel_grad(d, r));
+    weight_ += kernel_w(r);
 }
 
 void main() {

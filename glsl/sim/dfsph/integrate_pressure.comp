@@ -30,8 +30,8 @@ layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2), sph.h); }
-void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2)); }
+void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * kernel_grad(d, sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -25,7 +25,7 @@ layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the sour
 vec3 vi_, a_;
 float rate_, kappa_i_, compact_;
 void visit_fluid(uint j, vec3 d, float r2) {
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     rate_ += sph.mass * dot(vi_ - velocity[j].xyz, g);
     float kj = dfsph.warm_start * warm[j].x;
     a_ -= sph.mass * (kappa_i_ + kj) * g;
@@ -34,7 +34,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
 #endif
 }
 void visit_boundary(uint b, vec3 d, float r2) {
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     rate_ += boundary[b].w * dot(vi_, g);
     float kb = KAPPA_B(b, 0u);
     a_ -= (kappa_i_ + kb) * boundary[b].w * g;

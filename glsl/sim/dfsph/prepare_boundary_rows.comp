@@ -38,8 +38,8 @@ layout(std430) buffer RowMasks { uint row_masks[]; };   // recorded here (bounda
 
 float rho_, rate_, diagonal_;
 void visit_row_fluid(uint j, vec3 d, float r) {
-    vec3 g = kernel_grad(d, r, sph.h);
-    rho_ += sph.mass * kernel_w(r, sph.h);
+    vec3 g = kernel_grad(d, r);
+    rho_ += sph.mass * kernel_w(r);
     rate_ -= sph.mass * dot(velocity[j].xyz, g);
     diagonal_ += length(g) * accel[j].w;
 }

@@ -14,6 +14,10 @@ layout(std430) readonly buffer BoundaryCellRange { uvec2 boundary_range[]; };
 #include "../grid.glsl"
 #include "../kernel.glsl"
 
+// The fluid's kernel, of support h (eq. (1)), its constants read from SphParams (kernel.glsl).
+float kernel_w(float r) { return kernel_w_of(r, sph.inv_h, sph.w_scale); }
+vec3 kernel_grad(vec3 d, float r) { return kernel_grad_of(d, r, sph.inv_h, sph.grad_scale); }
+
 // A parked particle (position.w = -1): one of the emitter's budget not poured in yet
 // (engine/sim/fluid.h). It waits below the tank, farther than a support from everything else, and the
 // integrations leave it there at rest, out of the guard's records.

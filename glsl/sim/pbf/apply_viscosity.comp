@@ -23,8 +23,8 @@ vec3 vi_, smooth_, curl_;
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2), volume = sph.mass / density[j].x;
     vec3 vji = pbf_velocity[j].xyz - vi_;
-    smooth_ += volume * kernel_w(r, sph.h) * vji;
-    curl_ += volume * cross(kernel_grad(d, r, sph.h), vji);
+    smooth_ += volume * kernel_w(r) * vji;
+    curl_ += volume * cross(kernel_grad(d, r), vji);
 }
 void visit_boundary(uint b, vec3 d, float r2) {}
 

@@ -42,16 +42,16 @@ vec3 grad_;
 // j == i (the walk's) adds W(0) and a zero gradient.
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
-    sum_w_ += sph.mass * kernel_w(r, sph.h);
-    vec3 g = sph.mass * kernel_grad(d, r, sph.h);
+    sum_w_ += sph.mass * kernel_w(r);
+    vec3 g = sph.mass * kernel_grad(d, r);
     grad_ += g;
     squares_ += dot(g, g);
 }
 
 void visit_boundary(uint b, vec3 d, float r2) {
     float r = sqrt(r2), psi = boundary[b].w;
-    sum_w_ += psi * kernel_w(r, sph.h);
-    grad_ += psi * kernel_grad(d, r, sph.h);
+    sum_w_ += psi * kernel_w(r);
+    grad_ += psi * kernel_grad(d, r);
 }
 
 void main() {
@@ -78,7 +78,7 @@ void main() {
 #else
         vec4 last = density[i];
         uint flags = floatBitsToUint(last.w);
-        sum_w_ = sph.mass * kernel_w(0.0, sph.h);
+        sum_w_ = sph.mass * kernel_w(0.0);
         for_each_neighbour_around(i, xi, sorted_cell(i), walk_flags(i, flags));
         float p = last.y;
 #endif

@@ -18,7 +18,7 @@ layout(std430) readonly buffer Vorticity { vec4 vorticity[]; };
 float size_i_;
 vec3 eta_;
 void visit_fluid(uint j, vec3 d, float r2) {
-    eta_ += (sph.mass / density[j].x) * (vorticity[j].w - size_i_) * kernel_grad(d, sqrt(r2), sph.h);
+    eta_ += (sph.mass / density[j].x) * (vorticity[j].w - size_i_) * kernel_grad(d, sqrt(r2));
 }
 void visit_boundary(uint b, vec3 d, float r2) {}
 

@@ -21,10 +21,10 @@ float lambda_i_;
 vec3 fluid_, wall_;
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
-    float s_corr = -pbf.s_corr_scale * pow(kernel_w(r, sph.h) * pbf.inv_w_dq, pbf.s_corr_n);
-    fluid_ += (lambda_i_ + lambda[j] + s_corr) * kernel_grad(d, r, sph.h);
+    float s_corr = -pbf.s_corr_scale * pow(kernel_w(r) * pbf.inv_w_dq, pbf.s_corr_n);
+    fluid_ += (lambda_i_ + lambda[j] + s_corr) * kernel_grad(d, r);
 }
-void visit_boundary(uint b, vec3 d, float r2) { wall_ += boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { wall_ += boundary[b].w * kernel_grad(d, sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -18,8 +18,8 @@ layout(std430) writeonly buffer PairTerms { vec2 pair_terms[]; };
 #include "../fluid/density_walk.glsl"
 
 float fluid_sum_, wall_sum_;
-void visit_fluid(uint j, vec3 d, float r2) { fluid_sum_ += kernel_w(sqrt(r2), sph.h); }
-void visit_boundary(uint b, vec3 d, float r2) { wall_sum_ += boundary[b].w * kernel_w(sqrt(r2), sph.h); }
+void visit_fluid(uint j, vec3 d, float r2) { fluid_sum_ += kernel_w(sqrt(r2)); }
+void visit_boundary(uint b, vec3 d, float r2) { wall_sum_ += boundary[b].w * kernel_w(sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -20,7 +20,7 @@ vec3 vi_, di_, a_pressure_, a_viscous_, a_approach_, a_wall_;
 
 // One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a): the last for approaching pairs).
 void visit_fluid(uint j, vec3 d, float r2) {
-    vec3 g = kernel_grad(d, sqrt(r2), sph.h);
+    vec3 g = kernel_grad(d, sqrt(r2));
     vec2 tj = pair_terms[j];
     a_pressure_ -= (di_.z + tj.y) * g;
     float vx = dot(vi_ - velocity[j].xyz, d);
@@ -29,7 +29,7 @@ void visit_fluid(uint j, vec3 d, float r2) {
     if (vx < 0.0) a_approach_ += viscous;
 }
 
-void visit_boundary(uint b, vec3 d, float r2) { a_wall_ -= boundary[b].w * kernel_grad(d, sqrt(r2), sph.h); }
+void visit_boundary(uint b, vec3 d, float r2) { a_wall_ -= boundary[b].w * kernel_grad(d, sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
