@@ -2,8 +2,8 @@
 // The fluid's walks call the forms of glsl/sim/fluid/fluid.glsl, kernel_w(r) and kernel_grad(d, r),
 // whose constants (1/h and the two scales) come from SphParams, computed once on the CPU: derived from
 // h in the shader, the compiler recomputed them inside every neighbour loop (a walk's cost is its
-// per-pair instructions: docs/PERFORMANCE.md "The neighbour walk's per-pair cost", "The kernel's
-// constants as operands").
+// per-pair instructions: docs/PERFORMANCE.md "The neighbour walk's per-pair cost",
+// "The kernel's constants as operands").
 
 const float kPi = 3.14159265358979;
 
