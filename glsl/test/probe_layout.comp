@@ -12,7 +12,7 @@
 //   FrameParams:  view, proj, view_proj, eye, light_dir, light_color, material,
 //                 viewport, speed_scale, tank_min, tank_max                          80 words
 //   GridParams:   origin, dims, count, morton, key_max, pad0                         12 words
-//   SphParams:    gravity, domain_min, domain_max, then its 16 scalars in order      28 words
+//   SphParams:    gravity, domain_min, domain_max, then its 20 scalars in order      32 words
 //   StepState:    its 20 scalars, then iterations, unconverged, error, then its 4
 //                 scalars, speed_position, density_position, peak_error and 3 pads  48 words
 //   SubparticleParams: level_energy, energy_scale, then its 12 scalars in order      20 words
