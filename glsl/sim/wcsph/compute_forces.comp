@@ -16,20 +16,22 @@ layout(std430) readonly buffer PairTerms { vec2 pair_terms[]; };   // (rho_j, p_
 
 #include "../fluid/neighbours.glsl"
 
-vec3 vi_, di_, a_pressure_, a_viscous_, a_approach_, a_wall_;
+vec3 vi_, di_, a_pressure_, a_viscous_;
+float nu_, nu_approach_, wall_;   // 10 nu; 10 nu + alpha c dx for an approaching pair ((5a)); p_i/(rho_i^2 m)
 
-// One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a): the last for approaching pairs).
+// One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a)); a boundary pair's pressure term,
+// scaled by p_i/rho_i^2 here. Two accumulators, not one a term: the walk's loop keeps its loads in
+// flight with the registers it is left (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
 void visit_fluid(uint j, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2));
     vec2 tj = pair_terms[j];
     a_pressure_ -= (di_.z + tj.y) * g;
     float vx = dot(vi_ - velocity[j].xyz, d);
-    vec3 viscous = (2.0 * vx / ((r2 + 0.01 * sph.h * sph.h) * (di_.x + tj.x))) * g;
-    a_viscous_ += viscous;
-    if (vx < 0.0) a_approach_ += viscous;
+    float nu = vx < 0.0 ? nu_approach_ : nu_;
+    a_viscous_ += (2.0 * nu * vx / ((r2 + 0.01 * sph.h * sph.h) * (di_.x + tj.x))) * g;
 }
 
-void visit_boundary(uint b, vec3 d, float r2) { a_wall_ -= boundary[b].w * kernel_grad(d, sqrt(r2)); }
+void visit_boundary(uint b, vec3 d, float r2) { a_pressure_ -= (wall_ * boundary[b].w) * kernel_grad(d, sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -39,12 +41,12 @@ void main() {
         vec4 density_i = density[i];
         vi_ = velocity[i].xyz;
         di_ = density_i.xyz;
-        a_pressure_ = a_viscous_ = a_approach_ = a_wall_ = vec3(0.0);
+        a_pressure_ = a_viscous_ = vec3(0.0);
+        nu_ = 10.0 * sph.viscosity;
+        nu_approach_ = nu_ + sph.artificial_viscosity * sph.sound_speed * sph.spacing;
+        wall_ = di_.z / sph.mass;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(density_i.w));
-        vec3 a = sph.gravity.xyz +
-                 sph.mass * (a_pressure_ + 10.0 * sph.viscosity * a_viscous_ +
-                             sph.artificial_viscosity * sph.sound_speed * sph.spacing * a_approach_) +
-                 di_.z * a_wall_;
+        vec3 a = sph.gravity.xyz + sph.mass * (a_pressure_ + a_viscous_);
         accel[i] = vec4(a, 0.0);
         magnitude = length(a);
     }
