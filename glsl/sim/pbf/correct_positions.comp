@@ -17,14 +17,16 @@ layout(std430) readonly buffer Lambda { float lambda[]; };
 
 #include "../fluid/neighbours.glsl"
 
-float lambda_i_;
-vec3 fluid_, wall_;
+// One sum for (P5)'s two: the wall's terms scaled by lambda_i/m, so the walk keeps three registers fewer
+// live (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
+float lambda_i_, wall_;   // wall_: lambda_i / m
+vec3 sum_;
 void visit_fluid(uint j, vec3 d, float r2) {
     float r = sqrt(r2);
     float s_corr = -pbf.s_corr_scale * pow(kernel_w(r) * pbf.inv_w_dq, pbf.s_corr_n);
-    fluid_ += (lambda_i_ + lambda[j] + s_corr) * kernel_grad(d, r);
+    sum_ += (lambda_i_ + lambda[j] + s_corr) * kernel_grad(d, r);
 }
-void visit_boundary(uint b, vec3 d, float r2) { wall_ += boundary[b].w * kernel_grad(d, sqrt(r2)); }
+void visit_boundary(uint b, vec3 d, float r2) { sum_ += (wall_ * boundary[b].w) * kernel_grad(d, sqrt(r2)); }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -35,7 +37,8 @@ void main() {
         return;
     }
     lambda_i_ = lambda[i];
-    fluid_ = wall_ = vec3(0.0);
+    wall_ = lambda_i_ / sph.mass;
+    sum_ = vec3(0.0);
     for_each_neighbour_around(i, x.xyz, sorted_cell(i), walk_flags(i, floatBitsToUint(density[i].w)));
-    next_position[i] = vec4(x.xyz + (sph.mass * fluid_ + lambda_i_ * wall_) / sph.rest_density, x.w);
+    next_position[i] = vec4(x.xyz + (sph.mass / sph.rest_density) * sum_, x.w);
 }
