@@ -19,9 +19,10 @@ layout(std430) readonly buffer PairTerms { vec2 pair_terms[]; };   // (rho_j, p_
 vec3 vi_, di_, a_pressure_, a_viscous_;
 float nu_, nu_approach_, wall_;   // 10 nu; 10 nu + alpha c dx for an approaching pair ((5a)); p_i/(rho_i^2 m)
 
-// One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a)); a boundary pair's pressure term,
-// scaled by p_i/rho_i^2 here. Two accumulators, not one a term: the walk's loop keeps its loads in
-// flight with the registers it is left (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
+// One fluid pair's pressure and viscous terms (eqs. (4), (5), (5a)); a boundary pair's psi_b (p_i/rho_i^2)
+// gradW_ib joins the pressure sum divided by m, as main() multiplies that sum by m. Two sums, not one
+// for each term: with fewer values live the walk's loop keeps its loads in flight without spilling
+// (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
 void visit_fluid(uint j, vec3 d, float r2) {
     vec3 g = kernel_grad(d, sqrt(r2));
     vec2 tj = pair_terms[j];
