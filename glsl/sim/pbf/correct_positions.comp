@@ -17,8 +17,8 @@ layout(std430) readonly buffer Lambda { float lambda[]; };
 
 #include "../fluid/neighbours.glsl"
 
-// One sum for (P5)'s two: the wall's terms scaled by lambda_i/m, so the walk keeps three registers fewer
-// live (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
+// One sum for (P6)'s two: the wall's terms scaled by lambda_i/m, so the walk keeps one vector fewer live
+// (docs/PERFORMANCE.md "WCSPH's forces pass and its registers").
 float lambda_i_, wall_;   // wall_: lambda_i / m
 vec3 sum_;
 void visit_fluid(uint j, vec3 d, float r2) {
