@@ -60,13 +60,24 @@ layout(std430) buffer Solve { SolveState solve; };
 // The density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle.
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };
 
-// (D10)'s step for the unknown at `slot` of KappaPrevious: keeps the iterate this iteration started
-// from (kappa) for the next, and from k = kChebyshevStart on returns max(w_k (J − kappa^(k−1)) +
-// kappa^(k−1), 0) for the Jacobi update J, otherwise J.
-float chebyshev_step(uint slot, float kappa, float jacobi) {
-    float before = kappa_previous[slot];
+// The iteration's state, read from Solve before this pass stores anything: the compiler must take a
+// store to Kappa or KappaPrevious as one that may change Solve, so a read of it after such a store
+// waits for the store and goes to memory again (docs/PERFORMANCE.md "The residual pass's reads
+// before its stores").
+struct Iteration {
+    uint k;          // the solve's iterations so far
+    uint s;          // 0: the density solve, 1: the divergence solve
+    float weight;    // (D10)'s w_k
+};
+Iteration read_iteration() { return Iteration(solve.iterations, solve.solve, solve.weight); }
+
+// (D10)'s step for the unknown at `slot` of KappaPrevious, whose kappa^(k−1) `before` was read there
+// with the iteration's other reads: keeps the iterate this iteration started from (kappa) for the
+// next, and from k = kChebyshevStart on returns max(w_k (J − kappa^(k−1)) + kappa^(k−1), 0) for the
+// Jacobi update J, otherwise J.
+float chebyshev_step(Iteration it, uint slot, float before, float kappa, float jacobi) {
     kappa_previous[slot] = kappa;
-    return solve.iterations >= kChebyshevStart ? max(solve.weight * (jacobi - before) + before, 0.0) : jacobi;
+    return it.k >= kChebyshevStart ? max(it.weight * (jacobi - before) + before, 0.0) : jacobi;
 }
 
 #include "../fluid/neighbours.glsl"
@@ -80,17 +91,19 @@ void visit_row_fluid(uint j, vec3 d, float r) { row_change_ -= sph.mass * dot(pr
 
 // Row k's update (above).
 void correct_row(uint k) {
-    uint b = boundary_list[k] & ~kFreshRow, s = solve.solve;
+    uint b = boundary_list[k] & ~kFreshRow;
     row_change_ = 0.0;
     for_each_fluid_near_row(boundary[b].xyz, k);
+    Iteration it = read_iteration();
+    uint slot = sph.particle_count + b;
     vec2 rw = row[k];
     float dt2 = step.dt * step.dt;
+    float kappa_b = KAPPA_B(b, it.s), before = dfsph.chebyshev > 0.0 ? kappa_previous[slot] : 0.0;
     float residual = dt2 * row_change_ - rw.x;
-    float kappa_b = KAPPA_B(b, s);
     float next = max(kappa_b + dfsph.boundary_relaxation * residual * rw.y / dt2, 0.0);
     // (D10), as the fluid's: the rows and the fluid are one iteration
-    if (s == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(sph.particle_count + b, kappa_b, next);
-    KAPPA_B(b, s) = next;
+    if (it.s == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(it, slot, before, kappa_b, next);
+    KAPPA_B(b, it.s) = next;
 }
 #endif
 
@@ -168,9 +181,12 @@ void main() {
         diagonal_ = 0.0;
         handed_ = 0.0;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
+        // Every read before the first store, so that they are issued together (read_iteration()).
+        Iteration it = read_iteration();
         float dt2 = step.dt * step.dt;
+        float stored = kappa[i], before = dfsph.chebyshev > 0.0 ? kappa_previous[i] : 0.0;
 #ifdef RANRYU_PRESSURE_STABILISATION
-        if (solve.solve == 0u) {   // (D12)
+        if (it.s == 0u) {   // (D12)
             float gamma = dfsph.stabilisation;
             change_ = (1.0 - gamma) * change_ + gamma * d.y;
             float blended = (1.0 - gamma) / d.z + gamma * sph.rest_density * diagonal_;
@@ -178,12 +194,11 @@ void main() {
         }
 #endif
         float residual = dt2 * change_ - own.w + handed_;   // handed_: (D13), 0 without it
-        uint k = solve.iterations;
-        float kappa_i = k == 0u && own.w > warm_start_drop() ? 0.0 : kappa[i];
+        float kappa_i = it.k == 0u && own.w > warm_start_drop() ? 0.0 : stored;
         float next = max(kappa_i + dfsph.relaxation * residual * factor / dt2, 0.0);
-        if (solve.solve == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(i, kappa_i, next);   // (D10): the density solve, when on
+        if (it.s == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(it, i, before, kappa_i, next);   // (D10): the density solve, when on
         kappa[i] = next;
-        bool held = solve.solve == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
+        bool held = it.s == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
         error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
     }
     wg_error_[l] = error;

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# The next call (prepared 2026-12-01, not run: the session's device time was spent): the residual pass
-# with every read before its first store ("The residual pass's reads before its stores" in
+# Call 1 (prepared 2026-12-01 in docs/perf/2026-12-01-h200-wcsph-forces/, run 2026-12-01 night): the
+# residual pass with every read before its first store ("The residual pass's reads before its stores" in
 # docs/PERFORMANCE.md). Variants: head (the tree's glsl/ as committed), readsresidual
 # (variants/readsresidual.patch: correct_pressure.comp alone) and reads (variants/reads.patch: that,
-# integrate_pressure.comp and accelerate.comp), each a copy of glsl/ under scratch/ with its patch:
+# integrate_pressure.comp and accelerate.comp), each a copy of glsl/ under scratch/ with its patch (the patches are in
+# docs/perf/2026-12-01-h200-wcsph-forces/variants/):
 #     mkdir -p scratch/base-glsl && git archive HEAD glsl | tar x -C scratch/base-glsl
 #     for v in reads readsresidual; do mkdir -p scratch/$v && git archive HEAD glsl | tar x -C scratch/$v &&
 #       (cd scratch/$v && patch -p1 < ../../docs/perf/2026-12-01-h200-wcsph-forces/variants/$v.patch); done
-# The iteration's cost at 30 iterations (iteration-bench.sh, --detail's residual and accelerate rows)
+# The iteration's cost at 30 iterations (iteration-bench.sh: the solve's time over its iterations)
 # at 246k and 1M, ten seconds at 246k with head and reads, and each variant's machine code (the driver's
 # cache, one folder a variant, brought back for sass.py and loops.py).
 set -u
