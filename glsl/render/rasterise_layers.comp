@@ -15,8 +15,9 @@
 // edge that is top or left (the top-left rule: a centre on an edge shared by two triangles is counted
 // once). Facing is the sign of the window-space area, as gl_FrontFacing (counter-clockwise, y up);
 // degenerate triangles are skipped. The world position is interpolated perspective-correctly at the
-// pixel centre from the unsnapped window coordinates (as the draws interpolate), and each covered
-// pixel gets, by atomics on the R32F targets bound as 32-bit integer images:
+// pixel centre from the unsnapped window coordinates (a GL draw may interpolate from the snapped ones:
+// the two differ by at most √2/512 pixel of position, R14), and each covered pixel gets, by atomics on
+// the R32F targets bound as 32-bit integer images:
 //   SUN_VIEW: u_near = min ordered_bits(s) (R8);  u_sum += fixed(signed_sun_depth)    (R10)
 //   else:     u_sum += fixed(signed_eye_distance), clipped to the opaque scene         (R5)
 // fixed(v) = round(v·2^20): any order of the adds gives the same sum (mod 2^32), exact for |Σ| < 2^11 m.
@@ -79,8 +80,8 @@ void cover(ivec2 p, vec3 x, bool front) {
 // or (LARGE_TRIANGLES) this invocation's share.
 void rasterise(ClipVertex v0, ClipVertex v1, ClipVertex v2) {
     vec3 inv_w = 1.0 / vec3(v0.c.w, v1.c.w, v2.c.w);
-    // Window coordinates: as they are for the interpolation (at the pixel centre, as the draws
-    // interpolate), snapped for the coverage.
+    // Window coordinates: as they are for the interpolation (at the pixel centre), snapped for the
+    // coverage.
     vec2 f0 = window(v0.c), f1 = window(v1.c), f2 = window(v2.c);
     dvec2 p0 = dvec2(floor(f0 * float(kSubpixel) + 0.5)), p1 = dvec2(floor(f1 * float(kSubpixel) + 0.5));
     dvec2 p2 = dvec2(floor(f2 * float(kSubpixel) + 0.5));

@@ -11,10 +11,11 @@
 //     ulps; and the layer's value v changing across the 2e-3 pixel (8 ulps of a window coordinate
 //     below 2048) by which two float interpolations at one centre may differ, plus the √2/512 pixel by
 //     which the vertices' snap moves them (a rasteriser may interpolate from the snapped vertices or
-//     not: GL leaves it to the implementation). s_near is held to the same sum. Coverage may differ only where a pixel centre lies within kEdge = 4/256 pixel of a
-//     triangle's outline (both snap vertices to 1/256 pixel, moving an edge by at most √2/512 pixel;
-//     the float window coordinates add < 2e-3 pixel at 2048): every pixel beyond the value bound must
-//     be such an edge pixel, and they must be at most 1 % of the covered pixels.
+//     not: GL leaves it to the implementation). s_near is held to the same sum. Coverage may differ
+//     only where a pixel centre lies within kEdge = 4/256 pixel of a triangle's outline (both snap
+//     vertices to 1/256 pixel, moving an edge by at most √2/512 pixel; the float window coordinates
+//     add < 2e-3 pixel at 2048): every pixel beyond the value bound must be such an edge pixel, and
+//     they must be at most 1 % of the covered pixels.
 //   - a box 60 m wide around the eye: its triangles cross the near plane and reach far past the guard
 //     band (and the sun's near and far planes): computed against drawn within 1e-5 m + 1e-6 relative
 //     (float32's ulp at 60 m is 3.8e-6 m) at 99 % of the pixels (a clipped polygon's edges may differ).
@@ -38,7 +39,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iomanip>
 #include <span>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -236,10 +239,13 @@ Compared compare(const std::vector<float>& compute, const std::vector<float>& dr
         const double diff = std::abs(double(compute[n]) - double(draw[n]));
         if (diff > bound) {
             ++r.beyond;
-            if (!c.edge[n] && r.beyond_off_edge++ == 0)
-                r.first_off_edge = "pixel (" + std::to_string(n % std::size_t(width)) + ", " + std::to_string(n / std::size_t(width)) +
-                                   "): compute " + std::to_string(compute[n]) + ", draw " + std::to_string(draw[n]) + ", bound " +
-                                   std::to_string(bound) + ", " + std::to_string(c.layers[n]) + " layers";
+            if (!c.edge[n] && r.beyond_off_edge++ == 0) {
+                std::ostringstream where;
+                where << std::setprecision(9) << "pixel (" << n % std::size_t(width) << ", " << n / std::size_t(width)
+                      << "): compute " << compute[n] << ", draw " << draw[n] << ", bound " << bound << ", " << c.layers[n]
+                      << " layers";
+                r.first_off_edge = where.str();
+            }
         } else {
             r.worst = std::max(r.worst, diff);
         }

@@ -60,10 +60,9 @@ layout(std430) buffer Solve { SolveState solve; };
 // The density solve's kappa^(k−1): the fluid's, then the rows' kappa_b^(k−1) by boundary particle.
 layout(std430) buffer KappaPrevious { float kappa_previous[]; };
 
-// The iteration's state, read from Solve before this pass stores anything: the compiler must take a
-// store to Kappa or KappaPrevious as one that may change Solve, so a read of it after such a store
-// waits for the store and goes to memory again (docs/PERFORMANCE.md "The residual pass's reads
-// before its stores").
+// The iteration's state from Solve. Contract: this pass reads Solve, kappa_i and kappa^(k−1) before its
+// first store to Kappa or KappaPrevious, the order measured faster (docs/PERFORMANCE.md "The residual
+// pass's reads before its stores").
 struct Iteration {
     uint k;          // the solve's iterations so far
     uint s;          // 0: the density solve, 1: the divergence solve
@@ -181,7 +180,7 @@ void main() {
         diagonal_ = 0.0;
         handed_ = 0.0;
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
-        // Every read before the first store, so that they are issued together (read_iteration()).
+        // Every read before the first store (read_iteration()).
         Iteration it = read_iteration();
         float dt2 = step.dt * step.dt;
         float stored = kappa[i], before = dfsph.chebyshev > 0.0 ? kappa_previous[i] : 0.0;
