@@ -72,8 +72,8 @@ constexpr double kEdge = 4.0 / 256.0;      // pixels: where two exact rasteriser
 constexpr double kLayer = 4e-6;            // m a layer, where the coverage agrees
 // pixels: where two interpolations at one centre evaluate: a float32 interpolation at a window coordinate
 // < 2048 (8 ulps), and the vertices' 1/256-pixel snap (√2/512 pixel at most), which one may interpolate
-// from and the other not (the compute raster interpolates from the unsnapped coordinates; the H200's
-// draws, at the margin these allow, from others: 9 of 40 fresh runs were beyond 2/1024 alone)
+// from and the other not (the compute raster interpolates from the unsnapped coordinates; GL leaves the
+// draws' choice to the implementation, docs/RENDERING.md (R14))
 constexpr double kPosition = 2.0 / 1024.0 + 1.4142135623730951 / 512.0;
 constexpr double kFixedHalf = 0.5 / RANRYU_RASTER_FIXED_SCALE;
 
