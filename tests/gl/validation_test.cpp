@@ -3,6 +3,7 @@
 #include "support/gl_fixture.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -24,9 +25,9 @@ scene::Scene case_scene(const std::string& name, float dx, scene::Solver solver)
 // interior within 0.25 of rho0 g H (3 layers of 12), the floor layer within `floor_bound` and the rms
 // speed within `speed_fraction` of the free-fall speed over the column, sqrt(2 g H) = 2.2 m/s; and
 // neither error grows as dx shrinks, within the scatter of the averaging (0.02 of rho0 g H; the floor
-// layer's within `floor_scatter` where a case gives one).
+// layer's within `floor_scatter`, not asked where a case gives none).
 void check_columns(const validation::HydrostaticResult& coarse, const validation::HydrostaticResult& fine, double floor_bound,
-                   double speed_fraction, double floor_scatter = 0.02) {
+                   double speed_fraction, std::optional<double> floor_scatter = 0.02) {
     INFO("interior " << coarse.max_error << " then " << fine.max_error << "; floor layer " << coarse.floor_error << " then "
                      << fine.floor_error << "; rms speed " << coarse.rms_speed << " then " << fine.rms_speed << " m/s");
     for (const auto* r : {&coarse, &fine}) {
@@ -38,7 +39,7 @@ void check_columns(const validation::HydrostaticResult& coarse, const validation
         CHECK(r->rms_speed <= speed_fraction * std::sqrt(2.0 * 9.81 * r->height));
     }
     CHECK(fine.max_error <= coarse.max_error + 0.02);
-    CHECK(fine.floor_error <= coarse.floor_error + floor_scatter);
+    if (floor_scatter) CHECK(fine.floor_error <= coarse.floor_error + *floor_scatter);
 }
 
 }  // namespace
@@ -212,15 +213,16 @@ TEST_CASE("validate: DFSPH tank at rest with the plain solve against rho0 g (H -
     // "The pressure a frame"). This solve leaves the layer-to-layer alternation that (D3) does not see
     // (docs/VALIDATION.md "The floor layer's two states"), so the single floor layer settles in one of two
     // states, which one decided by the trajectory's rounding, not by the spacing: over four trajectories
-    // on llvmpipe and four on the H200 (the kernel's arithmetic reassociated: docs/VALIDATION.md "The
-    // plain solve's floor layer, trajectory by trajectory") it read 0.025-0.035 of rho0 g H at 0.025 m and
-    // 0.005-0.065 at 0.02 m, the floor's pair (the floor layer and the next, the alternation cancelled)
-    // 0.0002-0.0075 and 0.0002-0.022, the interior 0.014-0.021. Bounds: the floor layer within one
-    // spacing of head (rho0 g dx: 0.1 and 0.083 of rho0 g H), moving by at most that as dx shrinks; the
-    // floor's pair within 0.03; the interior within 0.03 (issue 11's 1 % and 2 % are not met with this
-    // solve at these spacings, 4 and 5 particles between the front and back walls), growing by at most
-    // 0.02. Whether the floor's error shrinks with dx is not asked of two
-    // runs whose scatter is as large as their values (the scene's own setting, the next test, is asked).
+    // on llvmpipe and four on the H200, three of them at 0.025 m (the kernel's arithmetic reassociated:
+    // docs/VALIDATION.md "The plain solve's floor layer, trajectory by trajectory") it read 0.025-0.035
+    // of rho0 g H at 0.025 m and 0.005-0.065 at 0.02 m, the floor's pair (the floor layer and the next,
+    // the alternation cancelled) 0.0002-0.008 and 0.0002-0.022, the interior 0.014-0.021. Bounds, met by
+    // every trajectory measured: the floor layer within one spacing of head (rho0 g dx: 0.1 and 0.083 of
+    // rho0 g H; the far state's +0.5 to +0.9 spacings of head, docs/VALIDATION.md "The floor layer's two
+    // states"; 0.78 at most here), the floor's pair within 0.03, the interior within 0.03 (issue 11's 1 %
+    // and 2 % are not met with this solve at these spacings, 4 and 5 particles between the front and back
+    // walls), growing by at most 0.02. Whether the floor's error shrinks with dx is not asked of two runs whose
+    // scatter is as large as their values (the scene's own setting, the next test, is asked).
     const auto& shaders = shader::FileSource::embedded();
     const scene::Scene coarse_scene = with_plain_solve(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
     REQUIRE(coarse_scene.sph.boundary_rows);   // DFSPH's default
@@ -235,7 +237,7 @@ TEST_CASE("validate: DFSPH tank at rest with the plain solve against rho0 g (H -
     // 0.1 m/s after it), and the solver at rest keeps moving it (docs/DFSPH.md "The tank at rest at 250k
     // particles"), which the scene's nu = 1e-3 m^2/s does not damp away in a second: rms speed within a
     // tenth of the free-fall speed.
-    check_columns(coarse, fine, coarse_head, 0.1, fine_head);
+    check_columns(coarse, fine, coarse_head, 0.1, std::nullopt);
     CHECK(fine.floor_error <= fine_head);
     CHECK(coarse.max_error <= 0.03);
     CHECK(fine.max_error <= 0.03);
@@ -277,7 +279,7 @@ TEST_CASE("validate: the tank at rest with DFSPH as the scene sets it: still, it
         validation::hydrostatic(case_scene("hydrostatic", 0.01f, scene::Solver::dfsph), shaders, 1.0, validation::Relaxation{}, nullptr, 1.0);
     const double coarse_head = coarse.spacing / coarse.height, fine_head = fine.spacing / fine.height;   // rho0 g dx over rho0 g H
     INFO("a spacing of head: " << coarse_head << " and " << fine_head << " of rho0 g H");
-    check_columns(coarse, fine, coarse_head, 0.05, fine_head);
+    check_columns(coarse, fine, coarse_head, 0.05, std::nullopt);   // the floor's trend: below, within 0.003
     CHECK(fine.floor_error <= fine_head);
     // Issue 11's bounds, the interior's and the floor layer's, not growing beyond the runs' scatter as dx
     // shrinks (the half-second windows of the runs above move by 0.2-0.4 % of rho0 g H).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Call 1 (2026-12-02): the storage blocks declared `restrict` ("The storage blocks declared restrict" in
+# Call 1 (2026-12-02): the storage blocks declared `restrict` ("The walks' storage loads, and the neighbour's kappa with its position" in
 # docs/PERFORMANCE.md). Variants, each a copy of glsl/ under scratch/ made on the development machine:
 #     mkdir -p scratch/base-glsl scratch/restrictro scratch/restrictall
 #     for d in base-glsl restrictro restrictall; do git archive HEAD glsl | tar x -C scratch/$d; done
