@@ -221,8 +221,8 @@ TEST_CASE("validate: DFSPH tank at rest with the plain solve against rho0 g (H -
     // rho0 g H; the far state's +0.5 to +0.9 spacings of head, docs/VALIDATION.md "The floor layer's two
     // states"; 0.78 at most here), the floor's pair within 0.03, the interior within 0.03 (issue 11's 1 %
     // and 2 % are not met with this solve at these spacings, 4 and 5 particles between the front and back
-    // walls), growing by at most 0.02. Whether the floor's error shrinks with dx is not asked of two runs whose
-    // scatter is as large as their values (the scene's own setting, the next test, is asked).
+    // walls), growing by at most 0.02. Whether the floor's error shrinks with dx is not asked of two runs
+    // whose scatter is as large as their values (the scene's own setting, the next test, is asked).
     const auto& shaders = shader::FileSource::embedded();
     const scene::Scene coarse_scene = with_plain_solve(case_scene("hydrostatic", 0.025f, scene::Solver::dfsph));
     REQUIRE(coarse_scene.sph.boundary_rows);   // DFSPH's default
