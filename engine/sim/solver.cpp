@@ -23,8 +23,9 @@ std::size_t solver_bytes(const scene::Scene& scene, std::size_t count) {
         case scene::Solver::pbf: return Pbf::bytes_for(scene, count);
         case scene::Solver::dfsph: break;
     }
-    return Dfsph::bytes_for(count, Fluid::boundary_count(scene), scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f,
-                           scene.sph.gradient_correction, Fluid::neighbour_runs(scene));
+    const std::size_t boundary = Fluid::boundary_count(scene);
+    return Dfsph::bytes_for(count, boundary, scene.sph.boundary_rows, scene.sph.chebyshev > 0.0f, scene.sph.gradient_correction,
+                           Fluid::neighbour_runs(scene), Dfsph::wall_gradient_stored(scene, boundary));
 }
 
 }  // namespace ranryu::sim

@@ -620,6 +620,9 @@ TEST_CASE("dfsph: one Jacobi iteration of each solve, the velocity updates and t
     INFO("seed " << rng.seed());
     // The fluid's rows with Akinci's boundary term; the boundary rows of (D9) have their own test below.
     Rig rig(R"("boundary_rows": false)");
+    // Its residual passes take the boundary's term from the density pass's stored wall gradient sum
+    // (dfsph.cpp wall_gradient()); the pressure stabilisation's test below checks the walked one.
+    REQUIRE(rig.dfsph().stores_wall_gradient());
     const Stages s = one_iteration(rng, rig);
 
     const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
@@ -691,6 +694,7 @@ TEST_CASE("dfsph: the pressure stabilisation (D12): the density solve's first it
     // is the prediction pass's (Density.y) of the warm start kappa^0, the update the residual pass's.
     Rig rig(R"("boundary_rows": false, "chebyshev": 0, "pressure_stabilisation": 0.25)");
     REQUIRE(double(rig.dfsph().params().stabilisation) == Approx(0.25));
+    REQUIRE(!rig.dfsph().stores_wall_gradient());   // its residual walks the boundary runs
     const Stages s = one_iteration(rng, rig);
     const auto& [p, set, xb, psi, xs, m, dt, n, f] = step_reference(rig, s);
     REQUIRE(set.stabilisation == Approx(0.25));
@@ -1422,6 +1426,7 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         for (auto& w : warm) w = glm::vec2(rng.uniform(0.0f, 2e-3f), rng.uniform(0.0f, 1e-3f));
         Rig rig(divergence ? R"("boundary_rows": true)" : R"("boundary_rows": true, "divergence_solve": false)");
         auto& d = rig.dfsph();
+        REQUIRE(d.stores_wall_gradient() == divergence);   // the residual's boundary term stored, or walked
         const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
         open_step(rig, x, v, warm, 1);
         const std::vector<glm::vec4> xs4 = rig.read(rig.fluid.positions()), v0 = rig.read(rig.fluid.velocities());

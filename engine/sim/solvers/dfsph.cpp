@@ -61,6 +61,15 @@ std::string defines(const Fluid& fluid, bool divergence, bool rows, bool correct
 // (D13): the passes that solve the density solve's rows eliminated, when the scene sets it.
 std::string eliminated(bool on) { return on ? "#define RANRYU_ELIMINATED_ROWS 1\n" : ""; }
 
+// The residual pass's boundary term, sum_b psi_b a_i . gradW_ib = a_i . (sum_b psi_b gradW_ib) (docs/DFSPH.md
+// (D6)), from the wall's gradient sum the density pass stores once a step, where nothing else of the residual
+// pass visits the boundary: the divergence solve on (its density pass writes PressureAccel), neither (D12)
+// nor (D13). Stored in PressureAccel after the accelerations (and (D11)'s L_i when on).
+std::string wall_gradient(bool stored, bool correction) {
+    if (!stored) return "";
+    return std::string("#define RANRYU_WALL_GRADIENT_AT ") + (correction ? "3u" : "1u") + "\n";
+}
+
 // (D12): the passes that take part in the density solve's pressure stabilisation, when the scene sets one.
 std::string stabilisation(const scene::Scene& scene) {
     return scene.sph.pressure_stabilisation > 0.0f ? "#define RANRYU_PRESSURE_STABILISATION 1\n" : "";
@@ -103,11 +112,13 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       rows_(scene.sph.boundary_rows && fluid.boundary_count() > 0),
       correction_(scene.sph.gradient_correction),
       eliminated_(rows_ && scene.sph.eliminate_boundary_rows),
+      wall_gradient_(wall_gradient_stored(scene, fluid.boundary_count())),
       density_(shader::Program::compute(shaders, "sim/dfsph/compute_density.comp",
-                                        defines(fluid, divergence_, rows_, correction_) + eliminated(eliminated_))),
+                                        defines(fluid, divergence_, rows_, correction_) + eliminated(eliminated_) + wall_gradient(wall_gradient_, correction_))),
       accelerate_(shader::Program::compute(shaders, "sim/dfsph/accelerate.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
       correct_(shader::Program::compute(shaders, "sim/dfsph/correct_pressure.comp",
-                                        defines(fluid, false, rows_, false) + stabilisation(scene) + eliminated(eliminated_))),
+                                        defines(fluid, false, rows_, false) + stabilisation(scene) + eliminated(eliminated_) +
+                                            wall_gradient(wall_gradient_, correction_))),
       finish_(shader::Program::compute(shaders, "sim/dfsph/finish_divergence.comp", defines(fluid, divergence_, rows_, correction_))),
       predict_(shader::Program::compute(shaders, "sim/dfsph/predict_density.comp", defines(fluid, false, rows_, correction_) + stabilisation(scene))),
       integrate_(shader::Program::compute(shaders, "sim/dfsph/integrate_pressure.comp", defines(fluid, false, rows_, correction_))),
@@ -184,7 +195,8 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
     kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
     // (D11)'s L_i after the accelerations, two vec4 a particle, when on (glsl/sim/dfsph/dfsph.glsl).
-    pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr, "dfsph.pressure_accel");
+    pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) * (wall_gradient_ ? 2 : 1) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr,
+                                 "dfsph.pressure_accel");
     // (D10)'s previous iterates, the fluid's then (D9)'s rows' (kappa_b of the density solve, by
     // boundary particle); one float, bound but never read, when it is off.
     kappa_previous_ = gl::Buffer((params_.chebyshev > 0.0f ? n + nb : 1) * sizeof(float), GL_DYNAMIC_COPY, nullptr, "dfsph.kappa_previous");
@@ -210,9 +222,14 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
 }
 
-std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs) {
+bool Dfsph::wall_gradient_stored(const scene::Scene& scene, std::size_t boundary) {
+    return scene.sph.divergence_solve && boundary > 0 && scene.sph.pressure_stabilisation <= 0.0f &&
+           !(scene.sph.boundary_rows && scene.sph.eliminate_boundary_rows);
+}
+
+std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs, bool wall) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
-    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4)) +
+    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4) * (wall ? 2 : 1)) +
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
                              Fluid::carried_bytes(count, kWarmWords) + Fluid::carried_bytes(count, kFramePressureWords);
     if (!rows || boundary == 0) return base;

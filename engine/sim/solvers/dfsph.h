@@ -81,7 +81,10 @@ public:
     // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
     // `correction`; a row's neighbour masks take two words for each of the `runs` runs of a walk), its
     // carried warm start included (frame/memory.h).
-    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs);
+    // Whether the density pass stores the wall's gradient sum for the residual pass (dfsph.cpp wall_gradient()).
+    static bool wall_gradient_stored(const scene::Scene& scene, std::size_t boundary);
+    static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs,
+                                 bool wall_gradient);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
@@ -108,6 +111,9 @@ public:
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }
+    // Whether this solver's density pass stores the wall's gradient sum, one vec4 a particle after the
+    // above, for its residual passes (wall_gradient_stored()): tests say which residual they check.
+    bool stores_wall_gradient() const { return wall_gradient_; }
     const gl::Buffer& warm_start() const;                                 // vec2: (kappa, dt kappa_v) of the last step
     const gl::Buffer& frame_pressure() const;   // vec2: (sum p dt, sum dt) over this frame's steps so far
     // Tests: replaces the warm start (count() pairs in the fluid's current order; the next
@@ -139,7 +145,7 @@ private:
     // sizing within the density pass, and (D13)'s two passes within the density solve.
     std::array<profile::PassId, 2> accelerate_passes_{}, correct_passes_{};
     profile::PassId size_rows_pass_, extend_pass_, hand_off_pass_;
-    bool divergence_, rows_, correction_, eliminated_;
+    bool divergence_, rows_, correction_, eliminated_, wall_gradient_;
     shader::Program density_, accelerate_, correct_, finish_, predict_, integrate_;
     shader::Program size_rows_, prepare_rows_, wall_density_;   // (D9), built when rows_
     shader::Program extend_rows_, hand_off_rows_;               // (D13), built when eliminated_

@@ -15,6 +15,8 @@
 // PressureAccel's tail, from M_i = (1/rho_i)[Σ_j m (x_j − x_i) ⊗ gradW_ij + Σ_b psi_b (x_b − x_i) ⊗ gradW_ib]
 // of the same walk; the divergence solve's first pressure accelerations already carry it.
 // With RANRYU_ELIMINATED_ROWS, the diagonal of (D13) in place of (D2)'s.
+// With RANRYU_WALL_GRADIENT_AT k, the wall's gradient sum Σ_b psi_b gradW_ib into PressureAccel[k N + i]
+// (xyz), for the residual pass's boundary term (correct_pressure.comp).
 // Guard: the frame's largest rho/rho0 and a particle that has it (extremes.glsl); the time step: the largest |a_i| (D8).
 #include "dfsph.glsl"
 
@@ -141,6 +143,9 @@ void main() {
         kappa[i] = kappa_i_;
         // (D5): s_i (a deficient particle: rho0, so no correction); a positive w drops the warm start.
         pressure_accel[i] = vec4(CORRECTED(i, pressure_), (flags & kDeficient) != 0u ? sph.rest_density : -step.dt * rate_);
+#endif
+#ifdef RANRYU_WALL_GRADIENT_AT
+        pressure_accel[RANRYU_WALL_GRADIENT_AT * sph.particle_count + i] = vec4(grad_wall_, 0.0);
 #endif
         ratio = rho / sph.rest_density;
         magnitude = length(a);

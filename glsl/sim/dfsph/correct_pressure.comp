@@ -179,7 +179,14 @@ void main() {
         float factor = d.z;
         diagonal_ = 0.0;
         handed_ = 0.0;
+#ifdef RANRYU_WALL_GRADIENT_AT
+        // The boundary's part, Σ_b psi_b a_i . gradW_ib, as a_i . (Σ_b psi_b gradW_ib): the density pass's
+        // sum (compute_density.comp), the same over the step's iterations; no boundary run is walked.
+        for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w) & ~kBoundaryNear);
+        change_ += dot(a_i_, pressure_accel[RANRYU_WALL_GRADIENT_AT * sph.particle_count + i].xyz);
+#else
         for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
+#endif
         // Every read before the first store (read_iteration()).
         Iteration it = read_iteration();
         float dt2 = step.dt * step.dt;
