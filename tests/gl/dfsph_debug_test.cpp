@@ -32,7 +32,8 @@ TEST_CASE("dfsph debug: fastest particles of the dam break", "[.dfsph-debug]") {
             for (std::size_t i = 0; i < v.size(); ++i) { float l = glm::length(glm::vec3(v[i])); if (l > vmax) vmax = l, imax = i; }
             if (vmax < trigger) continue;
             const auto x = rig.read(rig.fluid.positions()), dens = rig.read(rig.fluid.densities());
-            const auto kap = d.kappa().read<float>(rig.fluid.count());
+            auto kap = d.read_kappa();
+            kap.resize(rig.fluid.count());
             const auto warm = d.warm_start().read<glm::vec2>(rig.fluid.count());
             const auto pa = rig.read(d.pressure_accelerations());
             const auto acc = rig.read(rig.fluid.accelerations());

@@ -81,6 +81,12 @@ struct Rig : ranryu::test::SphRig {
         return s;
     }
     std::vector<float> read_floats(const ranryu::gl::Buffer& b) const { return b.read<float>(fluid.count()); }
+    // The fluid's kappa_i, from the Kappa block's (x_i, kappa_i) (dfsph.glsl).
+    std::vector<float> kappa() {
+        std::vector<float> k = dfsph().read_kappa();
+        k.resize(fluid.count());
+        return k;
+    }
     std::vector<glm::vec2> warm() { return dfsph().warm_start().read<glm::vec2>(fluid.count()); }
 };
 
@@ -219,28 +225,39 @@ Stages run_stages(Rig& rig, const std::vector<glm::vec4>& x, const std::vector<g
     s.v = rig.read(rig.fluid.velocities());
     s.density = rig.read(rig.fluid.densities());
     s.accel = rig.read(rig.fluid.accelerations());
-    s.kappa_v0 = rig.read_floats(d.kappa());
+    s.kappa_v0 = rig.kappa();
     s.kappa_v0_accel = rig.read(d.pressure_accelerations());
     const std::size_t n = rig.fluid.count();
     if (d.pressure_accelerations().size() >= 3 * n * sizeof(glm::vec4))
         s.correction = d.pressure_accelerations().read<glm::vec4>(2 * n, n * sizeof(glm::vec4));
-    const std::size_t nb = d.kappa().size() / sizeof(float) > n ? rig.fluid.boundary_count() : 0;
+    // The Kappa block holds the positions the density pass found, which the walks gathering kappa_j
+    // read x_j from (dfsph.glsl): the fluid's own, to the bit.
+    const auto same_positions = [&](const char* when) {
+        const std::vector<glm::vec3> xk = d.read_kappa_positions();
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < n; ++i) differ += xk[i] != glm::vec3(s.x[i]);
+        INFO(when << ": " << differ << " of " << n << " positions in the Kappa block differ from the fluid's");
+        CHECK(differ == 0);
+    };
+    same_positions("after the density pass");
+    const std::size_t nb = d.read_kappa().size() > n ? rig.fluid.boundary_count() : 0;
     auto kappa_b = [&](std::size_t solve) {   // kappa[n + 2b + solve], the rows' (dfsph.glsl)
         std::vector<double> out(nb);
-        const std::vector<float> all = d.kappa().read<float>(n + 2 * nb);
+        const std::vector<float> all = d.read_kappa();
         for (std::size_t b = 0; b < nb; ++b) out[b] = double(all[n + 2 * b + solve]);
         return out;
     };
     d.solve_divergence(rig.fluid);
-    s.kappa_v = rig.read_floats(d.kappa());
+    s.kappa_v = rig.kappa();
     s.kappa_b_divergence = kappa_b(1);
     s.v_after_divergence = rig.read(rig.fluid.velocities());
     d.predict_density(rig.fluid);
-    s.kappa0 = rig.read_floats(d.kappa());
+    s.kappa0 = rig.kappa();
     s.kappa_b0 = kappa_b(0);
     s.predict = rig.read(d.pressure_accelerations());
     d.solve_density(rig.fluid);
-    s.kappa = rig.read_floats(d.kappa());
+    same_positions("after the density solve");
+    s.kappa = rig.kappa();
     s.kappa_b = kappa_b(0);
     s.last_accel = rig.read(d.pressure_accelerations());   // a(kappa) the last iteration read
     d.integrate(rig.fluid);
@@ -1435,13 +1452,13 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         rows = d.boundary_rows().read<gpu::BoundaryRowsState>(1).front();
         const std::vector<std::uint32_t> list = d.boundary_list().read<std::uint32_t>(std::max<std::size_t>(rows.rows, 1));
         d.solve_divergence(rig.fluid);
-        const std::vector<float> kappa_after_divergence = d.kappa().read<float>(n + 2 * nb);
+        const std::vector<float> kappa_after_divergence = d.read_kappa();
         const std::vector<glm::vec4> v_star = rig.read(rig.fluid.velocities());
         d.predict_density(rig.fluid);
         const std::vector<glm::vec4> a_0 = rig.read(d.pressure_accelerations());
-        const std::vector<float> kappa0 = d.kappa().read<float>(n + 2 * nb);
+        const std::vector<float> kappa0 = d.read_kappa();
         d.solve_density(rig.fluid);
-        const std::vector<float> kappa_after_density = d.kappa().read<float>(n + 2 * nb);
+        const std::vector<float> kappa_after_density = d.read_kappa();
         const float dt = rig.step().dt;
         rig.sim.end_frame();
         rig.timer.end_frame();
@@ -1582,7 +1599,6 @@ TEST_CASE("dfsph: the rows eliminated (D13): the diagonal, the rows' hand-off of
         auto run = [&](int issued) {
             Rig rig(keys);
             auto& d = rig.dfsph();
-            const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
             open_step(rig, x, v, warm, issued);
             Run r;
             r.x = rig.read(rig.fluid.positions());
@@ -1591,13 +1607,13 @@ TEST_CASE("dfsph: the rows eliminated (D13): the diagonal, the rows' hand-off of
             r.v_star = rig.read(rig.fluid.velocities());
             d.predict_density(rig.fluid);
             r.a_in = rig.read(d.pressure_accelerations());
-            r.kappa_in = d.kappa().read<float>(n + 2 * nb);
+            r.kappa_in = d.read_kappa();
             const gpu::SolveState opened = d.solve_states().read<gpu::SolveState>(1).front();
             r.correct_groups = opened.correct_groups, r.rows_groups = opened.rows_groups, r.fluid_groups = d.params().groups;
             r.rows_dispatch = d.boundary_rows().read<gpu::BoundaryRowsState>(1).front().dispatch.x;
             d.solve_density(rig.fluid);
             r.a_out = rig.read(d.pressure_accelerations());
-            r.kappa_out = d.kappa().read<float>(n + 2 * nb);
+            r.kappa_out = d.read_kappa();
             r.dt = rig.step().dt;
             rig.sim.end_frame();
             rig.timer.end_frame();

@@ -15,6 +15,7 @@ namespace {
 constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a particle
 constexpr std::uint32_t kFramePressureWords = 2;   // the carried (sum p dt, sum dt) of the frame's steps
 constexpr std::size_t kCorrectionBytes = 2 * sizeof(glm::vec4);   // (D11)'s L_i, glsl/sim/dfsph/dfsph.glsl
+constexpr std::size_t kKappaFloats = 4;   // the Kappa block's (x_i, kappa_i) a particle, glsl/sim/dfsph/dfsph.glsl
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
 constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
@@ -185,10 +186,10 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     }
     solve_ = gl::Buffer(opened.size(), GL_DYNAMIC_COPY, opened.data(), "dfsph.solve");
     opened_ = gl::Buffer(opened.size(), GL_STATIC_DRAW, opened.data(), "dfsph.solve.opened");
-    // The fluid's kappa_i, then (D9)'s (kappa_b, kappa_v,b) per boundary particle: kappa_b from
+    // The fluid's (x_i, kappa_i), then (D9)'s (kappa_b, kappa_v,b) per boundary particle: kappa_b from
     // initial_boundary_kappa() (the first step's density solve starts from it), kappa_v,b at 0.
     const std::size_t nb = rows_ ? fluid.boundary_count() : 0;
-    std::vector<float> start(n, 0.0f);
+    std::vector<float> start(kKappaFloats * n, 0.0f);
     if (rows_) {
         const std::vector<float> kb = initial_boundary_kappa(scene, fluid.boundary().read<glm::vec4>(nb));
         start.insert(start.end(), kb.begin(), kb.end());
@@ -229,7 +230,7 @@ bool Dfsph::wall_gradient_stored(const scene::Scene& scene, std::size_t boundary
 
 std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs, bool wall) {
     const std::size_t n = std::max<std::size_t>(count, 1);   // as the constructor's kappa_, kappa_previous_ and pressure_accel_
-    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (sizeof(float) + sizeof(glm::vec4) * (wall ? 2 : 1)) +
+    const std::size_t base = sizeof(gpu::DfsphParams) + 2 * 2 * RANRYU_DFSPH_SOLVE_STRIDE + n * (kKappaFloats * sizeof(float) + sizeof(glm::vec4) * (wall ? 2 : 1)) +
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
                              Fluid::carried_bytes(count, kWarmWords) + Fluid::carried_bytes(count, kFramePressureWords);
     if (!rows || boundary == 0) return base;
@@ -237,6 +238,20 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
     // row_masks_; rows_state_ and its marks
     return base + boundary * ((chebyshev ? 4 : 3) * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
+}
+
+std::vector<float> Dfsph::read_kappa() const {
+    const std::size_t n = fluid_.count(), rows = kappa_.size() / sizeof(float) - kKappaFloats * std::max<std::size_t>(n, 1);
+    const std::vector<float> all = kappa_.read<float>(kappa_.size() / sizeof(float));
+    std::vector<float> out(n + rows);
+    for (std::size_t i = 0; i < n; ++i) out[i] = all[kKappaFloats * i + 3];
+    std::copy(all.end() - std::ptrdiff_t(rows), all.end(), out.begin() + std::ptrdiff_t(n));
+    return out;
+}
+
+std::vector<glm::vec3> Dfsph::read_kappa_positions() const {
+    const std::vector<glm::vec4> all = kappa_.read<glm::vec4>(fluid_.count());
+    return std::vector<glm::vec3>(all.begin(), all.end());
 }
 
 const gl::Buffer& Dfsph::warm_start() const { return fluid_.carried(warm_); }
@@ -313,7 +328,7 @@ void Dfsph::step(Fluid& fluid, StepHooks& hooks) {
         boundary_generation_ = fluid.boundary_generation();
         const float none = 0.0f;
         glBindBuffer(GL_COPY_WRITE_BUFFER, kappa_.id());
-        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32F, GLintptr(fluid.count() * sizeof(float)),
+        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32F, GLintptr(kKappaFloats * fluid.count() * sizeof(float)),
                              GLsizeiptr(2 * fluid.boundary_count() * sizeof(float)), GL_RED, GL_FLOAT, &none);
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     }

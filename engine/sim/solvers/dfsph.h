@@ -104,10 +104,14 @@ public:
     void set_issued_iterations(int density, int divergence);
 
     // Per-particle arrays, in the fluid's current cell order (tests).
-    // float: the solve's current kappa_i, count() of them; then, with the boundary rows of (D9),
-    // (kappa_b, kappa_v,b) per boundary particle, kappa_b kept from step to step (with (D13) the
-    // extension of the last density solve's kappa, and the second slot its rows' q_b after a step).
+    // The Kappa block (glsl/sim/dfsph/dfsph.glsl): vec4 (x_i, kappa_i) a particle, x_i the position the
+    // density pass found it at; then, with the boundary rows of (D9), (kappa_b, kappa_v,b) floats per
+    // boundary particle, kappa_b kept from step to step (with (D13) the extension of the last density
+    // solve's kappa, and the second slot its rows' q_b after a step). read_kappa(): the solve's current
+    // kappa_i, count() of them, then the rows' pairs; read_kappa_positions(): the x_i.
     const gl::Buffer& kappa() const { return kappa_; }
+    std::vector<float> read_kappa() const;
+    std::vector<glm::vec3> read_kappa_positions() const;
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }

@@ -6,6 +6,8 @@
 // iterations also sum the compact Laplacian of the same kappa into Density.y (D12):
 //     l_i = rho0 Σ_j m (kappa_j − kappa_i) c_ij + rho0 Σ_b psi_b (kappa_b − kappa_i) c_ib.
 // Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
+// x_j comes with kappa_j from the Kappa block, one load a neighbour (dfsph.glsl RANRYU_KAPPA_VEC4).
+#define RANRYU_KAPPA_VEC4 1   // x_j with kappa_j, one load a neighbour (dfsph.glsl)
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -15,7 +17,7 @@ layout(std430) buffer Density { vec4 density[]; };
 #else
 layout(std430) readonly buffer Density { vec4 density[]; };
 #endif
-layout(std430) readonly buffer Kappa { float kappa[]; };
+layout(std430) readonly buffer Kappa { vec4 kappa4[]; };
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };   // w: the source, kept
 layout(std430) readonly buffer Solve { SolveState solve; };
 
@@ -24,7 +26,7 @@ layout(std430) readonly buffer Solve { SolveState solve; };
 float kappa_i_, compact_;
 vec3 a_;
 void visit_fluid(uint j, vec3 d, float r2) {
-    float kj = kappa[j];
+    float kj = kappa_j_;
     vec3 g = kernel_grad(d, sqrt(r2));
     a_ -= sph.mass * (kappa_i_ + kj) * g;
 #ifdef RANRYU_PRESSURE_STABILISATION
@@ -43,7 +45,7 @@ void visit_boundary(uint b, vec3 d, float r2) {
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= sph.particle_count) return;   // no barriers in this pass
-    kappa_i_ = kappa[i];
+    kappa_i_ = KAPPA(i);
     a_ = vec3(0.0);
     compact_ = 0.0;
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));

@@ -7,6 +7,8 @@
 //   accelerations (D3), the first iteration's first half.
 // Density[i] = (rho_i, 0, factor_i, flags): the last step's pressure is written again at the step's end.
 // Accelerations[i].w = u_i of (D9), for the boundary rows' diagonals.
+// Kappa[i] = (x_i, kappa_v,i): the position the step's walks gather with kappa_j (dfsph.glsl), and the warm
+// start (0 without RANRYU_DIVERGENCE_SOLVE, whose prediction pass writes the density solve's).
 // With RANRYU_BOUNDARY_ROWS, every boundary particle within h of a fluid particle becomes a row of this
 // step's solves (docs/DFSPH.md (D9)): listed once in BoundaryList (its mark after the BoundaryRowsState
 // takes the step's epoch; the first to mark it appends it), with kFreshRow where it was not a row the
@@ -28,8 +30,8 @@ layout(std430) writeonly buffer Density { vec4 density[]; };
 layout(std430) writeonly buffer Accelerations { vec4 accel[]; };
 #ifdef RANRYU_DIVERGENCE_SOLVE
 layout(std430) readonly buffer Warm { vec2 warm[]; };
-layout(std430) writeonly buffer Kappa { float kappa[]; };
 #endif
+layout(std430) writeonly buffer Kappa { vec4 kappa4[]; };   // (x_i, kappa_i): dfsph.glsl
 #if defined(RANRYU_DIVERGENCE_SOLVE) || defined(RANRYU_GRADIENT_CORRECTION)
 layout(std430) buffer PressureAccel { vec4 pressure_accel[]; };
 #endif
@@ -139,8 +141,8 @@ void main() {
         store_correction(i, rho);
         vec3 a = sph.gravity.xyz + kViscosityFactor * (sph.viscosity * viscous_ + dfsph.boundary_viscosity * viscous_wall_);
         accel[i] = vec4(a, length(sum) + spread_);   // w: u_i of (D9)
+        kappa4[i] = vec4(xi_, kappa_i_);   // the position the step's walks gather with kappa_j (dfsph.glsl)
 #ifdef RANRYU_DIVERGENCE_SOLVE
-        kappa[i] = kappa_i_;
         // (D5): s_i (a deficient particle: rho0, so no correction); a positive w drops the warm start.
         pressure_accel[i] = vec4(CORRECTED(i, pressure_), (flags & kDeficient) != 0u ? sph.rest_density : -step.dt * rate_);
 #endif

@@ -190,7 +190,7 @@ void main() {
         // Every read before the first store (read_iteration()).
         Iteration it = read_iteration();
         float dt2 = step.dt * step.dt;
-        float stored = kappa[i], before = dfsph.chebyshev > 0.0 ? kappa_previous[i] : 0.0;
+        float stored = KAPPA(i), before = dfsph.chebyshev > 0.0 ? kappa_previous[i] : 0.0;
 #ifdef RANRYU_PRESSURE_STABILISATION
         if (it.s == 0u) {   // (D12)
             float gamma = dfsph.stabilisation;
@@ -203,7 +203,7 @@ void main() {
         float kappa_i = it.k == 0u && own.w > warm_start_drop() ? 0.0 : stored;
         float next = max(kappa_i + dfsph.relaxation * residual * factor / dt2, 0.0);
         if (it.s == 0u && dfsph.chebyshev > 0.0) next = chebyshev_step(it, i, before, kappa_i, next);   // (D10): the density solve, when on
-        kappa[i] = next;
+        KAPPA(i) = next;
         bool held = it.s == 0u && dfsph.complementarity_error != 0u && kappa_i > 0.0;
         error = clamp((held ? abs(residual) : residual) / sph.rest_density, 0.0, 1.0);
     }

@@ -4,7 +4,13 @@
 //                     RANRYU_PRESSURE_STABILISATION, y holds during the density solve the compact
 //                     Laplacian's sum of (D12) for the kappa the iteration's accelerations read, and the
 //                     integration writes the frame's pressure over it as before
-//     Kappa           float: the solve's current kappa_i = p_i/rho_i^2 (D3), gathered by neighbours
+//     Kappa           vec4 per particle (x_i, kappa_i): w the solve's current kappa_i = p_i/rho_i^2 (D3),
+//                     xyz the particle's position, which the density pass writes and which holds until
+//                     the integration (the positions do not move in between), so that a walk gathering
+//                     kappa_j reads x_j with it, one load a neighbour (RANRYU_NEIGHBOUR_POSITION of
+//                     neighbours.glsl); then, from float 4N on, the boundary rows' kappa_b (D9, below).
+//                     A pass declares it as `float kappa[]` and reads KAPPA(i), or, to gather x_j and
+//                     kappa_j together, as `vec4 kappa4[]` with RANRYU_KAPPA_VEC4 defined before this file
 //     KappaPrevious   float: the kappa_i the density solve's previous iteration started from (D10)
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
 //                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start; then,
@@ -47,15 +53,33 @@ float warm_start_drop() { return 0.01 * sph.rest_density; }
 
 // The boundary rows of (D9): with RANRYU_BOUNDARY_ROWS each boundary particle b within h of the fluid
 // has its own kappa_b, the density solve's kept from step to step (the walls do not move), after the
-// fluid's in the Kappa block: kappa[particle_count + 2b + s], s = 0 the density solve's, 1 the divergence
+// fluid's in the Kappa block: its float 4 particle_count + 2b + s, s = 0 the density solve's, 1 the divergence
 // solve's (with RANRYU_ELIMINATED_ROWS the density solve keeps its rows' q_b there, docs/DFSPH.md (D13)). A fluid
 // particle pairs with it as with a fluid neighbour,
 //     a_i −= psi_b (kappa_i + kappa_b) gradW_ib          (D3) with (D9)
 // Without it kappa_b = 0: Akinci's boundary term, kappa_i once. KAPPA_B reads the pass's Kappa block.
+#ifdef RANRYU_KAPPA_VEC4
+#define KAPPA(i) kappa4[i].w
+#define KAPPA_ROW_(k) kappa4[sph.particle_count + ((k) >> 2u)][(k) & 3u]
+#else
+#define KAPPA(i) kappa[4u * (i) + 3u]
+#define KAPPA_ROW_(k) kappa[4u * sph.particle_count + (k)]
+#endif
 #ifdef RANRYU_BOUNDARY_ROWS
-#define KAPPA_B(b, s) kappa[sph.particle_count + 2u * (b) + (s)]
+#define KAPPA_B(b, s) KAPPA_ROW_(2u * (b) + (s))
 #else
 #define KAPPA_B(b, s) 0.0
+#endif
+
+// A walk that gathers kappa_j (RANRYU_KAPPA_VEC4): x_j from the Kappa block with it, kappa_j kept in
+// kappa_j_ for the visit_fluid() that follows.
+#ifdef RANRYU_KAPPA_VEC4
+float kappa_j_;
+vec3 position_with_kappa(vec4 xk) {
+    kappa_j_ = xk.w;
+    return xk.xyz;
+}
+#define RANRYU_NEIGHBOUR_POSITION(j) position_with_kappa(kappa4[j])
 #endif
 
 // A listed row's entry in BoundaryList: the boundary particle's index, and this bit when it was not a

@@ -17,7 +17,7 @@ layout(std430) readonly buffer RowMasks { uint row_masks[]; };   // the prepare 
 
 float weight_, extended_;
 void visit_row_fluid(uint j, vec3 d, float r) {
-    float w = kernel_w(r), kj = kappa[j];
+    float w = kernel_w(r), kj = KAPPA(j);
     weight_ += w;
     extended_ += w * (kj + (kj > 0.0 ? dot(sph.gravity.xyz, d) / sph.rest_density : 0.0));
 }

@@ -5,6 +5,9 @@
 // step's hooks added). dt·kappa_v is kept in Warm.y for the next step's warm start (D5): the solve's
 // impulse, which does not depend on the step as kappa_v (∝ 1/dt) does. Without
 // RANRYU_DIVERGENCE_SOLVE: v_i ← v_i + dt a_i, and Warm.y = 0.
+#ifdef RANRYU_DIVERGENCE_SOLVE
+#define RANRYU_KAPPA_VEC4 1   // x_j with kappa_j, one load a neighbour (dfsph.glsl)
+#endif
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
@@ -17,13 +20,13 @@ layout(std430) buffer Warm { vec2 warm[]; };
 layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D11)'s L_i, after the accelerations
 #endif
 #ifdef RANRYU_DIVERGENCE_SOLVE
-layout(std430) readonly buffer Kappa { float kappa[]; };
+layout(std430) readonly buffer Kappa { vec4 kappa4[]; };
 
 #include "../fluid/neighbours.glsl"
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2)); }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa_j_) * kernel_grad(d, sqrt(r2)); }
 void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 1u)) * boundary[b].w * kernel_grad(d, sqrt(r2)); }
 #endif
 
@@ -33,7 +36,7 @@ void main() {
     vec3 a = accel[i].xyz;
     float kappa_v = 0.0;
 #ifdef RANRYU_DIVERGENCE_SOLVE
-    kappa_i_ = kappa_v = kappa[i];
+    kappa_i_ = kappa_v = KAPPA(i);
     a_ = vec3(0.0);
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(density[i].w));
     a += CORRECTED(i, a_);   // (D11)

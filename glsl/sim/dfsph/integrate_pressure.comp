@@ -8,6 +8,7 @@
 // holds the frame's pressure so far (docs/DFSPH.md "The pressure a frame"): the mean of its steps' p_i
 // weighted by their dt, sum p dt / sum dt, kept in FramePressure (carried with the particle) and started
 // afresh at the frame's first step. After a frame's last step it is the frame's pressure.
+#define RANRYU_KAPPA_VEC4 1   // x_j with kappa_j, one load a neighbour (dfsph.glsl)
 #include "dfsph.glsl"
 
 layout(local_size_x = 256) in;
@@ -16,7 +17,7 @@ layout(std430) readonly buffer Velocities { vec4 velocity[]; };
 layout(std430) writeonly buffer NextPositions { vec4 next_position[]; };
 layout(std430) writeonly buffer NextVelocities { vec4 next_velocity[]; };
 layout(std430) buffer Density { vec4 density[]; };
-layout(std430) readonly buffer Kappa { float kappa[]; };
+layout(std430) readonly buffer Kappa { vec4 kappa4[]; };
 layout(std430) buffer Warm { vec2 warm[]; };
 layout(std430) buffer FramePressure { vec2 frame_pressure[]; };   // (sum p dt, sum dt) over the frame's steps so far
 // sum dt is the particle's own, not the frame's elapsed time: a particle the emitter pours in mid-frame
@@ -30,7 +31,7 @@ layout(std430) readonly buffer PressureAccel { vec4 pressure_accel[]; };   // (D
 
 float kappa_i_;
 vec3 a_;
-void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa[j]) * kernel_grad(d, sqrt(r2)); }
+void visit_fluid(uint j, vec3 d, float r2) { a_ -= sph.mass * (kappa_i_ + kappa_j_) * kernel_grad(d, sqrt(r2)); }
 void visit_boundary(uint b, vec3 d, float r2) { a_ -= (kappa_i_ + KAPPA_B(b, 0u)) * boundary[b].w * kernel_grad(d, sqrt(r2)); }
 
 void main() {
@@ -43,7 +44,7 @@ void main() {
     } else if (live) {
         vec4 d = density[i];
         vec3 x0 = position[i].xyz;
-        kappa_i_ = kappa[i];
+        kappa_i_ = KAPPA(i);
         a_ = vec3(0.0);
         for_each_neighbour(i, x0, floatBitsToUint(d.w));
         vec3 v = velocity[i].xyz + step.dt * CORRECTED(i, a_);   // (D11)

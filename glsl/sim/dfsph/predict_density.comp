@@ -53,7 +53,7 @@ void main() {
     a_ = vec3(0.0);
     compact_ = 0.0;
     for_each_neighbour(i, position[i].xyz, floatBitsToUint(d.w));
-    kappa[i] = kappa_i_;
+    KAPPA(i) = kappa_i_;
 #ifdef RANRYU_PRESSURE_STABILISATION
     density[i].y = sph.rest_density * compact_;   // (D12)
 #endif

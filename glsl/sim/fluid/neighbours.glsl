@@ -29,6 +29,11 @@ layout(std430) readonly buffer NeighbourMasks { uint neighbours[]; };
 
 void visit_fluid(uint j, vec3 d, float r2);
 void visit_boundary(uint b, vec3 d, float r2);
+// A fluid neighbour's position; the including pass may define it to fetch more with it in one load
+// (DFSPH's x_j with kappa_j: glsl/sim/dfsph/dfsph.glsl), as long as it is position[j].xyz.
+#ifndef RANRYU_NEIGHBOUR_POSITION
+#define RANRYU_NEIGHBOUR_POSITION(j) position[j].xyz
+#endif
 #ifdef RANRYU_BOUNDARY_SKIN
 bool boundary_masks_hold(uint i, vec3 xi);
 #endif
@@ -38,7 +43,7 @@ void visit_masked(vec3 xi, uint start, uint mask, bool fluid) {
     while (mask != 0u) {
         uint j = start + uint(findLSB(mask));
         mask &= mask - 1u;
-        vec3 d = xi - (fluid ? position[j].xyz : boundary[j].xyz);
+        vec3 d = xi - (fluid ? RANRYU_NEIGHBOUR_POSITION(j) : boundary[j].xyz);
         if (fluid) visit_fluid(j, d, dot(d, d));
 #ifdef RANRYU_BOUNDARY_SKIN
         else if (dot(d, d) < sph.h * sph.h) visit_boundary(j, d, dot(d, d));
@@ -74,7 +79,7 @@ void for_each_neighbour_around(uint i, vec3 xi, ivec3 c, uint flags) {
 #endif
         uvec2 run = masked ? uvec2(0u) : NEIGHBOUR_RUN(c, true);   // ?: evaluates one side only
         for (uint j = run.x; j < run.y; ++j) {
-            vec3 d = xi - position[j].xyz;
+            vec3 d = xi - RANRYU_NEIGHBOUR_POSITION(j);
             float r2 = dot(d, d);
             if (r2 >= h2 || j == i) continue;   // before the square root: most candidates lie outside h
             visit_fluid(j, d, r2);
