@@ -453,20 +453,29 @@ TEST_CASE("water raster: triangles through the near plane and far past the guard
     // to a few of those ulps: 3e-5 m (8 ulps), plus a relative part for the draws' interpolation over
     // triangles clipped far past the guard band, whose precision GL leaves to the implementation:
     // llvmpipe's within 1.5e-6 of the value (1e-6 relative, with the 3e-5 m), NVIDIA's (H200, driver
-    // 580, three random boxes) up to 2.3e-5 (1.4e-4 m): 5e-5 relative on other devices, the compute
-    // raster agreeing with the analytic chords either way (the tessellated sphere's case). (1e-5 m
-    // alone was too tight: seed 1764408071 had 386 pixels at 1.5-1.9e-5 m.) Pixels whose centre lies on
-    // a clipped polygon's edge may differ more (under 1 %).
+    // 580) up to 9.7e-5 relative past the 3e-5 m over 40 random boxes, 9 of 73 past the 5e-5 fitted on
+    // three before (docs/perf/2026-12-02-h200-kappa-positions/call3/): 2e-4 relative on other
+    // devices, the compute raster agreeing with the analytic chords either way (the tessellated sphere's
+    // case). (1e-5 m alone was too tight: seed 1764408071 had 386 pixels at 1.5-1.9e-5 m.) Pixels whose
+    // centre lies on a clipped polygon's edge may differ more (under 1 %). The warning prints each map's
+    // excess, so a device's run shows its margin.
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const double relative = renderer && std::string(renderer).find("llvmpipe") != std::string::npos ? 1e-6 : 5e-5;
+    const double relative = renderer && std::string(renderer).find("llvmpipe") != std::string::npos ? 1e-6 : 2e-4;
     INFO(renderer << ": relative part " << relative);
     for (const auto& [what, a, b] : {std::tuple{"thickness", &compute.thickness, &draw.thickness},
                                      std::tuple{"sun thickness", &compute.sun, &draw.sun}, std::tuple{"sun near", &compute.near, &draw.near}}) {
         std::size_t beyond = 0, covered = 0;
+        std::vector<double> excess;   // each pixel's difference past the absolute part, relative to the draw's value
         for (std::size_t n = 0; n < a->size(); ++n) {
             if ((*b)[n] != 0.0f && (*b)[n] < 1e29f) ++covered;
-            if (std::abs(double((*a)[n]) - double((*b)[n])) > 3e-5 + relative * std::abs(double((*b)[n]))) ++beyond;
+            const double diff = std::abs(double((*a)[n]) - double((*b)[n])), value = std::abs(double((*b)[n]));
+            if (diff > 3e-5 + relative * value) ++beyond;
+            if (value > 0.0 && value < 1e29) excess.push_back(std::max(diff - 3e-5, 0.0) / value);
         }
+        std::sort(excess.begin(), excess.end());
+        const auto quantile = [&](double q) { return excess.empty() ? 0.0 : excess[std::size_t(q * double(excess.size() - 1))]; };
+        WARN(what << ": " << renderer << ", relative excess past 3e-5 m: median " << quantile(0.5) << ", 99th percentile "
+                  << quantile(0.99) << ", largest " << quantile(1.0));
         INFO(what << ": covered " << covered << ", beyond the bound " << beyond);
         CHECK(covered > 0);
         CHECK(double(beyond) <= 0.01 * double(a->size()));
