@@ -1445,6 +1445,7 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         auto& d = rig.dfsph();
         REQUIRE(d.stores_wall_gradient() == divergence);   // the residual's boundary term stored, or walked
         const std::size_t n = rig.fluid.count(), nb = rig.fluid.boundary_count();
+        CHECK(d.kappa().size() == ranryu::sim::Dfsph::kappa_floats(n, nb) * sizeof(float));
         open_step(rig, x, v, warm, 1);
         const std::vector<glm::vec4> xs4 = rig.read(rig.fluid.positions()), v0 = rig.read(rig.fluid.velocities());
         const std::vector<glm::vec4> accel = rig.read(rig.fluid.accelerations()), a_v0 = rig.read(d.pressure_accelerations());

@@ -1,10 +1,12 @@
 // The DFSPH iteration cap the CPU issues (engine/sim/solvers/dfsph.h next_iteration_cap()): learnt from
 // the most one step needed, and the scene's maximum at once after a step stopped at the cap; and the
-// CPU's mirror of the step the iterations allow (next_iteration_dt(), docs/DFSPH.md (D8)).
+// CPU's mirror of the step the iterations allow (next_iteration_dt(), docs/DFSPH.md (D8)); and the size of
+// the Kappa block the solver allocates (Dfsph::kappa_floats()).
 #include <catch2/catch.hpp>
 
 #include "sim/solvers/dfsph.h"
 
+using ranryu::sim::Dfsph;
 using ranryu::sim::iterations_at_plan;
 using ranryu::sim::next_iteration_cap;
 using ranryu::sim::next_iteration_dt;
@@ -48,4 +50,19 @@ TEST_CASE("dfsph iteration step: 0.9 times the stable step above the band, 1.1 t
     CHECK(next_iteration_dt(1e-3f, 10, 20, 10, 1e-5f, 5e-3f) == Approx(1e-3));
     CHECK(next_iteration_dt(4.9e-3f, 2, 20, 10, 1e-5f, 5e-3f) == 5e-3f);        // not above the largest step
     CHECK(next_iteration_dt(1.05e-5f, 100, 20, 10, 1e-5f, 5e-3f) == 1e-5f);      // nor below the floor
+}
+
+TEST_CASE("dfsph kappa block: (x_i, kappa_i) a particle, then the rows' pairs padded to whole vec4s", "[dfsph][unit]") {
+    // glsl/sim/dfsph/dfsph.glsl: the vec4 view reads row b's pair from element N + (2b + s) / 4, which
+    // must lie inside the buffer for the last row whether the rows are odd or even in number.
+    for (const std::size_t count : {std::size_t(1), std::size_t(7), std::size_t(1000)})
+        for (const std::size_t rows : {std::size_t(0), std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(2329)}) {
+            const std::size_t floats = Dfsph::kappa_floats(count, rows);
+            INFO(count << " particles, " << rows << " rows: " << floats << " floats");
+            CHECK(floats % 4 == 0);
+            CHECK(floats >= 4 * count + 2 * rows);
+            CHECK(floats < 4 * count + 2 * rows + 4);
+            if (rows > 0) CHECK(count + (2 * (rows - 1) + 1) / 4 < floats / 4);   // the last row's element
+        }
+    CHECK(Dfsph::kappa_floats(0, 0) == 4);   // one particle's worth when there is none, as the other arrays
 }

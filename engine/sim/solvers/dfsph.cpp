@@ -16,6 +16,8 @@ constexpr std::uint32_t kWarmWords = 2;   // the carried warm start: two words a
 constexpr std::uint32_t kFramePressureWords = 2;   // the carried (sum p dt, sum dt) of the frame's steps
 constexpr std::size_t kCorrectionBytes = 2 * sizeof(glm::vec4);   // (D11)'s L_i, glsl/sim/dfsph/dfsph.glsl
 constexpr std::size_t kKappaFloats = 4;   // the Kappa block's (x_i, kappa_i) a particle, glsl/sim/dfsph/dfsph.glsl
+// The rows' (kappa_b, kappa_v,b) after the fluid's, padded to whole vec4s (Dfsph::kappa_floats()).
+std::size_t kappa_row_floats(std::size_t rows) { return (2 * rows + kKappaFloats - 1) / kKappaFloats * kKappaFloats; }
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
 constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
@@ -194,6 +196,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
         const std::vector<float> kb = initial_boundary_kappa(scene, fluid.boundary().read<glm::vec4>(nb));
         start.insert(start.end(), kb.begin(), kb.end());
     }
+    start.resize(kappa_floats(fluid.count(), nb), 0.0f);
     kappa_ = gl::Buffer(start.size() * sizeof(float), GL_DYNAMIC_COPY, start.data(), "dfsph.kappa");
     // (D11)'s L_i after the accelerations, two vec4 a particle, when on (glsl/sim/dfsph/dfsph.glsl).
     pressure_accel_ = gl::Buffer(n * (sizeof(glm::vec4) * (wall_gradient_ ? 2 : 1) + (correction_ ? kCorrectionBytes : 0)), GL_DYNAMIC_COPY, nullptr,
@@ -234,18 +237,24 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
                              (chebyshev ? n : 1) * sizeof(float) + (correction ? n * kCorrectionBytes : 0) +
                              Fluid::carried_bytes(count, kWarmWords) + Fluid::carried_bytes(count, kFramePressureWords);
     if (!rows || boundary == 0) return base;
-    // kappa_'s boundary part, kappa_previous_'s with (D10), boundary_list_, boundary_row_, boundary_wall_,
-    // row_masks_; rows_state_ and its marks
-    return base + boundary * ((chebyshev ? 4 : 3) * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
+    // kappa_'s boundary part (padded), kappa_previous_'s with (D10), boundary_wall_, boundary_list_, row_masks_,
+    // boundary_row_; rows_state_ and its marks
+    return base + kappa_row_floats(boundary) * sizeof(float) +
+           boundary * ((chebyshev ? 2 : 1) * sizeof(float) + (2 + 2 * std::size_t(runs)) * sizeof(std::uint32_t) + sizeof(glm::vec2)) +
            sizeof(gpu::BoundaryRowsState);
 }
 
+std::size_t Dfsph::kappa_floats(std::size_t count, std::size_t rows) {
+    return kKappaFloats * std::max<std::size_t>(count, 1) + kappa_row_floats(rows);
+}
+
 std::vector<float> Dfsph::read_kappa() const {
-    const std::size_t n = fluid_.count(), rows = kappa_.size() / sizeof(float) - kKappaFloats * std::max<std::size_t>(n, 1);
+    const std::size_t n = fluid_.count(), rows = rows_ ? 2 * fluid_.boundary_count() : 0;
+    const std::size_t at = kKappaFloats * std::max<std::size_t>(n, 1);   // the rows' first float, as the constructor's
     const std::vector<float> all = kappa_.read<float>(kappa_.size() / sizeof(float));
     std::vector<float> out(n + rows);
     for (std::size_t i = 0; i < n; ++i) out[i] = all[kKappaFloats * i + 3];
-    std::copy(all.end() - std::ptrdiff_t(rows), all.end(), out.begin() + std::ptrdiff_t(n));
+    std::copy_n(all.begin() + std::ptrdiff_t(at), rows, out.begin() + std::ptrdiff_t(n));
     return out;
 }
 

@@ -77,12 +77,12 @@ float next_iteration_dt(float stable_dt, std::uint32_t iterations, std::uint32_t
 class Dfsph final : public Solver {
 public:
     Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const scene::Scene& scene, Fluid& fluid);
-    // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
-    // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
-    // `correction`; a row's neighbour masks take two words for each of the `runs` runs of a walk), its
-    // carried warm start included (frame/memory.h).
     // Whether the density pass stores the wall's gradient sum for the residual pass (dfsph.cpp wall_gradient()).
     static bool wall_gradient_stored(const scene::Scene& scene, std::size_t boundary);
+    // Device memory the constructor allocates for `count` particles and `boundary` boundary particles
+    // (the rows of (D9) when `rows`, the previous iterates of (D10) when `chebyshev`, (D11)'s L_i when
+    // `correction`, the wall's gradient sum when `wall_gradient`; a row's neighbour masks take two words
+    // for each of the `runs` runs of a walk), its carried warm start included (frame/memory.h).
     static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs,
                                  bool wall_gradient);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
@@ -112,6 +112,10 @@ public:
     const gl::Buffer& kappa() const { return kappa_; }
     std::vector<float> read_kappa() const;
     std::vector<glm::vec3> read_kappa_positions() const;
+    // The Kappa block's floats for `count` particles and `rows` boundary rows (0 without (D9)): the
+    // rows' pairs padded to whole vec4s, so that the passes reading it as vec4 kappa4[] read a row's
+    // pair from an element inside the buffer, whatever the rows' parity.
+    static std::size_t kappa_floats(std::size_t count, std::size_t rows);
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }

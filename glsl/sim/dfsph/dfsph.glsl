@@ -8,13 +8,16 @@
 //                     xyz the particle's position, which the density pass writes and which holds until
 //                     the integration (the positions do not move in between), so that a walk gathering
 //                     kappa_j reads x_j with it, one load a neighbour (RANRYU_NEIGHBOUR_POSITION of
-//                     neighbours.glsl); then, from float 4N on, the boundary rows' kappa_b (D9, below).
+//                     neighbours.glsl); then, from float 4N on, the boundary rows' kappa_b (D9, below),
+//                     padded to whole vec4s so that the vec4 view reads a row within the buffer.
 //                     A pass declares it as `float kappa[]` and reads KAPPA(i), or, to gather x_j and
 //                     kappa_j together, as `vec4 kappa4[]` with RANRYU_KAPPA_VEC4 defined before this file
 //     KappaPrevious   float: the kappa_i the density solve's previous iteration started from (D10)
 //     PressureAccel   vec4: xyz a^p_i (D3) of the current kappa, gathered by neighbours; w: the solve's
 //                     source s_i of (D4) or (D5); w > warm_start_drop() drops the warm start; then,
-//                     with RANRYU_GRADIENT_CORRECTION, two vec4 per particle: L_i of (D11)
+//                     with RANRYU_GRADIENT_CORRECTION, two vec4 per particle: L_i of (D11); then, with
+//                     RANRYU_WALL_GRADIENT_AT k, at k N + i the wall's gradient sum Σ_b psi_b gradW_ib
+//                     (xyz) of the density pass, for the residual pass (correct_pressure.comp)
 //     Warm            vec2 per particle, carried with it through every reorder: (kappa of the last
 //                     density solve, dt·kappa_v of the last divergence solve: its impulse, which the
 //                     next step divides by its own dt, docs/DFSPH.md below its table), the warm starts
