@@ -6,6 +6,7 @@ have passed its cap. An offline estimate on the run's own trajectory: a stop wou
 import csv, math, sys
 
 def replay(rows, factor, add, most=100, least=1, lag=2, window=16, which=('most_iterations', 'iterations', 'issued')):
+    # which: the density solve's columns, or ('most_divergence_iterations', ...) for the divergence solve's
     recent = [0] * window
     nxt = 0
     issued = stops = steps = 0
@@ -42,3 +43,11 @@ for f in sys.argv[1:]:
     for factor, add in [(1.5, 2), (1.25, 2), (1.25, 1), (1.1, 1), (1.0, 1)]:
         i, st = replay(rows, factor, add)
         print(f'   density cap {factor}x+{add}: {i:.2f} issued a step (empty {i - run:.2f}), frames whose most passed the cap: {st}')
+    # The divergence solve's cap follows the same rule (its least 1, its most the scene's too).
+    div = ('most_divergence_iterations', 'divergence_iterations', 'issued_divergence')
+    run_v = sum(int(r['divergence_iterations']) for r in rows) / steps
+    actual_v = sum(int(r['issued_divergence']) for r in rows) / steps
+    print(f'   divergence solve: {run_v:.2f} iterations a step run, {actual_v:.2f} issued (recorded)')
+    for factor, add in [(1.5, 2), (1.0, 1)]:
+        i, st = replay(rows, factor, add, which=div)
+        print(f'   divergence cap {factor}x+{add}: {i:.2f} issued a step (empty {i - run_v:.2f}), frames whose most passed the cap: {st}')
