@@ -80,7 +80,6 @@ struct Rig : ranryu::test::SphRig {
         s.stabilisation = double(p.stabilisation);
         return s;
     }
-    std::vector<float> read_floats(const ranryu::gl::Buffer& b) const { return b.read<float>(fluid.count()); }
     // The fluid's kappa_i, from the Kappa block's (x_i, kappa_i) (dfsph.glsl).
     std::vector<float> kappa() {
         std::vector<float> k = dfsph().read_kappa();
@@ -1460,6 +1459,21 @@ TEST_CASE("dfsph: the boundary rows of (D9): the list, the first iteration of ea
         const std::vector<float> kappa0 = d.read_kappa();
         d.solve_density(rig.fluid);
         const std::vector<float> kappa_after_density = d.read_kappa();
+        // A re-sorted boundary's rows start again from none (Dfsph::step()): every row's pair cleared, the
+        // fluid's (x_i, kappa_i) left as they are.
+        {
+            const std::vector<glm::vec3> x_before = d.read_kappa_positions();
+            d.forget_boundary_kappa();
+            const std::vector<float> forgot = d.read_kappa();
+            REQUIRE(forgot.size() == n + 2 * nb);
+            std::size_t held = 0, left = 0, moved = 0;
+            for (std::size_t k = n; k < forgot.size(); ++k) held += kappa_after_density[k] != 0.0f, left += forgot[k] != 0.0f;
+            for (std::size_t i = 0; i < n; ++i) moved += forgot[i] != kappa_after_density[i];
+            CHECK(held > 0);   // rows with pressure to forget
+            CHECK(left == 0);
+            CHECK(moved == 0);
+            CHECK(d.read_kappa_positions() == x_before);
+        }
         const float dt = rig.step().dt;
         rig.sim.end_frame();
         rig.timer.end_frame();

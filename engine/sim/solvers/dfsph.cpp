@@ -18,6 +18,9 @@ constexpr std::size_t kCorrectionBytes = 2 * sizeof(glm::vec4);   // (D11)'s L_i
 constexpr std::size_t kKappaFloats = 4;   // the Kappa block's (x_i, kappa_i) a particle, glsl/sim/dfsph/dfsph.glsl
 // The rows' (kappa_b, kappa_v,b) after the fluid's, padded to whole vec4s (Dfsph::kappa_floats()).
 std::size_t kappa_row_floats(std::size_t rows) { return (2 * rows + kKappaFloats - 1) / kKappaFloats * kKappaFloats; }
+// The rows' first float: after count() particles' (x_i, kappa_i), one particle's when there is none (as the
+// other per-particle arrays).
+std::size_t kappa_rows_at(std::size_t count) { return kKappaFloats * std::max<std::size_t>(count, 1); }
 // After a residual pass, which may have set the solve's indirect arguments (its deciding invocation),
 // the next dispatch reads them; after an accelerate pass only its accelerations are read.
 constexpr GLbitfield kAfterResidual = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT;
@@ -191,7 +194,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
     // The fluid's (x_i, kappa_i), then (D9)'s (kappa_b, kappa_v,b) per boundary particle: kappa_b from
     // initial_boundary_kappa() (the first step's density solve starts from it), kappa_v,b at 0.
     const std::size_t nb = rows_ ? fluid.boundary_count() : 0;
-    std::vector<float> start(kKappaFloats * n, 0.0f);
+    std::vector<float> start(kappa_rows_at(fluid.count()), 0.0f);
     if (rows_) {
         const std::vector<float> kb = initial_boundary_kappa(scene, fluid.boundary().read<glm::vec4>(nb));
         start.insert(start.end(), kb.begin(), kb.end());
@@ -245,17 +248,26 @@ std::size_t Dfsph::bytes_for(std::size_t count, std::size_t boundary, bool rows,
 }
 
 std::size_t Dfsph::kappa_floats(std::size_t count, std::size_t rows) {
-    return kKappaFloats * std::max<std::size_t>(count, 1) + kappa_row_floats(rows);
+    return kappa_rows_at(count) + kappa_row_floats(rows);
 }
 
 std::vector<float> Dfsph::read_kappa() const {
     const std::size_t n = fluid_.count(), rows = rows_ ? 2 * fluid_.boundary_count() : 0;
-    const std::size_t at = kKappaFloats * std::max<std::size_t>(n, 1);   // the rows' first float, as the constructor's
+    const std::size_t at = kappa_rows_at(n);
     const std::vector<float> all = kappa_.read<float>(kappa_.size() / sizeof(float));
     std::vector<float> out(n + rows);
     for (std::size_t i = 0; i < n; ++i) out[i] = all[kKappaFloats * i + 3];
     std::copy_n(all.begin() + std::ptrdiff_t(at), rows, out.begin() + std::ptrdiff_t(n));
     return out;
+}
+
+void Dfsph::forget_boundary_kappa() {
+    if (!rows_) return;
+    const float none = 0.0f;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, kappa_.id());
+    glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32F, GLintptr(kappa_rows_at(fluid_.count()) * sizeof(float)),
+                         GLsizeiptr(2 * fluid_.boundary_count() * sizeof(float)), GL_RED, GL_FLOAT, &none);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
 std::vector<glm::vec3> Dfsph::read_kappa_positions() const {
@@ -335,11 +347,7 @@ void Dfsph::step(Fluid& fluid, StepHooks& hooks) {
     if (rows_ && fluid.boundary_generation() != boundary_generation_) {
         // The boundary was re-sorted (the paddle moved): the kept kappa_b belong to other indices now.
         boundary_generation_ = fluid.boundary_generation();
-        const float none = 0.0f;
-        glBindBuffer(GL_COPY_WRITE_BUFFER, kappa_.id());
-        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_R32F, GLintptr(kKappaFloats * fluid.count() * sizeof(float)),
-                             GLsizeiptr(2 * fluid.boundary_count() * sizeof(float)), GL_RED, GL_FLOAT, &none);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        forget_boundary_kappa();
     }
     fluid.choose_time_step();
     fluid.rebuild_grid();

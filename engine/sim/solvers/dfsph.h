@@ -116,6 +116,9 @@ public:
     // rows' pairs padded to whole vec4s, so that the passes reading it as vec4 kappa4[] read a row's
     // pair from an element inside the buffer, whatever the rows' parity.
     static std::size_t kappa_floats(std::size_t count, std::size_t rows);
+    // Sets every row's kept (kappa_b, kappa_v,b) to 0, the fluid's (x_i, kappa_i) untouched: what a step
+    // does when the boundary was re-sorted (the paddle moved), public for its test. Nothing without rows.
+    void forget_boundary_kappa();
     // vec4: xyz a^p, w the source s_i; then, with sph.gradient_correction, (D11)'s L_i, two vec4 a
     // particle: (L_xx, L_yy, L_zz, L_xy), (L_xz, L_yz, det M_i, its blend s_i) (glsl/sim/dfsph/dfsph.glsl).
     const gl::Buffer& pressure_accelerations() const { return pressure_accel_; }

@@ -6,8 +6,7 @@
 // iterations also sum the compact Laplacian of the same kappa into Density.y (D12):
 //     l_i = rho0 Σ_j m (kappa_j − kappa_i) c_ij + rho0 Σ_b psi_b (kappa_b − kappa_i) c_ib.
 // Dispatched indirectly from the solve's SolveState: zero workgroups once it has converged.
-// x_j comes with kappa_j from the Kappa block, one load a neighbour (dfsph.glsl RANRYU_KAPPA_VEC4).
-#define RANRYU_KAPPA_VEC4 1   // x_j with kappa_j, one load a neighbour (dfsph.glsl)
+#define RANRYU_KAPPA_VEC4 1   // x_j with kappa_j from the Kappa block, one load a neighbour (dfsph.glsl)
 #include "dfsph.glsl"
 
 layout(local_size_x = 128) in;
