@@ -76,7 +76,7 @@ DeviceMemory device_capacity() {
     // A software rasteriser's buffers are host memory (Mesa's llvmpipe reports NVX figures of its own).
     const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const std::string renderer = r ? r : "";
-    if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos)
+    if (gl::software_renderer())
         if (const auto host = host_available()) return {*host, "host memory (MemAvailable), " + renderer.substr(0, renderer.find(' ')), std::nullopt};
     if (gl::has_extension("GL_NVX_gpu_memory_info")) {
         GLint kib = 0;

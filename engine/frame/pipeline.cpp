@@ -63,6 +63,10 @@ MemoryEstimate Pipeline::memory_estimate(const scene::Scene& s, const View& view
     if (view.draw && shading == render::Shading::water)
         e.parts.push_back({"water shading targets",
                            render::Renderer::bytes_for(shading, view.width, view.height, render::WaterOptions::from_environment())});
+    if (view.draw && shading == render::Shading::particles)
+        if (const std::size_t b = render::Renderer::bytes_for(shading, view.width, view.height, {},
+                                                              render::ImpostorOptions::from_environment()))
+            e.parts.push_back({"impostor raster targets", b});
     if (view.draw && s.model == scene::Model::sph && s.paddle_radius > 0.0f) e.parts.push_back({"paddle's sphere", 2 * sizeof(glm::vec4)});
     return e;
 }
@@ -83,7 +87,8 @@ Pipeline::Pipeline(const scene::Scene& scene, const shader::FileSource& shaders,
     const bool sph = scene_.model == scene::Model::sph;
     if (view.draw) {
         renderer_ = std::make_unique<render::Renderer>(shaders, timer_, shading_, sph && scene_.turbulence.subparticles.enabled(),
-                                                       sph && scene_.paddle_radius > 0.0f, render::WaterOptions::from_environment());
+                                                       sph && scene_.paddle_radius > 0.0f, render::WaterOptions::from_environment(),
+                                                       render::ImpostorOptions::from_environment());
         if (sph && scene_.paddle_radius > 0.0f) paddle_sphere_ = gl::Buffer(2 * sizeof(glm::vec4), GL_DYNAMIC_DRAW, nullptr, "paddle.sphere");
         target_ = gl::RenderTarget(view.width, view.height, "frame");
         renderer_->resize(view.width, view.height);

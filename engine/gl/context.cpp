@@ -50,6 +50,12 @@ bool has_extension(std::string_view name) {
     return false;
 }
 
+bool software_renderer() {
+    const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string_view renderer = r ? r : "";
+    return renderer.find("llvmpipe") != std::string_view::npos || renderer.find("softpipe") != std::string_view::npos;
+}
+
 std::string DeviceInfo::line() const { return renderer + " | OpenGL " + version + " | " + platform; }
 
 DeviceInfo query_device(const std::string& platform) {

@@ -22,6 +22,9 @@ struct DeviceInfo {
 
 // Whether the current context lists GL extension `name`.
 bool has_extension(std::string_view name);
+// Whether the current context's renderer is a software rasteriser (Mesa's llvmpipe or softpipe): its
+// "device" memory is host memory and its raster a loop over the covered pixels on the CPU.
+bool software_renderer();
 
 // Reads DeviceInfo from the current context.
 DeviceInfo query_device(const std::string& platform);

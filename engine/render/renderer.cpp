@@ -4,12 +4,14 @@
 #include <bit>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "gl/context.h"
 #include "render/shading.h"
 #include "render/spray.h"
 #include "scene/scene.h"
@@ -81,6 +83,17 @@ WaterOptions WaterOptions::from_environment() {
     return w;
 }
 
+ImpostorOptions ImpostorOptions::from_environment() {
+    ImpostorOptions o;
+    if (gl::software_renderer()) o.raster = ImpostorOptions::Raster::draw;
+    if (const char* v = std::getenv("RANRYU_PARTICLE_RASTER")) {
+        if (std::string_view(v) != "compute" && std::string_view(v) != "draw")
+            throw InputError(std::string("RANRYU_PARTICLE_RASTER=") + v + ": expected compute or draw");
+        o.raster = std::string_view(v) == "compute" ? ImpostorOptions::Raster::compute : ImpostorOptions::Raster::draw;
+    }
+    return o;
+}
+
 Shading default_shading(const scene::Scene& s) { return s.model == scene::Model::sph ? Shading::water : Shading::particles; }
 
 SunView sun_view(const gpu::FrameParams& p) {
@@ -120,7 +133,7 @@ gpu::FrameParams frame_params(const scene::Scene& s, const Camera& cam, int widt
 }
 
 Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading, bool subparticles, bool paddle,
-                   WaterOptions water)
+                   WaterOptions water, ImpostorOptions impostors)
     : timer_(timer),
       shading_(shading),
       clear_pass_(timer.pass("clear")),
@@ -132,7 +145,8 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
                                       shading == Shading::water ? "#define SUN_SHARE\n" : "")),
       impostor_(shader::Program::graphics(shaders, "render/impostor.vert", "render/impostor.frag")),
       frame_ubo_(sizeof(gpu::FrameParams), GL_DYNAMIC_DRAW, nullptr, "FrameParams"),
-      water_(water) {
+      water_(water),
+      impostors_(impostors) {
     if (water_.thickness_divisor < 1 || water_.thickness_divisor > 4)
         throw Error("Renderer: WaterOptions::thickness_divisor " + std::to_string(water_.thickness_divisor) + " is not 1 to 4");
     // Per-instance position and velocity attributes; the buffers are attached at draw time.
@@ -162,6 +176,22 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         glVertexAttribIFormat(RANRYU_ATTR_LEVEL, 1, GL_UNSIGNED_INT, 0);
         glBindVertexArray(0);
         gl::label(GL_VERTEX_ARRAY, parent_vao_.id(), "particles.parents.vao");
+    }
+
+    if (shading_ == Shading::particles && impostors_.raster == ImpostorOptions::Raster::compute) {
+        if (impostors_.large_capacity == 0) throw Error("Renderer: ImpostorOptions::large_capacity is 0");
+        impostor_within_ = {timer.pass("draw-particles.fill", particles_pass_), timer.pass("draw-particles.rasterise", particles_pass_),
+                            timer.pass("draw-particles.resolve", particles_pass_), timer.pass("draw-particles.shade", particles_pass_)};
+        const std::string capacity = "#define RANRYU_IMPOSTOR_CAPACITY " + std::to_string(impostors_.large_capacity) + "u\n";
+        const std::string path = "render/rasterise_impostors.comp";
+        impostor_depth_ = shader::Program::compute(shaders, path, capacity);
+        impostor_depth_large_ = shader::Program::compute(shaders, path, capacity + "#define LARGE\n");
+        impostor_resolve_ = shader::Program::compute(shaders, path, capacity + "#define RESOLVE\n");
+        impostor_resolve_large_ = shader::Program::compute(shaders, path, capacity + "#define RESOLVE\n#define LARGE\n");
+        impostor_shade_ = shader::Program::graphics(shaders, "render/sky.vert", "render/shade_impostors.frag");
+        fill_ = shader::Program::compute(shaders, "render/fill_image.comp");
+        impostor_large_ = gl::Buffer(sizeof(glm::uvec4) + impostors_.large_capacity * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
+                                     "impostors.large");   // as bytes_for counts it
     }
 
     if (paddle) {
@@ -249,9 +279,13 @@ namespace {
 int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
 }  // namespace
 
-std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions water) {
-    if (s != Shading::water) return 0;
+std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions water, ImpostorOptions impostors) {
     const std::size_t pixels = std::size_t(width) * std::size_t(height), n = RANRYU_SHADOW_MAP_SIZE;
+    if (s == Shading::particles)   // the impostors' two targets and the list of large ones (R15)
+        return impostors.raster == ImpostorOptions::Raster::compute
+                   ? 2 * pixels * gl::Texture2D::texel_bytes(GL_R32F) + sizeof(glm::uvec4) + impostors.large_capacity * sizeof(std::uint32_t)
+                   : 0;
+    if (s != Shading::water) return 0;
     const int d = water.thickness_divisor;
     const std::size_t thickness = std::size_t(reduced(width, d)) * std::size_t(reduced(height, d));
     // The compute raster's dispatch and lists of large triangles (its targets are the draws').
@@ -265,6 +299,10 @@ std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions w
 }
 
 void Renderer::resize(int width, int height) {
+    if (impostor_depth_.id() && (impostor_near_.width() != width || impostor_near_.height() != height)) {
+        impostor_near_ = gl::Texture2D(GL_R32F, width, height, "impostors.near");
+        impostor_id_ = gl::Texture2D(GL_R32F, width, height, "impostors.particle");
+    }
     if (shading_ != Shading::water) return;
     if (scene_color_.width() == width && scene_color_.height() == height) return;
     lit_color_ = gl::Texture2D(GL_RGBA16F, width, height, "scene.lit");
@@ -623,6 +661,8 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, sub->indirect.id());
         glDrawArraysIndirect(GL_TRIANGLE_STRIP, reinterpret_cast<const void*>(sub->draw_offset));
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    } else if (impostor_depth_.id()) {
+        rasterise_impostors(target, positions, velocities, count);
     } else {
         auto pass = timer_.scope(particles_pass_);
         impostor_.use();
@@ -634,6 +674,60 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
+                                   std::size_t count) {
+    if (impostor_near_.width() != target.width() || impostor_near_.height() != target.height())
+        throw Error("Renderer::draw: the impostors' targets are " + std::to_string(impostor_near_.width()) + "x" +
+                    std::to_string(impostor_near_.height()) + ", the frame is " + std::to_string(target.width()) + "x" +
+                    std::to_string(target.height()) + " (Renderer::resize first)");
+    auto pass = timer_.scope(particles_pass_);
+    {
+        // No depth (the bits of +inf order above every depth in [0, 1]), no particle, no large one.
+        auto within = timer_.scope(impostor_within_.fill);
+        fill(impostor_near_, std::numeric_limits<float>::infinity());
+        fill(impostor_id_, 0.0f);
+        const glm::uvec4 header(0u, RANRYU_IMPOSTOR_LARGE_TILES, 1u, 0u);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, impostor_large_.id());
+        glClearBufferSubData(GL_COPY_WRITE_BUFFER, GL_RGBA32UI, 0, sizeof header, GL_RGBA_INTEGER, GL_UNSIGNED_INT, &header);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    const shader::StorageSet buffers{{"Positions", &positions}, {"ImpostorLarge", &impostor_large_}};
+    // R32F textures as 32-bit unsigned images: the same size class, the bits as they are.
+    glBindImageTexture(RANRYU_IMG_IMPOSTOR_DEPTH, impostor_near_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(RANRYU_IMG_IMPOSTOR_ID, impostor_id_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    // Each particle, then the large ones it listed, from the list's header.
+    auto both = [&](const shader::Program& each, const shader::Program& large) {
+        glProgramUniform1ui(each.id(), RANRYU_LOC_COUNT, GLuint(count));
+        each.bind(buffers).dispatch(count);
+        glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        large.bind(buffers).use();
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, impostor_large_.id());
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    };
+    {
+        auto within = timer_.scope(impostor_within_.rasterise);
+        both(impostor_depth_, impostor_depth_large_);
+    }
+    {
+        auto within = timer_.scope(impostor_within_.resolve);
+        both(impostor_resolve_, impostor_resolve_large_);
+    }
+    {
+        auto within = timer_.scope(impostor_within_.shade);
+        bind_target(target);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glBindVertexArray(empty_vao_.id());
+        impostor_shade_.bind(shader::StorageSet{{"Positions", &positions}, {"Velocities", &velocities}}).use();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    for (GLuint unit : {GLuint(RANRYU_IMG_IMPOSTOR_DEPTH), GLuint(RANRYU_IMG_IMPOSTOR_ID)})
+        glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
 void Renderer::draw_sphere(const gl::RenderTarget& target, const gl::Buffer& sphere) {

@@ -10,6 +10,7 @@
 
 #include "gl/objects.h"
 #include "profile/gpu_timer.h"
+#include "render/shading.h"
 #include "shader/program.h"
 #include "shared/bindings.h"
 
@@ -98,15 +99,35 @@ struct WaterOptions {
     static WaterOptions from_environment();
 };
 
+// How "draw-particles" rasterises the sphere impostors (docs/RENDERING.md (R15)). compute: by
+// rasterise_impostors.comp into two R32F targets of the frame's size (the nearest depth, then the
+// particle there), shaded by one full-target fragment pass (shade_impostors.frag): the raster
+// hardware draws one triangle, where the draw sends it two a particle (on the H100 and H200 it has two
+// TPCs). draw: glDrawArraysInstanced of the silhouette quads (impostor.vert, impostor.frag). Both
+// leave the same pixels within the rounding of the eye ray, but for a sphere the near plane cuts,
+// which only the draw shows. Sub-particles (a SubparticleDraw) and the paddle are drawn either way.
+struct ImpostorOptions {
+    enum class Raster { compute, draw };
+    Raster raster = Raster::compute;
+    // Particles whose silhouette holds more than RANRYU_IMPOSTOR_LARGE_PIXELS pixels that the second
+    // dispatch takes (glsl/render/shading.h); the rest are done by their own invocation. Tests lower it.
+    unsigned large_capacity = RANRYU_IMPOSTOR_LARGE_CAPACITY;
+    // For the current context: compute, but draw on a software rasteriser (gl::software_renderer()),
+    // whose draw visits only the covered pixels where compute's fill and shading visit every one
+    // (llvmpipe at 960x540: about 0.3 against 25 ms); RANRYU_PARTICLE_RASTER=compute|draw sets it,
+    // and throws InputError for another value.
+    static ImpostorOptions from_environment();
+};
+
 class Renderer {
 public:
     // Builds the floor, tank and impostor programs, and the surface program of `shading` only (with
     // its pass "draw-surface") when it is not particles. `subparticles`: also the impostor variant that
     // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL). `paddle`: also the one
     // that draw_sphere() draws with (RANRYU_RADIUS_IN_W).
-    // `water`: the water mode's options.
+    // `water`: the water mode's options; `impostors`: the particles mode's.
     Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
-             bool subparticles = false, bool paddle = false, WaterOptions water = {});
+             bool subparticles = false, bool paddle = false, WaterOptions water = {}, ImpostorOptions impostors = {});
 
     // Copied into the FrameParams UBO (and the sun's view). Parameters other than the last ones make
     // the water mode's scene cache stale: the next draw() draws it again (a CPU decision, no readback).
@@ -117,11 +138,12 @@ public:
     Shading shading() const { return shading_; }
 
     // Water mode: allocates the targets of a width x height frame (the scene cache, the opaque scene's
-    // colour, the liquid's thickness); draw() requires them at its target's size. Start-up or resize
-    // only: nothing is allocated while drawing. Other modes: nothing.
+    // colour, the liquid's thickness); particles mode with the compute raster: the impostors' depth and
+    // particle targets. draw() requires them at its target's size. Start-up or resize only: nothing is
+    // allocated while drawing. Other modes: nothing.
     void resize(int width, int height);
-    // Device memory of the water mode's targets for a width x height frame (0 for the other modes).
-    static std::size_t bytes_for(Shading s, int width, int height, WaterOptions water = {});
+    // Device memory of those targets for a width x height frame (0 for the other modes).
+    static std::size_t bytes_for(Shading s, int width, int height, WaterOptions water = {}, ImpostorOptions impostors = {});
     const WaterOptions& water_options() const { return water_; }
     // Water mode, for tests: the opaque scene with this frame's shadow (RGBA16F, linear) and its depth
     // (the cache's), the liquid's thickness along each view ray (R32F, m; at 1/thickness_divisor of
@@ -139,6 +161,8 @@ public:
     // opaque scene, into the scene cache) only in a frame whose view changed (every frame without
     // WaterOptions::cache_scene); "liquid-thickness", "compose" (the cache with this frame's shadow,
     // into `target` with its depth), "draw-surface"; without `surface`, the scene with no liquid.
+    // "draw-particles" by the compute raster (ImpostorOptions) times its dispatches within it:
+    // "draw-particles.fill", ".rasterise", ".resolve" and ".shade".
     // With `sub` (particles shading, built with subparticles), "draw-particles" draws the parents
     // that were not split and then the sub-particles (glDrawArraysIndirect), coloured by level and of
     // radius r/2^level.
@@ -177,6 +201,9 @@ private:
     void draw_layers(const SurfaceMesh& surface, const gl::Framebuffer& fbo, const gl::Texture2D& size_of,
                      const shader::Program& program);
     void draw_mesh(const SurfaceMesh& surface, const gl::VertexArray& vao);
+    // "draw-particles" by the compute raster (R15), into the bound target over its floor and tank.
+    void rasterise_impostors(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
+                             std::size_t count);
 
     profile::GpuTimer& timer_;
     Shading shading_;
@@ -205,6 +232,17 @@ private:
     shader::Program size_raster_, raster_shadow_, raster_thickness_, raster_shadow_large_, raster_thickness_large_, decode_shadow_,
         decode_thickness_;
     gl::Buffer raster_dispatch_, raster_large_;
+    // The impostors' compute raster (R15): its programs (the first dispatch, its LARGE variant, both
+    // again with RESOLVE; the shading), its two targets and the list of large particles (a uvec4
+    // header, then ImpostorOptions::large_capacity indices), its passes within "draw-particles".
+    ImpostorOptions impostors_;
+    shader::Program impostor_depth_, impostor_depth_large_, impostor_resolve_, impostor_resolve_large_, impostor_shade_;
+    gl::Texture2D impostor_near_, impostor_id_;
+    gl::Buffer impostor_large_;
+    struct ImpostorPasses {
+        profile::PassId fill, rasterise, resolve, shade;
+    };
+    ImpostorPasses impostor_within_{};
     std::uint64_t generation_ = 1, drawn_generation_ = 0;
 };
 

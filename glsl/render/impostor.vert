@@ -1,14 +1,12 @@
 #version 430
-// Sphere impostors: one camera-facing quad per particle (instanced, 4-vertex strip), sized to
-// cover the sphere's silhouette exactly. The quad lies in the plane through the centre c
-// perpendicular to the eye ray, where the silhouette cone of a sphere of radius r at distance
-// d = |c| has radius r·d / sqrt(d² − r²).
+// Sphere impostors drawn: one camera-facing quad per particle (instanced, 4-vertex strip), sized to
+// cover the sphere's silhouette exactly (silhouette_corner, impostor.glsl).
 // Built with RANRYU_BY_LEVEL (sub-particles, render/renderer.h): a sphere of level E has radius
 // r/2^E and the level's colour. Parents (children == 0) carry their levels word: one the spawn pass
 // split (E > 0) is not drawn, its sub-particles are. Sub-particles (children == 1) carry E in position.w.
 // Built with RANRYU_RADIUS_IN_W (the paddle, render/renderer.h draw_sphere): the radius is position.w.
 // A fluid particle with position.w = -1 is parked (the emitter's budget, engine/sim/fluid.h): not drawn.
-#include "../common/frame.glsl"
+#include "impostor.glsl"
 
 layout(location = RANRYU_ATTR_POSITION) in vec4 in_position;
 layout(location = RANRYU_ATTR_VELOCITY) in vec4 in_velocity;
@@ -54,11 +52,7 @@ void main() {
         v_view_pos = c;
         return;
     }
-    vec3 axis = c / d;
-    vec3 side = normalize(abs(axis.y) < 0.99 ? cross(axis, vec3(0.0, 1.0, 0.0)) : cross(axis, vec3(1.0, 0.0, 0.0)));
-    vec3 up = cross(side, axis);
-    float extent = r * d / sqrt(d * d - r * r);
-    vec3 p = c + extent * (corner.x * side + corner.y * up);
+    vec3 p = silhouette_corner(c, r, corner);
     v_view_pos = p;
     gl_Position = frame.proj * vec4(p, 1.0);
 }

@@ -73,6 +73,18 @@
 #define RANRYU_RASTER_LARGE_TILES 64u
 #define RANRYU_RASTER_LARGE_CAPACITY 16384u
 
+// The compute raster of the particles' sphere impostors (ImpostorOptions::Raster::compute,
+// docs/RENDERING.md (R15)): rasterise_impostors.comp and shade_impostors.frag. Two R32F textures of
+// the frame's size bound as r32ui images: the nearest window depth's bits, then the index + 1 of the
+// particle there (0: none). A particle whose silhouette's bounding box holds more than
+// RANRYU_IMPOSTOR_LARGE_PIXELS pixels is listed (up to the capacity; more are done by their own
+// invocation) for a second dispatch, RANRYU_IMPOSTOR_LARGE_TILES workgroups each.
+#define RANRYU_IMG_IMPOSTOR_DEPTH 0
+#define RANRYU_IMG_IMPOSTOR_ID 1
+#define RANRYU_IMPOSTOR_LARGE_PIXELS 256
+#define RANRYU_IMPOSTOR_LARGE_TILES 16u
+#define RANRYU_IMPOSTOR_LARGE_CAPACITY 16384u   // ImpostorOptions::large_capacity's default
+
 // Mesh vertex attributes (gpu::MeshVertex: position at byte 0, normal at byte 16, stride 32).
 #define RANRYU_ATTR_MESH_POSITION 0
 #define RANRYU_ATTR_MESH_NORMAL 1

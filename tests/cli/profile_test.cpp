@@ -523,7 +523,7 @@ TEST_CASE("ranryu profile --detail times each solve's dispatches apart under it,
     CHECK(found);
 }
 
-TEST_CASE("ranryu profile --detail names the surface's, the raster's and the bitonic sort's small passes under their parents, and only those that run",
+TEST_CASE("ranryu profile --detail names the surface's, the rasters' and the bitonic sort's small passes under their parents, and only those that run",
           "[cli][profile]") {
     // Each compute program has a pass of its own (docs/PERFORMANCE.md "Passes within passes, timed
     // apart"): place_grid within surface.bounds, the marching cubes' setup and scan within their
@@ -545,8 +545,12 @@ TEST_CASE("ranryu profile --detail names the surface's, the raster's and the bit
     write_file(tmp / "bitonic.json", R"({"model": "sph", "tank": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
         "sph": {"solver": "dfsph", "sort": "bitonic"},
         "particles": {"spacing": 0.015, "blocks": [{"min": [0, 0, 0], "max": [0.24, 0.24, 0.24]}]}})");   // 4,096: past one tile
+    // Particles by the impostors' compute raster (R15), which llvmpipe otherwise leaves to the draw.
+    RunOptions impostor_compute;
+    impostor_compute.set_env = {{"RANRYU_PARTICLE_RASTER", "compute"}};
     const Result bitonic = run_ranryu(tmp.path(), {"profile", "--scene", "bitonic.json", "--size", "64x48", "--shading", "particles",
-                                                   "--frames", "2", "--warmup", "0", "--detail", "--json", "bitonic.json.out"});
+                                                   "--frames", "2", "--warmup", "0", "--detail", "--json", "bitonic.json.out"},
+                                      impostor_compute);
     INFO(compute.describe() << "\n" << draw.describe() << "\n" << bitonic.describe());
     REQUIRE(compute.exit_code == 0);
     REQUIRE(draw.exit_code == 0);
@@ -590,4 +594,21 @@ TEST_CASE("ranryu profile --detail names the surface's, the raster's and the bit
         CHECK_FALSE(b.at(name).contains("within"));
         CHECK(b.at(name).at("calls_per_frame").get<double>() > 0.0);
     }
+    for (const char* name : {"draw-particles.fill", "draw-particles.rasterise", "draw-particles.resolve", "draw-particles.shade"}) {
+        INFO(name);
+        REQUIRE(b.count(name) == 1);
+        CHECK(b.at(name).at("within") == "draw-particles");
+        CHECK(b.at(name).at("calls_per_frame").get<double>() == Approx(1.0));
+    }
+    // The draw: no pass within draw-particles, timed or named.
+    RunOptions impostor_draw;
+    impostor_draw.set_env = {{"RANRYU_PARTICLE_RASTER", "draw"}};
+    const Result drawn = run_ranryu(tmp.path(), {"profile", "--scene", "bitonic.json", "--size", "64x48", "--shading", "particles",
+                                                 "--frames", "1", "--warmup", "0", "--detail", "--json", "drawn.json"},
+                                    impostor_draw);
+    INFO(drawn.describe());
+    REQUIRE(drawn.exit_code == 0);
+    const std::string drawn_text = read_file(tmp / "drawn.json");
+    CHECK(drawn_text.find("\"draw-particles\"") != std::string::npos);
+    CHECK(drawn_text.find("draw-particles.") == std::string::npos);
 }
