@@ -2,6 +2,9 @@
 // the most one step needed, and the scene's maximum at once after a step stopped at the cap; and the
 // CPU's mirror of the step the iterations allow (next_iteration_dt(), docs/DFSPH.md (D8)); and the size of
 // the Kappa block the solver allocates (Dfsph::kappa_floats()).
+#include <cstdlib>
+#include <string>
+
 #include <catch2/catch.hpp>
 
 #include "sim/solvers/dfsph.h"
@@ -18,6 +21,27 @@ TEST_CASE("dfsph iteration cap: 1.5 times the most needed plus two, within the s
     CHECK(next_iteration_cap(0, false, 5, 100) == 5u);
     CHECK(next_iteration_cap(80, false, 2, 100) == 100u);  // not above the most
     CHECK(next_iteration_cap(4000000000u, false, 2, 1000) == 1000u);
+}
+
+TEST_CASE("dfsph iteration cap: another rule, from RANRYU_DFSPH_CAP, with factors that binary fractions hold inexactly", "[dfsph][unit]") {
+    using ranryu::sim::IterationCapRule;
+    const IterationCapRule tight{1.1, 1.0};
+    CHECK(next_iteration_cap(10, false, 2, 100, tight) == 12u);   // ceil(11) + 1, though 1.1 * 10 > 11 in doubles
+    CHECK(next_iteration_cap(7, false, 2, 100, tight) == 9u);     // ceil(7.7) + 1
+    CHECK(next_iteration_cap(3, false, 2, 100, IterationCapRule{1.0, 0.0}) == 3u);
+    CHECK(next_iteration_cap(3, true, 2, 100, tight) == 100u);    // a stop: the most, whatever the rule
+    ::unsetenv("RANRYU_DFSPH_CAP");
+    CHECK(IterationCapRule::from_environment().factor == 1.5);
+    CHECK(IterationCapRule::from_environment().margin == 2.0);
+    ::setenv("RANRYU_DFSPH_CAP", "1.25,1", 1);
+    CHECK(IterationCapRule::from_environment().factor == 1.25);
+    CHECK(IterationCapRule::from_environment().margin == 1.0);
+    for (const char* bad : {"1.25", "0.9,1", "1.5,-1", "1.5,30", "1.5,2x", "fast"}) {
+        INFO(bad);
+        ::setenv("RANRYU_DFSPH_CAP", bad, 1);
+        CHECK_THROWS_WITH(IterationCapRule::from_environment(), Catch::Contains(std::string("RANRYU_DFSPH_CAP=") + bad));
+    }
+    ::unsetenv("RANRYU_DFSPH_CAP");
 }
 
 TEST_CASE("dfsph iteration cap: a step stopped at the cap sends it to the scene's most at once", "[dfsph][unit]") {

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstddef>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -88,8 +91,21 @@ shader::Program rows_program(const shader::FileSource& shaders, const char* path
 
 }  // namespace
 
-std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most) {
-    const double want = stopped ? double(most) : std::ceil(1.5 * double(needed)) + 2.0;
+IterationCapRule IterationCapRule::from_environment() {
+    IterationCapRule rule;
+    const char* v = std::getenv("RANRYU_DFSPH_CAP");
+    if (!v) return rule;
+    double factor = 0.0, margin = -1.0;
+    char tail = 0;
+    if (std::sscanf(v, "%lf,%lf%c", &factor, &margin, &tail) != 2 || !(factor >= 1.0 && factor <= 4.0) || !(margin >= 0.0 && margin <= 20.0))
+        throw InputError(std::string("RANRYU_DFSPH_CAP=") + v + ": expected FACTOR,MARGIN with FACTOR in [1, 4] and MARGIN in [0, 20]");
+    return IterationCapRule{factor, margin};
+}
+
+std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most, IterationCapRule rule) {
+    // ceil less a hair: a factor that binary fractions hold inexactly (1.1 · 10 = 11.000000000000002)
+    // rounds to the whole number it means.
+    const double want = stopped ? double(most) : std::ceil(rule.factor * double(needed) - 1e-9) + rule.margin;
     return std::uint32_t(std::clamp(int(std::min(want, 1e6)), least, most));
 }
 
@@ -136,6 +152,7 @@ Dfsph::Dfsph(const shader::FileSource& shaders, profile::GpuTimer& timer, const 
       least_(scene.sph.min_iterations),
       most_(scene.sph.max_iterations),
       most_divergence_(scene.sph.max_divergence_iterations),
+      cap_rule_(IterationCapRule::from_environment()),
       fluid_(fluid),
       warm_(fluid.carry("Warm", kWarmWords, initial_warm_start(scene))),
       frame_pressure_(fluid.carry("FramePressure", kFramePressureWords, std::vector<std::uint32_t>(kFramePressureWords, 0u))) {
@@ -323,8 +340,8 @@ void Dfsph::begin_frame(Fluid& fluid) {
     glm::uvec2 needed(iterations_at_plan(r->iterations.z, r->frame_substeps, planned),
                       iterations_at_plan(r->iterations.w, r->frame_substeps, planned));
     for (const glm::uvec2& k : recent_) needed = glm::max(needed, k);
-    const std::uint32_t cap = next_iteration_cap(needed.x, r->unconverged.x > 0, least_, most_);
-    const std::uint32_t cap_v = next_iteration_cap(needed.y, r->unconverged.y > 0, 1, most_divergence_);
+    const std::uint32_t cap = next_iteration_cap(needed.x, r->unconverged.x > 0, least_, most_, cap_rule_);
+    const std::uint32_t cap_v = next_iteration_cap(needed.y, r->unconverged.y > 0, 1, most_divergence_, cap_rule_);
     if (cap != params_.issued || cap_v != params_.issued_divergence) {
         params_.issued = cap;
         params_.issued_divergence = cap_v;

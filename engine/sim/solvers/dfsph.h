@@ -49,13 +49,21 @@
 
 namespace ranryu::sim {
 
+// The rule of next_iteration_cap(): ceil(factor · needed) + margin.
+struct IterationCapRule {
+    double factor = 1.5, margin = 2.0;
+    // The default, or RANRYU_DFSPH_CAP="FACTOR,MARGIN" (FACTOR in [1, 4], MARGIN in [0, 20]: to measure
+    // another rule on one build); throws InputError naming the variable otherwise. Start-up only.
+    static IterationCapRule from_environment();
+};
+
 // The iterations a solve is issued in the next frames, from the most one step `needed` over the recent
-// records and whether the latest had a step `stopped` at its cap: ceil(1.5 needed) + 2, or `most` after
-// a stop, within [least, most]. A stop means the cap fell behind what the steps need, as when the
-// time step grows (docs/DFSPH.md, "The iteration cap"); the records that would show how far come back
-// frames late, and a step cut short leaves its excess to the next as a kick, so the cap goes to the
-// maximum at once, and comes back down with the records.
-std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most);
+// records and whether the latest had a step `stopped` at its cap: ceil(factor · needed) + margin
+// (`rule`), or `most` after a stop, within [least, most]. A stop means the cap fell behind what the
+// steps need, as when the time step grows (docs/DFSPH.md, "The iteration cap"); the records that would
+// show how far come back frames late, and a step cut short leaves its excess to the next as a kick, so
+// the cap goes to the maximum at once, and comes back down with the records.
+std::uint32_t next_iteration_cap(std::uint32_t needed, bool stopped, int least, int most, IterationCapRule rule = {});
 
 // The most iterations a step of this frame needs, from a record's `most` at its `record_substeps` a
 // frame, when this frame plans `planned` substeps: fewer, longer steps than the record's need
@@ -162,6 +170,7 @@ private:
     shader::Program extend_rows_, hand_off_rows_;               // (D13), built when eliminated_
     gpu::DfsphParams params_{};
     int least_, most_, most_divergence_;
+    IterationCapRule cap_rule_;
     bool fixed_caps_ = false;
     std::array<glm::uvec2, 16> recent_{};   // the most iterations a step needed, of the last records
     std::size_t recent_next_ = 0;
