@@ -209,8 +209,13 @@ void Pipeline::draw() {
             renderer_->draw_spray(target_, render::SubparticleDraw{sub_->levels(), sub_->positions(), sub_->velocities(),
                                                                    sub_->state(), turbulence::Subparticles::draw_offset});
     } else if (sub_) {
-        const render::SubparticleDraw sub{sub_->levels(), sub_->positions(), sub_->velocities(), sub_->state(),
-                                          turbulence::Subparticles::draw_offset};
+        const render::SubparticleDraw sub{sub_->levels(),
+                                          sub_->positions(),
+                                          sub_->velocities(),
+                                          sub_->state(),
+                                          turbulence::Subparticles::draw_offset,
+                                          turbulence::Subparticles::dispatch_offset,
+                                          sub_->dispatch_group()};
         renderer_->draw(target_, positions(), velocities(), particle_count(), nullptr, &sub);
     } else {
         renderer_->draw(target_, positions(), velocities(), particle_count());

@@ -183,12 +183,16 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
         impostor_within_ = {timer.pass("draw-particles.fill", particles_pass_), timer.pass("draw-particles.rasterise", particles_pass_),
                             timer.pass("draw-particles.resolve", particles_pass_), timer.pass("draw-particles.shade", particles_pass_)};
         const std::string capacity = "#define RANRYU_IMPOSTOR_CAPACITY " + std::to_string(impostors_.large_capacity) + "u\n";
-        const std::string path = "render/rasterise_impostors.comp";
-        impostor_depth_ = shader::Program::compute(shaders, path, capacity);
-        impostor_depth_large_ = shader::Program::compute(shaders, path, capacity + "#define LARGE\n");
-        impostor_resolve_ = shader::Program::compute(shaders, path, capacity + "#define RESOLVE\n");
-        impostor_resolve_large_ = shader::Program::compute(shaders, path, capacity + "#define RESOLVE\n#define LARGE\n");
-        impostor_shade_ = shader::Program::graphics(shaders, "render/sky.vert", "render/shade_impostors.frag");
+        auto programs = [&](const std::string& defines) {
+            const std::string path = "render/rasterise_impostors.comp";
+            return ImpostorPrograms{shader::Program::compute(shaders, path, defines),
+                                    shader::Program::compute(shaders, path, defines + "#define LARGE\n"),
+                                    shader::Program::compute(shaders, path, defines + "#define RESOLVE\n"),
+                                    shader::Program::compute(shaders, path, defines + "#define RESOLVE\n#define LARGE\n"),
+                                    shader::Program::graphics(shaders, "render/sky.vert", "render/shade_impostors.frag", defines)};
+        };
+        impostor_raster_ = programs(capacity);
+        if (subparticles) impostor_raster_levels_ = programs(capacity + "#define BY_LEVEL\n");
         fill_ = shader::Program::compute(shaders, "render/fill_image.comp");
         impostor_large_ = gl::Buffer(sizeof(glm::uvec4) + impostors_.large_capacity * sizeof(std::uint32_t), GL_DYNAMIC_COPY, nullptr,
                                      "impostors.large");   // as bytes_for counts it
@@ -299,7 +303,7 @@ std::size_t Renderer::bytes_for(Shading s, int width, int height, WaterOptions w
 }
 
 void Renderer::resize(int width, int height) {
-    if (impostor_depth_.id() && (impostor_near_.width() != width || impostor_near_.height() != height)) {
+    if (impostor_raster_.depth.id() && (impostor_near_.width() != width || impostor_near_.height() != height)) {
         impostor_near_ = gl::Texture2D(GL_R32F, width, height, "impostors.near");
         impostor_id_ = gl::Texture2D(GL_R32F, width, height, "impostors.particle");
     }
@@ -642,6 +646,8 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         auto pass = timer_.scope(surface_pass_);
         surface_.use();
         draw_mesh(*surface, mesh_vao_);
+    } else if (impostor_raster_.depth.id() && (!sub || sub->dispatch_group != 0)) {
+        rasterise_impostors(target, positions, velocities, count, sub);
     } else if (sub) {
         if (!impostor_levels_.id()) throw Error("Renderer::draw: sub-particles given to a renderer built without them");
         auto pass = timer_.scope(particles_pass_);
@@ -661,8 +667,6 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, sub->indirect.id());
         glDrawArraysIndirect(GL_TRIANGLE_STRIP, reinterpret_cast<const void*>(sub->draw_offset));
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    } else if (impostor_depth_.id()) {
-        rasterise_impostors(target, positions, velocities, count);
     } else {
         auto pass = timer_.scope(particles_pass_);
         impostor_.use();
@@ -677,7 +681,10 @@ void Renderer::draw(const gl::RenderTarget& target, const gl::Buffer& positions,
 }
 
 void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-                                   std::size_t count) {
+                                   std::size_t count, const SubparticleDraw* sub) {
+    if (sub && !impostor_raster_levels_.depth.id())
+        throw Error("Renderer::draw: sub-particles given to a renderer built without them");
+    const ImpostorPrograms& raster = sub ? impostor_raster_levels_ : impostor_raster_;
     if (impostor_near_.width() != target.width() || impostor_near_.height() != target.height())
         throw Error("Renderer::draw: the impostors' targets are " + std::to_string(impostor_near_.width()) + "x" +
                     std::to_string(impostor_near_.height()) + ", the frame is " + std::to_string(target.width()) + "x" +
@@ -694,14 +701,24 @@ void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buf
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    const shader::StorageSet buffers{{"Positions", &positions}, {"ImpostorLarge", &impostor_large_}};
+    shader::StorageSet buffers{{"Positions", &positions}, {"ImpostorLarge", &impostor_large_}};
+    if (sub)
+        buffers.add("SubparticleLevels", sub->parent_levels).add("SubparticlePositions", sub->positions).add("Subparticles", sub->indirect);
     // R32F textures as 32-bit unsigned images: the same size class, the bits as they are.
     glBindImageTexture(RANRYU_IMG_IMPOSTOR_DEPTH, impostor_near_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(RANRYU_IMG_IMPOSTOR_ID, impostor_id_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    // Each particle, then the large ones it listed, from the list's header.
+    // Each particle (and each sub-particle, from the spawn pass's indirect dispatch), then the large
+    // ones they listed, from the list's header.
     auto both = [&](const shader::Program& each, const shader::Program& large) {
         glProgramUniform1ui(each.id(), RANRYU_LOC_COUNT, GLuint(count));
+        if (sub) glProgramUniform2ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 0u, sub->dispatch_group);
         each.bind(buffers).dispatch(count);
+        if (sub) {
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // the list's claims
+            glProgramUniform2ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 1u, sub->dispatch_group);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->indirect.id());
+            glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));
+        }
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         large.bind(buffers).use();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, impostor_large_.id());
@@ -711,11 +728,11 @@ void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buf
     };
     {
         auto within = timer_.scope(impostor_within_.rasterise);
-        both(impostor_depth_, impostor_depth_large_);
+        both(raster.depth, raster.depth_large);
     }
     {
         auto within = timer_.scope(impostor_within_.resolve);
-        both(impostor_resolve_, impostor_resolve_large_);
+        both(raster.resolve, raster.resolve_large);
     }
     {
         auto within = timer_.scope(impostor_within_.shade);
@@ -723,7 +740,7 @@ void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buf
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glBindVertexArray(empty_vao_.id());
-        impostor_shade_.bind(shader::StorageSet{{"Positions", &positions}, {"Velocities", &velocities}}).use();
+        raster.shade.bind(buffers.with("Velocities", velocities)).use();
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     for (GLuint unit : {GLuint(RANRYU_IMG_IMPOSTOR_DEPTH), GLuint(RANRYU_IMG_IMPOSTOR_ID)})

@@ -43,13 +43,18 @@ struct SurfaceMesh {
 
 // Sub-particles to draw with the particles (turbulence/subparticles.h): the parents' levels words
 // (uint per parent, same order as the parents' positions), the sub-particles' positions (w = level)
-// and velocities, and the buffer holding their glDrawArraysIndirect arguments at byte draw_offset.
+// and velocities, and the buffer holding their glDrawArraysIndirect arguments at byte draw_offset (its
+// instances: the sub-particles) and, for the impostors' compute raster, the indirect dispatch of
+// `dispatch_group` sub-particles a workgroup at byte dispatch_offset (gpu::SubparticleState: dispatch
+// first, then draw). dispatch_group 0: no dispatch given, the draw draws them.
 struct SubparticleDraw {
     const gl::Buffer& parent_levels;
     const gl::Buffer& positions;
     const gl::Buffer& velocities;
     const gl::Buffer& indirect;
     std::size_t draw_offset;
+    std::size_t dispatch_offset = 0;
+    GLuint dispatch_group = 0;
 };
 
 struct Camera {
@@ -105,7 +110,7 @@ struct WaterOptions {
 // hardware draws one triangle, where the draw sends it two a particle (on the H100 and H200 it has two
 // TPCs). draw: glDrawArraysInstanced of the silhouette quads (impostor.vert, impostor.frag). Both
 // leave the same pixels within the rounding of the eye ray, but for a sphere the near plane cuts,
-// which only the draw shows. Sub-particles (a SubparticleDraw) and the paddle are drawn either way.
+// which only the draw shows. The paddle is drawn by the draw either way.
 struct ImpostorOptions {
     enum class Raster { compute, draw };
     Raster raster = Raster::compute;
@@ -164,8 +169,9 @@ public:
     // "draw-particles" by the compute raster (ImpostorOptions) times its dispatches within it:
     // "draw-particles.fill", ".rasterise", ".resolve" and ".shade".
     // With `sub` (particles shading, built with subparticles), "draw-particles" draws the parents
-    // that were not split and then the sub-particles (glDrawArraysIndirect), coloured by level and of
-    // radius r/2^level.
+    // that were not split and then the sub-particles (the compute raster from sub's dispatch; the draw
+    // by glDrawArraysIndirect, and where sub gives no dispatch), coloured by level and of radius
+    // r/2^level.
     void draw(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
               std::size_t count, const SurfaceMesh* surface = nullptr, const SubparticleDraw* sub = nullptr);
     // Pass "draw-paddle": one sphere into `target` over what draw() left in it (depth-tested), from
@@ -203,7 +209,7 @@ private:
     void draw_mesh(const SurfaceMesh& surface, const gl::VertexArray& vao);
     // "draw-particles" by the compute raster (R15), into the bound target over its floor and tank.
     void rasterise_impostors(const gl::RenderTarget& target, const gl::Buffer& positions, const gl::Buffer& velocities,
-                             std::size_t count);
+                             std::size_t count, const SubparticleDraw* sub);
 
     profile::GpuTimer& timer_;
     Shading shading_;
@@ -233,10 +239,14 @@ private:
         decode_thickness_;
     gl::Buffer raster_dispatch_, raster_large_;
     // The impostors' compute raster (R15): its programs (the first dispatch, its LARGE variant, both
-    // again with RESOLVE; the shading), its two targets and the list of large particles (a uvec4
-    // header, then ImpostorOptions::large_capacity indices), its passes within "draw-particles".
+    // again with RESOLVE; the shading), plain and (renderers built with sub-particles) BY_LEVEL, its
+    // two targets and the list of large spheres (a uvec4 header, then ImpostorOptions::large_capacity
+    // ids), its passes within "draw-particles".
     ImpostorOptions impostors_;
-    shader::Program impostor_depth_, impostor_depth_large_, impostor_resolve_, impostor_resolve_large_, impostor_shade_;
+    struct ImpostorPrograms {
+        shader::Program depth, depth_large, resolve, resolve_large, shade;
+    };
+    ImpostorPrograms impostor_raster_, impostor_raster_levels_;
     gl::Texture2D impostor_near_, impostor_id_;
     gl::Buffer impostor_large_;
     struct ImpostorPasses {

@@ -35,6 +35,14 @@ vec3 speed_base(float speed) {
     return mix(vec3(0.10, 0.35, 0.80), vec3(0.85, 0.95, 1.00), s);
 }
 
+// The base colour of a sub-particle of level E (0: a particle not split), whose radius is r/2^E
+// (drawing by level: turbulence/subparticles.h).
+vec3 level_base(uint level) {
+    const vec3 kLevelColor[4] = vec3[4](vec3(RANRYU_LEVEL_COLOR_0), vec3(RANRYU_LEVEL_COLOR_1), vec3(RANRYU_LEVEL_COLOR_2),
+                                        vec3(RANRYU_LEVEL_COLOR_3));
+    return kLevelColor[min(level, 3u)];
+}
+
 // Phong (frame.glsl) of the sphere (c, r) at its point p seen along `dir`, in world space (the view
 // matrix is rigid: its inverse rotation is its transpose), display-encoded.
 vec3 shade_impostor(vec3 base, vec3 p, vec3 c, float r, vec3 dir) {

@@ -14,8 +14,6 @@ layout(location = RANRYU_ATTR_VELOCITY) in vec4 in_velocity;
 layout(location = RANRYU_ATTR_LEVEL) in uint in_level;
 layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uint children;
 flat out vec3 v_base;
-const vec3 kLevelColor[4] = vec3[4](vec3(RANRYU_LEVEL_COLOR_0), vec3(RANRYU_LEVEL_COLOR_1), vec3(RANRYU_LEVEL_COLOR_2),
-                                    vec3(RANRYU_LEVEL_COLOR_3));
 #endif
 
 out vec3 v_view_pos;          // this corner, view space
@@ -33,7 +31,7 @@ void main() {
 #ifdef RANRYU_BY_LEVEL
     uint level = children != 0u ? min(uint(in_position.w), 3u) : 0u;
     r = ldexp(r, -int(level));
-    v_base = kLevelColor[level];
+    v_base = level_base(level);
     bool split = children == 0u && (in_level >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) != 0u;
 #else
     bool split = false;

@@ -1,28 +1,35 @@
 #version 430
 // "draw-particles" off the raster hardware (docs/RENDERING.md (R15)): the sphere impostors of
 // impostor.vert and impostor.frag, rasterised by compute into two R32F targets of the frame's size
-// bound as r32ui images. For particle i and each pixel p whose centre's eye ray meets its sphere,
-// at window depth z_i(p) ≥ 0 (whose float bits order as the floats do):
-//     without RESOLVE:  u_depth(p) = min(u_depth(p), bits(z_i(p)))
-//     with RESOLVE:     u_id(p) = i + 1 where bits(z_i(p)) = u_depth(p)   (after the first; a tie
+// bound as r32ui images. For sphere s and each pixel p whose centre's eye ray meets it, at window
+// depth z_s(p) ≥ 0 (whose float bits order as the floats do):
+//     without RESOLVE:  u_depth(p) = min(u_depth(p), bits(z_s(p)))
+//     with RESOLVE:     u_id(p) = id(s) + 1 where bits(z_s(p)) = u_depth(p)   (after the first; a tie
 //                       of equal depths keeps either)
 // The pixels tested are those whose centres the bounding box of the silhouette quad's projected
 // corners (silhouette_corner) holds, within the target: the draw's quad covers the same silhouette,
-// so both find the same pixels up to the rounding of the ray. z_i(p) is `precise`: both variants, each
+// so both find the same pixels up to the rounding of the ray. z_s(p) is `precise`: both variants, each
 // its own program, compute the very same bits.
+// A sphere's id is its particle's index; built with BY_LEVEL (sub-particles, render/renderer.h), a
+// sub-particle's is kChild | its index, and a sphere of level E has radius r/2^E: parents (u_children.x
+// = 0) carry their levels word, one that the spawn pass split is not drawn (its sub-particles are);
+// sub-particles (u_children.x = 1) carry E in position.w, and are as many as their draw's instances.
 // Not drawn, as in the draw: a parked particle (position.w = −1) and a sphere holding the eye; and,
 // unlike the draw, which shows the part of it beyond the near plane, a sphere the near plane cuts.
-// Dispatches: one invocation per particle (u_count); built with LARGE, the listed particles
-// (ImpostorLarge), RANRYU_IMPOSTOR_LARGE_TILES workgroups each, whose invocations share its pixels.
+// Dispatches: one invocation per particle (u_count); built with BY_LEVEL, for the sub-particles, their
+// spawn pass's indirect dispatch (u_children.y sub-particles a workgroup, surface/dispatch_2d.glsl);
+// built with LARGE, the listed spheres (ImpostorLarge), RANRYU_IMPOSTOR_LARGE_TILES workgroups each,
+// whose invocations share its pixels.
 #include "impostor.glsl"
+#include "../surface/dispatch_2d.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430) readonly buffer Positions { vec4 position[]; };
 // x: listed (the LARGE dispatch's workgroups along x), y: RANRYU_IMPOSTOR_LARGE_TILES, z: 1,
-// w: claimed (more than the capacity when some were left to their own invocation); then the indices.
+// w: claimed (more than the capacity when some were left to their own invocation); then the ids.
 layout(std430) buffer ImpostorLarge {
     uvec4 large;
-    uint large_particles[];
+    uint large_spheres[];
 };
 #ifdef RESOLVE
 layout(binding = RANRYU_IMG_IMPOSTOR_DEPTH, r32ui) readonly uniform uimage2D u_depth;
@@ -31,19 +38,35 @@ layout(binding = RANRYU_IMG_IMPOSTOR_ID, r32ui) writeonly uniform uimage2D u_id;
 layout(binding = RANRYU_IMG_IMPOSTOR_DEPTH, r32ui) uniform uimage2D u_depth;
 #endif
 layout(location = RANRYU_LOC_COUNT) uniform uint u_count;
+#ifdef BY_LEVEL
+layout(std430) readonly buffer SubparticleLevels { uint parent_level[]; };
+layout(std430) readonly buffer SubparticlePositions { vec4 sub_position[]; };
+layout(std430) readonly buffer Subparticles { uvec4 sub_dispatch; uvec4 sub_draw; };   // gpu::SubparticleState's first two
+layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uvec2 u_children;   // x: 0 parents, 1 sub-particles; y: sub-particles a workgroup
+#endif
 
 #ifndef RANRYU_IMPOSTOR_CAPACITY
 #define RANRYU_IMPOSTOR_CAPACITY RANRYU_IMPOSTOR_LARGE_CAPACITY
 #endif
+const uint kChild = 0x80000000u;
 
-// Particle i's sphere centre c (view space) and the pixels [first, last] its silhouette's bounding
-// box holds within the target; false where it is not drawn or covers no pixel centre.
-bool place(uint i, out vec3 c, out ivec2 first, out ivec2 last) {
-    vec4 x = position[i];
-    c = (frame.view * vec4(x.xyz, 1.0)).xyz;
-    float r = frame.material.w;
+// Sphere `id`'s centre c (view space) and radius r, and the pixels [first, last] its silhouette's
+// bounding box holds within the target; false where it is not drawn or covers no pixel centre.
+bool place(uint id, out vec3 c, out float r, out ivec2 first, out ivec2 last) {
     first = ivec2(0), last = ivec2(-1);
-    if (x.w < -0.5 || -c.z - r < near_plane()) return false;   // parked, or cut by the near plane
+    r = frame.material.w;
+#ifdef BY_LEVEL
+    bool child = (id & kChild) != 0u;
+    vec4 x = child ? sub_position[id & ~kChild] : position[id];
+    if (child) r = ldexp(r, -int(min(uint(x.w), 3u)));
+    else if ((parent_level[id] >> RANRYU_SUBPARTICLE_SPLIT_SHIFT) != 0u) return false;   // split: its sub-particles are drawn
+    bool parked = !child && x.w < -0.5;
+#else
+    vec4 x = position[id];
+    bool parked = x.w < -0.5;
+#endif
+    c = (frame.view * vec4(x.xyz, 1.0)).xyz;
+    if (parked || -c.z - r < near_plane()) return false;   // parked, or cut by the near plane
     vec2 size = frame.viewport.xy, lo = size + 1.0, hi = vec2(-1.0);
     for (int k = 0; k < 4; ++k) {
         vec4 q = frame.proj * vec4(silhouette_corner(c, r, vec2(float(k & 1), float(k >> 1)) * 2.0 - 1.0), 1.0);
@@ -55,36 +78,41 @@ bool place(uint i, out vec3 c, out ivec2 first, out ivec2 last) {
     return all(greaterThanEqual(last, first));
 }
 
-void cover(uint i, vec3 c, ivec2 p) {
+void cover(uint id, vec3 c, float r, ivec2 p) {
     vec3 dir = view_ray(vec2(p) + 0.5);
-    precise float t = sphere_front(dir, c, frame.material.w);
+    precise float t = sphere_front(dir, c, r);
     if (t < 0.0) return;
     precise float z = window_depth(t * dir);
     uint bits = floatBitsToUint(z);
 #ifdef RESOLVE
-    if (imageLoad(u_depth, p).x == bits) imageStore(u_id, p, uvec4(i + 1u));
+    if (imageLoad(u_depth, p).x == bits) imageStore(u_id, p, uvec4(id + 1u));
 #else
     imageAtomicMin(u_depth, p, bits);
 #endif
 }
 
+#ifdef LARGE
 void main() {
-#ifdef LARGE
     if (gl_WorkGroupID.x >= large.x) return;
-    uint i = large_particles[gl_WorkGroupID.x];
-#else
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= u_count) return;
-#endif
+    uint id = large_spheres[gl_WorkGroupID.x];
     vec3 c;
+    float r;
     ivec2 first, last;
-    if (!place(i, c, first, last)) return;
+    if (!place(id, c, r, first, last)) return;
     uint width = uint(last.x - first.x + 1), pixels = width * uint(last.y - first.y + 1);
-#ifdef LARGE
     uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.x;
     for (uint k = gl_WorkGroupID.y * gl_WorkGroupSize.x + gl_LocalInvocationIndex; k < pixels; k += stride)
-        cover(i, c, first + ivec2(k % width, k / width));
+        cover(id, c, r, first + ivec2(k % width, k / width));
+}
 #else
+// Sphere `id` whole, or listed for the LARGE dispatch when its box holds more than
+// RANRYU_IMPOSTOR_LARGE_PIXELS pixels and the list has room.
+void rasterise(uint id) {
+    vec3 c;
+    float r;
+    ivec2 first, last;
+    if (!place(id, c, r, first, last)) return;
+    uint pixels = uint(last.x - first.x + 1) * uint(last.y - first.y + 1);
     if (pixels > uint(RANRYU_IMPOSTOR_LARGE_PIXELS)) {
 #ifdef RESOLVE
         // Every large one was listed: the LARGE dispatch resolves it. Otherwise this invocation
@@ -93,13 +121,26 @@ void main() {
 #else
         uint k = atomicAdd(large.w, 1u);
         if (k < RANRYU_IMPOSTOR_CAPACITY) {
-            large_particles[k] = i;
+            large_spheres[k] = id;
             atomicMax(large.x, k + 1u);
             return;
         }
 #endif
     }
     for (int y = first.y; y <= last.y; ++y)
-        for (int x = first.x; x <= last.x; ++x) cover(i, c, ivec2(x, y));
-#endif
+        for (int x = first.x; x <= last.x; ++x) cover(id, c, r, ivec2(x, y));
 }
+
+void main() {
+#ifdef BY_LEVEL
+    if (u_children.x != 0u) {   // this workgroup's share of the spawn pass's sub-particles
+        for (uint k = gl_LocalInvocationIndex; k < u_children.y; k += gl_WorkGroupSize.x) {
+            uint s = flat_group() * u_children.y + k;
+            if (s < sub_draw.y) rasterise(kChild | s);
+        }
+        return;
+    }
+#endif
+    if (gl_GlobalInvocationID.x < u_count) rasterise(gl_GlobalInvocationID.x);
+}
+#endif

@@ -759,6 +759,8 @@ TEST_CASE("subparticles: drawn as particles, unsplit parents and sub-particles s
           "[subparticles]") {
     // Parents: A (not split) and B (split: its levels word has E = 1, so it is not drawn). Sub-particles
     // of levels 1, 2 and 3 elsewhere. The camera looks up at them, so behind them is the clear colour.
+    // Both rasters of the impostors (docs/RENDERING.md (R15)): the draw, and the compute raster from
+    // the spawn pass's dispatch.
     ranryu::test::context();
     ranryu::scene::Scene sc;
     sc.tank_min = glm::vec3(0.0f);
@@ -785,6 +787,9 @@ TEST_CASE("subparticles: drawn as particles, unsplit parents and sub-particles s
     const std::vector<glm::vec4> still(4, glm::vec4(0.0f));
     gpu::SubparticleState state{};
     state.draw = glm::uvec4(4u, 3u, 0u, 0u);
+    // The spawn pass's dispatch as the compute raster reads it: two sub-particles a workgroup, two
+    // workgroups (the second has one past the three).
+    state.dispatch = glm::uvec4(2u, 1u, 1u, 3u);
 
     const Buffer px = Buffer::from<glm::vec4>(parents, GL_STATIC_DRAW, "test.parents");
     const Buffer pv(2 * sizeof(glm::vec4), GL_STATIC_DRAW, still.data(), "test.parents_v");
@@ -792,17 +797,23 @@ TEST_CASE("subparticles: drawn as particles, unsplit parents and sub-particles s
     const Buffer cx = Buffer::from<glm::vec4>(children, GL_STATIC_DRAW, "test.children");
     const Buffer cv(3 * sizeof(glm::vec4), GL_STATIC_DRAW, still.data(), "test.children_v");
     const Buffer st(sizeof state, GL_STATIC_DRAW, &state, "test.state");
+    for (const auto raster : {ranryu::render::ImpostorOptions::Raster::draw, ranryu::render::ImpostorOptions::Raster::compute}) {
+    const bool compute = raster == ranryu::render::ImpostorOptions::Raster::compute;
+    INFO("impostors: " << (compute ? "compute" : "draw"));
     ranryu::profile::GpuTimer timer;
-    ranryu::render::Renderer renderer(rig().shaders, timer, ranryu::render::Shading::particles, true);
+    ranryu::render::ImpostorOptions options;
+    options.raster = raster;
+    ranryu::render::Renderer renderer(rig().shaders, timer, ranryu::render::Shading::particles, true, false, {}, options);
     renderer.set_frame(fp);
+    renderer.resize(kW, kH);
     ranryu::gl::RenderTarget target(kW, kH, "subparticle_test");
-    const ranryu::render::SubparticleDraw sub{pl, cx, cv, st, offsetof(gpu::SubparticleState, draw)};
+    const ranryu::render::SubparticleDraw sub{pl, cx, cv, st, offsetof(gpu::SubparticleState, draw),
+                                              offsetof(gpu::SubparticleState, dispatch), compute ? 2u : 0u};
     timer.begin_frame();
     renderer.draw(target, px, pv, 2, nullptr, &sub);
     timer.end_frame();
     const std::vector<std::uint8_t> rgba = ranryu::test::read_rgba(target);
     timer.drain();
-
     // Every pixel clear of a silhouette (closest approach within 5 % of a radius), to 3/255.
     const glm::dvec3 clear = 255.0 * glm::dvec3(0.16, 0.18, 0.22);
     std::array<int, 4> seen{};
@@ -847,6 +858,7 @@ TEST_CASE("subparticles: drawn as particles, unsplit parents and sub-particles s
     CHECK(failures == 0);
     for (int k = 0; k < 4; ++k) CHECK(seen[std::size_t(k)] > 0);   // every level drawn, at its radius (the edges are left out)
     CHECK(under_b > 0);                                            // the split parent is not drawn
+    }
     ranryu::test::require_no_gl_errors();
 }
 
