@@ -80,7 +80,9 @@ public:
              std::optional<render::Shading> shading = std::nullopt)
         : Pipeline(scene, shaders, View{width, height, shading, true}) {}
     // The device memory a pipeline of `scene` drawn as `view` allocates, by component: what the
-    // constructor builds, from each component's bytes_for() (frame/memory.h).
+    // constructor builds, from each component's bytes_for() (frame/memory.h). Needs the context the
+    // pipeline will run in current: the particles' raster depends on its renderer
+    // (render::ImpostorOptions::from_environment()).
     static MemoryEstimate memory_estimate(const scene::Scene& scene, const View& view);
     // The passes hold references to the pipeline's timer: a pipeline stays where it was built.
     Pipeline(const Pipeline&) = delete;

@@ -179,7 +179,9 @@ Renderer::Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, 
     }
 
     if (shading_ == Shading::particles && impostors_.raster == ImpostorOptions::Raster::compute) {
-        if (impostors_.large_capacity == 0) throw Error("Renderer: ImpostorOptions::large_capacity is 0");
+        // The LARGE dispatch's workgroups along x are the listed spheres: within GL 4.3's least limit.
+        if (impostors_.large_capacity == 0 || impostors_.large_capacity > 65535u)
+            throw Error("Renderer: ImpostorOptions::large_capacity " + std::to_string(impostors_.large_capacity) + " is not 1 to 65535");
         impostor_within_ = {timer.pass("draw-particles.fill", particles_pass_), timer.pass("draw-particles.rasterise", particles_pass_),
                             timer.pass("draw-particles.resolve", particles_pass_), timer.pass("draw-particles.shade", particles_pass_)};
         const std::string capacity = "#define RANRYU_IMPOSTOR_CAPACITY " + std::to_string(impostors_.large_capacity) + "u\n";
@@ -711,11 +713,12 @@ void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buf
     // ones they listed, from the list's header.
     auto both = [&](const shader::Program& each, const shader::Program& large) {
         glProgramUniform1ui(each.id(), RANRYU_LOC_COUNT, GLuint(count));
-        if (sub) glProgramUniform2ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 0u, sub->dispatch_group);
+        const GLuint draw_word = sub ? GLuint(sub->draw_offset / sizeof(std::uint32_t)) : 0u;
+        if (sub) glProgramUniform3ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 0u, sub->dispatch_group, draw_word);
         each.bind(buffers).dispatch(count);
         if (sub) {
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // the list's claims
-            glProgramUniform2ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 1u, sub->dispatch_group);
+            glProgramUniform3ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 1u, sub->dispatch_group, draw_word);
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->indirect.id());
             glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));
         }

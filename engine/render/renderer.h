@@ -45,8 +45,8 @@ struct SurfaceMesh {
 // (uint per parent, same order as the parents' positions), the sub-particles' positions (w = level)
 // and velocities, and the buffer holding their glDrawArraysIndirect arguments at byte draw_offset (its
 // instances: the sub-particles) and, for the impostors' compute raster, the indirect dispatch of
-// `dispatch_group` sub-particles a workgroup at byte dispatch_offset (gpu::SubparticleState: dispatch
-// first, then draw). dispatch_group 0: no dispatch given, the draw draws them.
+// `dispatch_group` sub-particles a workgroup at byte dispatch_offset, in the same buffer.
+// dispatch_group 0: no dispatch given, the draw draws them.
 struct SubparticleDraw {
     const gl::Buffer& parent_levels;
     const gl::Buffer& positions;
@@ -115,7 +115,8 @@ struct ImpostorOptions {
     enum class Raster { compute, draw };
     Raster raster = Raster::compute;
     // Particles whose silhouette holds more than RANRYU_IMPOSTOR_LARGE_PIXELS pixels that the second
-    // dispatch takes (glsl/render/shading.h); the rest are done by their own invocation. Tests lower it.
+    // dispatch takes (glsl/render/shading.h), 1 to 65535 (its workgroups along x); the rest are done by
+    // their own invocation. Tests lower it.
     unsigned large_capacity = RANRYU_IMPOSTOR_LARGE_CAPACITY;
     // For the current context: compute, but draw on a software rasteriser (gl::software_renderer()),
     // whose draw visits only the covered pixels where compute's fill and shading visit every one
@@ -130,7 +131,8 @@ public:
     // its pass "draw-surface") when it is not particles. `subparticles`: also the impostor variant that
     // draws by sub-particle level (glsl/render/impostor.*, RANRYU_BY_LEVEL). `paddle`: also the one
     // that draw_sphere() draws with (RANRYU_RADIUS_IN_W).
-    // `water`: the water mode's options; `impostors`: the particles mode's.
+    // `water`: the water mode's options; `impostors`: the particles mode's, whose compute raster's
+    // programs are built in that mode (and, with `subparticles`, their BY_LEVEL variants).
     Renderer(const shader::FileSource& shaders, profile::GpuTimer& timer, Shading shading = Shading::particles,
              bool subparticles = false, bool paddle = false, WaterOptions water = {}, ImpostorOptions impostors = {});
 

@@ -8,8 +8,10 @@
 //                       of equal depths keeps either)
 // The pixels tested are those whose centres the bounding box of the silhouette quad's projected
 // corners (silhouette_corner) holds, within the target: the draw's quad covers the same silhouette,
-// so both find the same pixels up to the rounding of the ray. z_s(p) is `precise`: both variants, each
-// its own program, compute the very same bits.
+// so both find the same pixels up to the rounding of the ray. The two walks are one file built twice
+// (RESOLVE), not two passes' files, because the second must retrace the first exactly: the sphere's
+// view-space centre, its box (whose size decides whether it is listed for LARGE) and z_s(p) are
+// `precise`, so every variant, each its own program, computes the very same bits.
 // A sphere's id is its particle's index; built with BY_LEVEL (sub-particles, render/renderer.h), a
 // sub-particle's is kChild | its index, and a sphere of level E has radius r/2^E: parents (u_children.x
 // = 0) carry their levels word, one that the spawn pass split is not drawn (its sub-particles are);
@@ -41,8 +43,10 @@ layout(location = RANRYU_LOC_COUNT) uniform uint u_count;
 #ifdef BY_LEVEL
 layout(std430) readonly buffer SubparticleLevels { uint parent_level[]; };
 layout(std430) readonly buffer SubparticlePositions { vec4 sub_position[]; };
-layout(std430) readonly buffer Subparticles { uvec4 sub_dispatch; uvec4 sub_draw; };   // gpu::SubparticleState's first two
-layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uvec2 u_children;   // x: 0 parents, 1 sub-particles; y: sub-particles a workgroup
+layout(std430) readonly buffer Subparticles { uint sub_words[]; };   // their draw's arguments at word u_children.z
+// x: 0 parents, 1 sub-particles; y: sub-particles a workgroup; z: the word of their draw's arguments
+// (4 vertices, instances: the sub-particles) in Subparticles
+layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uvec3 u_children;
 #endif
 
 #ifndef RANRYU_IMPOSTOR_CAPACITY
@@ -65,12 +69,14 @@ bool place(uint id, out vec3 c, out float r, out ivec2 first, out ivec2 last) {
     vec4 x = position[id];
     bool parked = x.w < -0.5;
 #endif
-    c = (frame.view * vec4(x.xyz, 1.0)).xyz;
+    precise vec3 centre = (frame.view * vec4(x.xyz, 1.0)).xyz;
+    c = centre;
     if (parked || -c.z - r < near_plane()) return false;   // parked, or cut by the near plane
-    vec2 size = frame.viewport.xy, lo = size + 1.0, hi = vec2(-1.0);
+    vec2 size = frame.viewport.xy;
+    precise vec2 lo = size + 1.0, hi = vec2(-1.0);
     for (int k = 0; k < 4; ++k) {
-        vec4 q = frame.proj * vec4(silhouette_corner(c, r, vec2(float(k & 1), float(k >> 1)) * 2.0 - 1.0), 1.0);
-        vec2 w = clamp((q.xy / q.w * 0.5 + 0.5) * size, vec2(-1.0), size + 1.0);
+        precise vec4 q = frame.proj * vec4(silhouette_corner(centre, r, vec2(float(k & 1), float(k >> 1)) * 2.0 - 1.0), 1.0);
+        precise vec2 w = clamp((q.xy / q.w * 0.5 + 0.5) * size, vec2(-1.0), size + 1.0);
         lo = min(lo, w), hi = max(hi, w);
     }
     first = max(ivec2(ceil(lo - 0.5)), ivec2(0));
@@ -82,7 +88,7 @@ void cover(uint id, vec3 c, float r, ivec2 p) {
     vec3 dir = view_ray(vec2(p) + 0.5);
     precise float t = sphere_front(dir, c, r);
     if (t < 0.0) return;
-    precise float z = window_depth(t * dir);
+    precise float z = max(window_depth(t * dir), 0.0);   // ≥ 0 (near the near plane, rounding may give −0 or −ε)
     uint bits = floatBitsToUint(z);
 #ifdef RESOLVE
     if (imageLoad(u_depth, p).x == bits) imageStore(u_id, p, uvec4(id + 1u));
@@ -134,9 +140,10 @@ void rasterise(uint id) {
 void main() {
 #ifdef BY_LEVEL
     if (u_children.x != 0u) {   // this workgroup's share of the spawn pass's sub-particles
+        uint subparticles = sub_words[u_children.z + 1u];
         for (uint k = gl_LocalInvocationIndex; k < u_children.y; k += gl_WorkGroupSize.x) {
             uint s = flat_group() * u_children.y + k;
-            if (s < sub_draw.y) rasterise(kChild | s);
+            if (s < subparticles) rasterise(kChild | s);
         }
         return;
     }

@@ -75,8 +75,8 @@
 
 // The compute raster of the particles' sphere impostors (ImpostorOptions::Raster::compute,
 // docs/RENDERING.md (R15)): rasterise_impostors.comp and shade_impostors.frag. Two R32F textures of
-// the frame's size bound as r32ui images: the nearest window depth's bits, then the index + 1 of the
-// particle there (0: none). A particle whose silhouette's bounding box holds more than
+// the frame's size bound as r32ui images: the nearest window depth's bits, then the id + 1 of the
+// sphere there (0: none; a particle's index, or a sub-particle's with the top bit set). A particle whose silhouette's bounding box holds more than
 // RANRYU_IMPOSTOR_LARGE_PIXELS pixels is listed (up to the capacity; more are done by their own
 // invocation) for a second dispatch, RANRYU_IMPOSTOR_LARGE_TILES workgroups each.
 #define RANRYU_IMG_IMPOSTOR_DEPTH 0

@@ -36,7 +36,7 @@ TEST_CASE("dfsph iteration cap: another rule, from RANRYU_DFSPH_CAP, with factor
     ::setenv("RANRYU_DFSPH_CAP", "1.25,1", 1);
     CHECK(IterationCapRule::from_environment().factor == 1.25);
     CHECK(IterationCapRule::from_environment().margin == 1.0);
-    for (const char* bad : {"1.25", "0.9,1", "1.5,-1", "1.5,30", "1.5,2x", "fast"}) {
+    for (const char* bad : {"1.25", "0.9,1", "1.5,-1", "1.5,30", "1.5,0.5", "1.5,2x", "fast"}) {
         INFO(bad);
         ::setenv("RANRYU_DFSPH_CAP", bad, 1);
         CHECK_THROWS_WITH(IterationCapRule::from_environment(), Catch::Contains(std::string("RANRYU_DFSPH_CAP=") + bad));

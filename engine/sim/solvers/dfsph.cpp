@@ -97,8 +97,10 @@ IterationCapRule IterationCapRule::from_environment() {
     if (!v) return rule;
     double factor = 0.0, margin = -1.0;
     char tail = 0;
-    if (std::sscanf(v, "%lf,%lf%c", &factor, &margin, &tail) != 2 || !(factor >= 1.0 && factor <= 4.0) || !(margin >= 0.0 && margin <= 20.0))
-        throw InputError(std::string("RANRYU_DFSPH_CAP=") + v + ": expected FACTOR,MARGIN with FACTOR in [1, 4] and MARGIN in [0, 20]");
+    if (std::sscanf(v, "%lf,%lf%c", &factor, &margin, &tail) != 2 || !(factor >= 1.0 && factor <= 4.0) || !(margin >= 0.0 && margin <= 20.0) ||
+        margin != std::floor(margin))
+        throw InputError(std::string("RANRYU_DFSPH_CAP=") + v +
+                         ": expected FACTOR,MARGIN with FACTOR in [1, 4] and MARGIN a whole number in [0, 20]");
     return IterationCapRule{factor, margin};
 }
 

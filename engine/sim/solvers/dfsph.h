@@ -52,7 +52,7 @@ namespace ranryu::sim {
 // The rule of next_iteration_cap(): ceil(factor · needed) + margin.
 struct IterationCapRule {
     double factor = 1.5, margin = 2.0;
-    // The default, or RANRYU_DFSPH_CAP="FACTOR,MARGIN" (FACTOR in [1, 4], MARGIN in [0, 20]: to measure
+    // The default, or RANRYU_DFSPH_CAP="FACTOR,MARGIN" (FACTOR in [1, 4], MARGIN a whole number in [0, 20]: to measure
     // another rule on one build); throws InputError naming the variable otherwise. Start-up only.
     static IterationCapRule from_environment();
 };
