@@ -107,8 +107,8 @@ struct WaterOptions {
 // How "draw-particles" rasterises the sphere impostors (docs/RENDERING.md (R15)). compute: by
 // rasterise_impostors.comp into two R32F targets of the frame's size (the nearest depth, then the
 // particle there), shaded by one full-target fragment pass (shade_impostors.frag): the raster
-// hardware draws one triangle, where the draw sends it two a particle (on the H100 and H200 it has two
-// TPCs). draw: glDrawArraysInstanced of the silhouette quads (impostor.vert, impostor.frag). Both
+// hardware draws one triangle, where the draw sends it two a particle (on the H100 and H200 two TPCs are
+// graphics-capable). draw: glDrawArraysInstanced of the silhouette quads (impostor.vert, impostor.frag). Both
 // leave the same pixels within the rounding of the eye ray, but for a sphere the near plane cuts,
 // which only the draw shows. The paddle is drawn by the draw either way.
 struct ImpostorOptions {
