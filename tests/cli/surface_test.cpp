@@ -193,7 +193,7 @@ TEST_CASE("profile draws the water mode's opaque scene once with the scene cache
     }
     for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
              {"RANRYU_WATER_CACHE", "yes"}, {"RANRYU_WATER_THICKNESS_DIVISOR", "8"}, {"RANRYU_WATER_RASTER", "hardware"},
-             {"RANRYU_PARTICLE_RASTER", "points"}}) {
+             {"RANRYU_PARTICLE_RASTER", "points"}, {"RANRYU_DFSPH_CAP", "1.5,0.5"}}) {
         RunOptions opt;
         opt.set_env = {{name, value}};
         const Result r = run_ranryu(tmp.path(), args, opt);
