@@ -35,6 +35,16 @@ std::string thickness_define(const WaterOptions& w) {
     return "#define THICKNESS_DIVISOR " + std::to_string(w.thickness_divisor) + "\n";
 }
 
+// A raster chosen by environment variable `name`: true for "compute", false for "draw", nothing when
+// it is unset; throws InputError naming it for another value.
+std::optional<bool> compute_or_draw(const char* name) {
+    const char* v = std::getenv(name);
+    if (!v) return std::nullopt;
+    if (std::string_view(v) != "compute" && std::string_view(v) != "draw")
+        throw InputError(std::string(name) + "=" + v + ": expected compute or draw");
+    return std::string_view(v) == "compute";
+}
+
 shader::Program surface_program(const shader::FileSource& shaders, Shading s, const WaterOptions& w) {
     switch (s) {
         case Shading::phong: return shader::Program::graphics(shaders, "render/surface.vert", "render/surface_phong.frag");
@@ -75,22 +85,16 @@ WaterOptions WaterOptions::from_environment() {
             throw InputError(std::string("RANRYU_WATER_THICKNESS_DIVISOR=") + v + ": expected 1, 2, 3 or 4");
         w.thickness_divisor = *v - '0';
     }
-    if (const char* v = std::getenv("RANRYU_WATER_RASTER")) {
-        if (std::string_view(v) != "compute" && std::string_view(v) != "draw")
-            throw InputError(std::string("RANRYU_WATER_RASTER=") + v + ": expected compute or draw");
-        w.raster = std::string_view(v) == "compute" ? WaterOptions::Raster::compute : WaterOptions::Raster::draw;
-    }
+    if (const auto compute = compute_or_draw("RANRYU_WATER_RASTER"))
+        w.raster = *compute ? WaterOptions::Raster::compute : WaterOptions::Raster::draw;
     return w;
 }
 
 ImpostorOptions ImpostorOptions::from_environment() {
     ImpostorOptions o;
     if (gl::software_renderer()) o.raster = ImpostorOptions::Raster::draw;
-    if (const char* v = std::getenv("RANRYU_PARTICLE_RASTER")) {
-        if (std::string_view(v) != "compute" && std::string_view(v) != "draw")
-            throw InputError(std::string("RANRYU_PARTICLE_RASTER=") + v + ": expected compute or draw");
-        o.raster = std::string_view(v) == "compute" ? ImpostorOptions::Raster::compute : ImpostorOptions::Raster::draw;
-    }
+    if (const auto compute = compute_or_draw("RANRYU_PARTICLE_RASTER"))
+        o.raster = *compute ? ImpostorOptions::Raster::compute : ImpostorOptions::Raster::draw;
     return o;
 }
 
@@ -716,8 +720,7 @@ void Renderer::rasterise_impostors(const gl::RenderTarget& target, const gl::Buf
         const GLuint draw_word = sub ? GLuint(sub->draw_offset / sizeof(std::uint32_t)) : 0u;
         if (sub) glProgramUniform3ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 0u, sub->dispatch_group, draw_word);
         each.bind(buffers).dispatch(count);
-        if (sub) {
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);   // the list's claims
+        if (sub) {   // no barrier between: both take their pixels and the list's slots by atomics
             glProgramUniform3ui(each.id(), RANRYU_LOC_IMPOSTOR_CHILDREN, 1u, sub->dispatch_group, draw_word);
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, sub->indirect.id());
             glDispatchComputeIndirect(GLintptr(sub->dispatch_offset));

@@ -28,6 +28,7 @@
 
 #include <glm/glm.hpp>
 
+#include "frame/loop.h"
 #include "frame/pipeline.h"
 #include "gl/gl.h"
 #include "gl/objects.h"
@@ -665,18 +666,6 @@ std::string small_scene(int levels) {
         "camera": {"eye": [0.6, 0.5, 0.7], "target": [0.15, 0.08, 0.1], "fov_deg": 40}})";
 }
 
-// `frames` whole frames of `pipeline` (simulated and drawn), then every record it owes.
-void run_frames(ranryu::frame::Pipeline& pipeline, int frames) {
-    for (int f = 0; f < frames; ++f) {
-        pipeline.begin_frame();
-        pipeline.simulate();
-        pipeline.draw();
-        pipeline.end_frame();
-        pipeline.poll();
-    }
-    pipeline.drain();
-}
-
 const ranryu::profile::PassSamples* find_pass(const ranryu::profile::GpuTimer& t, const std::string& name) {
     for (const auto& p : t.passes())
         if (p.name == name) return &p;
@@ -709,7 +698,8 @@ TEST_CASE("subparticles: levels 0 builds and runs nothing, levels above 0 run ea
         const auto scene = ranryu::scene::parse(small_scene(2), "subparticle_test");
         ranryu::frame::Pipeline pipeline(scene, rig().shaders, 48, 32, shading);
         REQUIRE(pipeline.subparticles() != nullptr);
-        run_frames(pipeline, 3);
+        REQUIRE(ranryu::frame::run_frames(pipeline, 3) == 3);
+        pipeline.drain();
         CHECK(!pipeline.instability());
         const bool surface = shading != ranryu::render::Shading::particles;
         for (const char* name : names) {
@@ -957,7 +947,8 @@ TEST_CASE("subparticles: a pipeline's sub-particles drawn by the impostors' comp
         ranryu::frame::Pipeline pipeline(scene, rig().shaders, kW, kH, ranryu::render::Shading::particles);
         ::unsetenv("RANRYU_PARTICLE_RASTER");
         REQUIRE(pipeline.subparticles() != nullptr);
-        run_frames(pipeline, 3);
+        REQUIRE(ranryu::frame::run_frames(pipeline, 3) == 3);
+        pipeline.drain();
         const bool compute = std::string(raster) == "compute";
         CHECK((find_pass(pipeline.timer(), "draw-particles.rasterise") != nullptr) == compute);
         most = std::max(most, pipeline.subparticles()->stats().most);
