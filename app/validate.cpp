@@ -14,8 +14,8 @@
 namespace ranryu::app {
 
 int validate(const Options& o) {
-    if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave")
-        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic, standing-wave)");
+    if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave" && o.case_name != "impact-pressure")
+        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure)");
     const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
     check_report_files(o);   // --json, before the case runs
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
@@ -49,6 +49,45 @@ int validate(const Options& o) {
                   {"simulation", sim},
                   {"rms_error", r.rms_error},
                   {"max_error", r.max_error},
+                  {"steps", r.steps},
+                  {"wall_seconds", r.seconds}});
+    } else if (o.case_name == "impact-pressure") {
+        const validation::ImpactPressureResult r = validation::impact_pressure(scene, shaders, &progress);
+        progress.finish();
+        std::printf("impact-pressure (Lobovsky et al. 2014, H = 0.3 m): H = %.3f m, spacing %.4f m (H/dx = %.1f), %zu particles\n", r.height,
+                    r.spacing, r.height / r.spacing, r.particles);
+        std::printf("p/(rho0 g H) on the wall struck; impact: first T at %.2f; run-up: T in [%.1f, %.1f]\n", validation::kImpactOnset,
+                    validation::kImpactWindow[0], validation::kImpactWindow[1]);
+        std::printf("%6s %8s %18s %18s %22s %10s\n", "sensor", "z (mm)", "impact T exp/sim", "peak exp/sim", "run-up mean exp/sim", "rms diff");
+        auto onset = [](const std::optional<double>& t) { return t ? *t : -1.0; };
+        for (const auto& s : r.sensors)
+            std::printf("%6s %8.1f %8.3f/%-9.3f %8.3f/%-9.3f %10.3f/%-11.3f %10.3f\n", s.name.c_str(), 1000.0 * s.z, onset(s.onset_measured),
+                        onset(s.onset_simulated), s.peak_measured, s.peak_simulated, s.mean_measured, s.mean_simulated, s.rms_error);
+        std::printf("(an impact T of -1: the reading never reached %.2f)\n", validation::kImpactOnset);
+        std::printf("%s: %llu steps in %.1f s of wall time\n", scene::solver_name(scene.sph.solver),
+                    static_cast<unsigned long long>(r.steps), r.seconds);
+        nlohmann::json sensors = nlohmann::json::array();
+        for (const auto& s : r.sensors) {
+            nlohmann::json sim = nlohmann::json::array();
+            for (const auto& [t, p] : s.simulated) sim.push_back({{"T", t}, {"p", p}});
+            sensors.push_back({{"name", s.name},
+                               {"z", s.z},
+                               {"onset_experiment", s.onset_measured ? nlohmann::json(*s.onset_measured) : nlohmann::json()},
+                               {"onset_simulation", s.onset_simulated ? nlohmann::json(*s.onset_simulated) : nlohmann::json()},
+                               {"peak_experiment", s.peak_measured},
+                               {"peak_simulation", s.peak_simulated},
+                               {"window_mean_experiment", s.mean_measured},
+                               {"window_mean_simulation", s.mean_simulated},
+                               {"window_rms_error", s.rms_error},
+                               {"window_compared", s.compared},
+                               {"simulation", sim}});
+        }
+        j.update({{"height", r.height},
+                  {"particles", r.particles},
+                  {"source", "Lobovsky et al. 2014, J. Fluids Struct. 48, H = 300 mm, sensors 1, 3 and 4"},
+                  {"onset_level", validation::kImpactOnset},
+                  {"window", {validation::kImpactWindow[0], validation::kImpactWindow[1]}},
+                  {"sensors", sensors},
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});
     } else if (o.case_name == "standing-wave") {

@@ -455,6 +455,7 @@ std::vector<std::string> scene_cases() {
 
 scene::Scene case_scene(const std::string& name) {
     if (name == "standing-wave") return standing_wave_scene();
+    if (name == "impact-pressure") return impact_pressure_scene();
     if (name == "dam-break" || name == "hydrostatic") return scene::load(name);
     if (is_scene_case(name)) {
         const std::vector<std::string> sph = scene_cases();
@@ -470,7 +471,7 @@ scene::Scene case_scene(const std::string& name) {
         }
         return scene::load(scene_name);
     }
-    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, scene:NAME of a bundled SPH scene)");
+    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, scene:NAME of a bundled SPH scene)");
 }
 
 SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& shaders, double seconds, frame::Progress* progress) {
@@ -608,6 +609,119 @@ void measure_mode(StandingWaveResult& r) {
     const double first = swing(crossings[0], crossings[1]), last = swing(crossings[crossings.size() - 2], crossings.back());
     const double span = 0.5 * (crossings.back() + crossings[crossings.size() - 2]) - 0.5 * (crossings[0] + crossings[1]);
     r.decay_rate = first > 0.0 && last > 0.0 && span > 0.0 ? std::log(first / last) / span : 0.0;
+}
+
+scene::Scene impact_pressure_scene() {
+    return scene::parse(scene::bundled_file("validation/impact-pressure.json"), "the impact-pressure case (media/validation/impact-pressure.json)");
+}
+
+double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, std::span<const glm::vec4> densities) {
+    const double r2max = probe.radius * probe.radius;
+    double sum = 0.0, weight = 0.0;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        const glm::vec4& x = positions[i];
+        if (x.w < -0.5 || double(x.z) < probe.z_lo || double(x.z) > probe.z_hi) continue;   // parked (sim/fluid.h), or off the strip
+        const double dx = double(x.x) - probe.x, dy = double(x.y) - probe.y, r2 = dx * dx + dy * dy;
+        if (r2 >= r2max) continue;
+        const double q = 1.0 - r2 / r2max, w = q * q * q;
+        sum += w * double(densities[i].y);
+        weight += w;
+    }
+    return weight > 0.0 ? sum / weight : 0.0;
+}
+
+namespace {
+// The first time series `s` (sorted by time) reaches `level`, linear between samples.
+std::optional<double> first_reaching(const std::vector<std::pair<double, double>>& s, double level) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s[i].second < level) continue;
+        if (i == 0) return s[i].first;
+        const auto& [t0, p0] = s[i - 1];
+        const auto& [t1, p1] = s[i];
+        return t0 + (level - p0) / (p1 - p0) * (t1 - t0);
+    }
+    return std::nullopt;
+}
+}  // namespace
+
+void compare_sensor(ImpactPressureResult::Sensor& s) {
+    s.onset_measured = first_reaching(s.measured, kImpactOnset);
+    s.onset_simulated = first_reaching(s.simulated, kImpactOnset);
+    s.peak_measured = s.peak_simulated = 0.0;
+    for (const auto& [t, p] : s.measured) s.peak_measured = std::max(s.peak_measured, p);
+    for (const auto& [t, p] : s.simulated) s.peak_simulated = std::max(s.peak_simulated, p);
+    double sum_m = 0.0, sum_s = 0.0, sum2 = 0.0;
+    s.compared = 0;
+    for (const auto& [t, p] : s.measured) {
+        if (t < kImpactWindow[0] || t > kImpactWindow[1]) continue;
+        const auto sim = interpolate(s.simulated, t);
+        if (!sim) continue;
+        sum_m += p, sum_s += *sim, sum2 += (*sim - p) * (*sim - p);
+        ++s.compared;
+    }
+    if (s.compared == 0)
+        throw NoMeasurement("impact-pressure: sensor " + s.name + "'s simulated readings cover none of the experiment's times in T = [" +
+                            std::to_string(kImpactWindow[0]) + ", " + std::to_string(kImpactWindow[1]) + "]");
+    s.mean_measured = sum_m / s.compared;
+    s.mean_simulated = sum_s / s.compared;
+    s.rms_error = std::sqrt(sum2 / s.compared);
+}
+
+ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
+    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("impact-pressure: the scene must be SPH with one block");
+    const scene::Block& column = scene.blocks.front();
+    ImpactPressureResult r;
+    r.height = column.max.y - column.min.y;
+    r.spacing = scene.spacing;
+    r.wall = scene.tank_max.x;
+    const double g = glm::length(scene.gravity), rho0 = scene.sph.rest_density;
+    const double time_scale = std::sqrt(g / r.height), pressure_scale = rho0 * g * r.height;   // T = t sqrt(g/H), p/(rho0 g H)
+    // The experiment's sensors, at their heights for H = 0.3 m scaled to this column.
+    const std::pair<const char*, double> sensors[] = {{"P1", 0.003}, {"P3", 0.030}, {"P4", 0.080}};
+    double last = 0.0;
+    for (const auto& [name, z] : sensors) {
+        ImpactPressureResult::Sensor s;
+        s.name = name;
+        s.z = z * r.height / 0.3;
+        s.measured = read_series(scene::bundled_file(std::string("validation/lobovsky_exp_data_p") + (name + 1) + ".csv"));
+        if (s.measured.empty()) throw Error(std::string("impact-pressure: no data for sensor ") + name);
+        last = std::max(last, s.measured.back().first);
+        r.sensors.push_back(std::move(s));
+    }
+    if (until <= 0.0) until = last;
+    if (until < kImpactWindow[1])
+        throw InputError("impact-pressure: a run to T = " + std::to_string(until) + " leaves out the compared window, which ends at T = " +
+                         std::to_string(kImpactWindow[1]));
+    // The probe: half a spacing from the wall (where the fluid's first layer lies against it), a kernel
+    // support across, over the middle half of the tank's width (the side walls' boundary layers aside).
+    const double width = scene.tank_max.z - scene.tank_min.z;
+    Probe probe;
+    probe.x = r.wall - 0.5 * r.spacing;
+    probe.z_lo = scene.tank_min.z + 0.25 * width;
+    probe.z_hi = scene.tank_max.z - 0.25 * width;
+    probe.radius = sim::kernel_support(float(r.spacing));
+    const int frames = int(std::ceil(until / time_scale / scene.frame_dt));
+
+    frame::Pipeline pipeline = simulation_only(scene, shaders);
+    sim::Fluid& fluid = pipeline.simulation()->fluid();
+    r.particles = fluid.count();
+    StatsTally tally(scene, pipeline);
+    tally.listen(fluid, r.steps);
+    for (auto& s : r.sensors) s.simulated.reserve(std::size_t(frames) + 1);
+    ParticleSnapshots state(fluid, ParticleSnapshots::kPositions | ParticleSnapshots::kDensities, [&](const ParticleSnapshots::View& v) {
+        const double T = double(v.tag) * scene.frame_dt * time_scale;
+        for (auto& s : r.sensors) {
+            probe.y = scene.tank_min.y + s.z;
+            s.simulated.emplace_back(T, probe_pressure(probe, v.positions, v.densities) / pressure_scale);
+        }
+    });
+    if (progress) progress->expect(std::uint64_t(frames));
+    const auto start = std::chrono::steady_clock::now();
+    run_observed(pipeline, frames, progress, state);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.stats = tally.end();
+    for (auto& s : r.sensors) compare_sensor(s);
+    return r;
 }
 
 }  // namespace ranryu::validation

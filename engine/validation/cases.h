@@ -4,9 +4,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "core/error.h"
 #include "gl/objects.h"
@@ -162,6 +166,58 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
 // from the largest swings of the first and last half periods. NoMeasurement with fewer than two
 // crossings.
 void measure_mode(StandingWaveResult& r);
+
+// Lobovsky et al. (2014), "Experimental investigation of dynamic pressure loads during dam break",
+// H = 0.3 m (docs/VALIDATION.md "Impact pressure"): a column 0.6 m long and H high collapses along a
+// tank 1.61 m long and 0.15 m wide, and the surge strikes the far wall, where sensors at 3, 30 and 80 mm
+// above the floor (their P1, P3, P4) recorded the pressure, p/(rho0 g H) against T = t sqrt(g/H)
+// (media/validation/lobovsky_exp_data_p{1,3,4}.csv). The simulated sensor reads the frame's pressure of
+// the fluid beside it (probe_pressure()), every frame's state read back asynchronously
+// (ParticleSnapshots). Compared (compare_sensor()): the impact's time, the largest reading, and the
+// readings over the run-up that follows, T in [kImpactWindow[0], kImpactWindow[1]], before the second
+// impact near T = 6 (the wave that overturns back onto the wall). `impact_pressure_scene()` builds the
+// case's scene (spacing 0.0125 m: H/dx = 24, 13,824 particles); the sensors' heights and the probe's
+// place scale with the column's height and the spacing.
+struct ImpactPressureResult {
+    double height = 0.0, spacing = 0.0, wall = 0.0;   // H (the column's block), dx, x of the wall struck
+    std::size_t particles = 0;
+    struct Sensor {
+        std::string name;   // the experiment's: P1, P3, P4
+        double z = 0.0;     // height above the floor (m)
+        std::vector<std::pair<double, double>> measured, simulated;   // (T, p/(rho0 g H))
+        // The first T at which the reading reaches kImpactOnset (linear between samples); none if never.
+        std::optional<double> onset_measured, onset_simulated;
+        double peak_measured = 0.0, peak_simulated = 0.0;   // the largest readings
+        // Over the window: the mean of each series at the experiment's times there (the simulation's
+        // interpolated to them), and the rms of their differences; `compared` such times.
+        double mean_measured = 0.0, mean_simulated = 0.0, rms_error = 0.0;
+        int compared = 0;
+    };
+    std::vector<Sensor> sensors;
+    std::uint64_t steps = 0;
+    double seconds = 0.0;
+    RunStats stats;
+};
+constexpr double kImpactOnset = 0.25;                   // p/(rho0 g H) that marks a sensor's impact
+constexpr double kImpactWindow[2] = {3.0, 5.5};         // T: the run-up after the first impact
+scene::Scene impact_pressure_scene();
+// Runs to T = `until` (the experiment's last sample when 0). InputError when the scene is not SPH with
+// one block, or `until` leaves the window out.
+ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
+                                     double until = 0.0);
+
+// A wall sensor's reading from a frame's particles: the pressures (Density.y) of the particles whose
+// distance from the point (x, y) in the x-y plane is under `radius` and whose z lies in [z_lo, z_hi]
+// (the sensor's strip across the tank), averaged with the weights (1 − r²/radius²)³ (Shepard's
+// normalisation: a constant pressure reads exactly); 0 where no particle is that near (dry: the
+// gauge's zero, the atmosphere's pressure).
+struct Probe {
+    double x = 0.0, y = 0.0, z_lo = 0.0, z_hi = 0.0, radius = 0.0;
+};
+double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, std::span<const glm::vec4> densities);
+// A sensor's comparisons from its two series (impact_pressure()'s last step; the fields above).
+// NoMeasurement where the simulation covers none of the experiment's times in the window.
+void compare_sensor(ImpactPressureResult::Sensor& s);
 
 // Scene cases (docs/SWEEP.md "Scene cases"): "scene:NAME" runs the bundled SPH scene NAME as it is.
 constexpr const char* kScenePrefix = "scene:";
