@@ -3,6 +3,8 @@
 // (tests/gl/validation_test.cpp bounds those).
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "run_helper.h"
@@ -51,4 +53,36 @@ TEST_CASE("validate impact-pressure: the three sensors' table and series, agains
     CHECK(j["sensors"][0]["peak_experiment"].get<double>() == Approx(2.843).margin(1e-9));
     CHECK(j["window"][0].get<double>() == 3.0);
     CHECK(j["window"][1].get<double>() == 5.5);
+
+    SECTION("its chart: PNG and SVG, with the axes' and legend's labels as text") {
+        // matplotlib is a runtime option of the chart script (scripts/install-deps.sh installs it).
+        if (run({"/usr/bin/python3", "-c", "import matplotlib"}).exit_code != 0) {
+            if (env_is("RANRYU_REQUIRE_MATPLOTLIB", "1")) FAIL("python3-matplotlib is missing, and RANRYU_REQUIRE_MATPLOTLIB=1 requires the charts");
+            WARN("skipped: python3-matplotlib is missing (RANRYU_REQUIRE_MATPLOTLIB=1 makes this a failure)");
+            return;
+        }
+        const fs::path prefix = dir.path() / "charts" / "impact";
+        const Result c = run({"/usr/bin/python3", (source_dir() / "scripts" / "impact-charts.py").string(), (dir / "ip.json").string(), "--out",
+                              prefix.string()});
+        INFO(c.out << c.err);
+        REQUIRE(c.exit_code == 0);
+        for (const char* ext : {".png", ".svg"}) {
+            const fs::path f = prefix.string() + ext;
+            INFO(f);
+            REQUIRE(fs::exists(f));
+            CHECK(fs::file_size(f) > 5000);
+        }
+        CHECK(read_file(prefix.string() + ".png").substr(1, 3) == "PNG");
+        const std::string svg = read_file(prefix.string() + ".svg");
+        for (const char* label : {"p/(rho0 g H)", "T = t sqrt(g/H)", "P1, 3 mm above the floor", "P3, 30 mm above the floor",
+                                  "P4, 80 mm above the floor", "experiment (Lobovsky et al. 2014)", "dfsph, nu_b 0.001, H/dx 10",
+                                  "compared run-up"})
+            CHECK_THAT(svg, Contains(label));
+        // Anything but the case's JSON is refused, naming the file.
+        std::ofstream(dir / "other.json") << R"({"case": "dam-break"})";
+        const Result bad = run({"/usr/bin/python3", (source_dir() / "scripts" / "impact-charts.py").string(), (dir / "other.json").string(),
+                                "--out", prefix.string()});
+        CHECK(bad.exit_code != 0);
+        CHECK_THAT(bad.err, Contains("other.json") && Contains("not the JSON of `ranryu validate impact-pressure`"));
+    }
 }
