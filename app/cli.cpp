@@ -239,7 +239,7 @@ Options parse(const std::vector<std::string>& args) {
         }
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
-        throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave, impact-pressure)");
+        throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact)");
     if (o.relax && o.case_name != "hydrostatic") throw InputError("--relax: only the hydrostatic case relaxes its start");
     if ((o.settle || o.average) && o.case_name != "hydrostatic")
         throw InputError(std::string(o.settle ? "--settle" : "--average") + ": only the hydrostatic case settles and averages");
@@ -263,7 +263,7 @@ commands:
   record    render a scene headless to frame_00000.png, ... and run.json (and a video, particle files)
   profile   run a scene headless and print per-pass GPU timings
   scenes    list the bundled scenes (--schema, --markdown: the scene keys' schema or reference)
-  validate  run a validation case (dam-break, hydrostatic, standing-wave, impact-pressure) against its reference
+  validate  run a validation case (dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact) against its reference
   sweep     run the validation cases over solver x spacing x time-step factor: accuracy against cost
   export-field  sample the turbulence field (curl of wavelet noise) on a grid to a .npy file
 
@@ -404,6 +404,9 @@ Run a case headless and print the simulation next to its reference, with the err
   impact-pressure
                 the pressure of the surge on the wall it strikes, at three heights, next to
                 Lobovsky et al. (2014): the impact's time, the peak, the run-up after it
+  obstacle-impact
+                the same on the face of a box the surge strikes, next to Kleefsman et al.
+                (2005), SPHERIC's test 2
 
   --scene FILE        the case's scene from a file instead of the bundled one of its name (to vary
                       its settings, e.g. "sph": {"boundary_viscosity": 1e-3} for no-slip walls)

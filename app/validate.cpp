@@ -14,8 +14,10 @@
 namespace ranryu::app {
 
 int validate(const Options& o) {
-    if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave" && o.case_name != "impact-pressure")
-        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure)");
+    if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave" && o.case_name != "impact-pressure" &&
+        o.case_name != "obstacle-impact")
+        throw InputError("validate: unknown case \"" + o.case_name +
+                         "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact)");
     const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
     check_report_files(o);   // --json, before the case runs
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
@@ -51,14 +53,15 @@ int validate(const Options& o) {
                   {"max_error", r.max_error},
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});
-    } else if (o.case_name == "impact-pressure") {
-        const validation::ImpactPressureResult r = validation::impact_pressure(scene, shaders, &progress);
+    } else if (o.case_name == "impact-pressure" || o.case_name == "obstacle-impact") {
+        const validation::ImpactPressureResult r = o.case_name == "impact-pressure" ? validation::impact_pressure(scene, shaders, &progress)
+                                                                                   : validation::obstacle_impact(scene, shaders, &progress);
         progress.finish();
-        std::printf("impact-pressure (Lobovsky et al. 2014, H = 0.3 m): H = %.3f m, spacing %.4f m (H/dx = %.1f), %zu particles\n", r.height,
+        std::printf("%s (%s): H = %.3f m, spacing %.4f m (H/dx = %.1f), %zu particles\n", o.case_name.c_str(), r.source.c_str(), r.height,
                     r.spacing, r.height / r.spacing, r.particles);
-        std::printf("p/(rho0 g H) on the wall struck; impact: first T at %.2f; run-up: T in [%.1f, %.1f]\n", validation::kImpactOnset,
-                    validation::kImpactWindow[0], validation::kImpactWindow[1]);
-        std::printf("%6s %8s %18s %18s %22s %10s\n", "sensor", "z (mm)", "impact T exp/sim", "peak exp/sim", "run-up mean exp/sim", "rms diff");
+        std::printf("p/(rho0 g H) on the face struck (x = %.4f m); impact: first T at %.2f; compared: T in [%.1f, %.1f]\n", r.wall,
+                    validation::kImpactOnset, r.window[0], r.window[1]);
+        std::printf("%6s %8s %18s %18s %22s %10s\n", "sensor", "z (mm)", "impact T exp/sim", "peak exp/sim", "window mean exp/sim", "rms diff");
         auto onset = [](const std::optional<double>& t) { return t ? *t : -1.0; };
         for (const auto& s : r.sensors)
             std::printf("%6s %8.1f %8.3f/%-9.3f %8.3f/%-9.3f %10.3f/%-11.3f %10.3f\n", s.name.c_str(), 1000.0 * s.z, onset(s.onset_measured),
@@ -84,9 +87,10 @@ int validate(const Options& o) {
         }
         j.update({{"height", r.height},
                   {"particles", r.particles},
-                  {"source", "Lobovsky et al. 2014, J. Fluids Struct. 48, H = 300 mm, sensors 1, 3 and 4"},
+                  {"source", r.source},
+                  {"face_x", r.wall},
                   {"onset_level", validation::kImpactOnset},
-                  {"window", {validation::kImpactWindow[0], validation::kImpactWindow[1]}},
+                  {"window", {r.window[0], r.window[1]}},
                   {"sensors", sensors},
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});

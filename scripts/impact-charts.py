@@ -1,14 +1,14 @@
 #!/usr/bin/python3
-"""The impact-pressure case's readings (`ranryu validate impact-pressure --json FILE`, docs/VALIDATION.md
-"Impact pressure") against Lobovsky et al. (2014)'s: one panel a sensor (P1, P3, P4), p/(rho0 g H) against
-T = t sqrt(g/H), the experiment in black and each run in colour, labelled with its solver, its wall
-drag (DFSPH's sph.boundary_viscosity) and its H/dx; the compared run-up window shaded. PNG and SVG (text
-kept as text).
+"""The impact cases' readings (`ranryu validate impact-pressure|obstacle-impact --json FILE`,
+docs/VALIDATION.md "Impact pressure") against their experiments' (Lobovsky et al. 2014; Kleefsman et al.
+2005): one panel a sensor, p/(rho0 g H) against T = t sqrt(g/H), the experiment in black and each run in
+colour, labelled with its solver, its wall drag (DFSPH's sph.boundary_viscosity) and its H/dx; the
+compared window shaded. PNG and SVG (text kept as text).
 
     scripts/impact-charts.py RUN.json [RUN.json ...] --out PREFIX [--title TEXT]
 
-Writes PREFIX.png and PREFIX.svg. The experiment's series is read from the repository's
-media/validation/lobovsky_exp_data_p{1,3,4}.csv.
+The runs must be of one case. Writes PREFIX.png and PREFIX.svg. The experiment's series are read from the
+repository's media/validation/ (lobovsky_exp_data_pN.csv, kleefsman_exp_data_pN.csv).
 """
 import argparse
 import csv
@@ -25,8 +25,16 @@ import matplotlib.pyplot as plt  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def experiment(name):
-    path = os.path.join(ROOT, "media", "validation", "lobovsky_exp_data_p%s.csv" % name[1:])
+CASES = {
+    "impact-pressure": ("lobovsky", "The surge's pressure on the wall it strikes, against Lobovsky et al. (2014)",
+                        "experiment (Lobovsky et al. 2014)"),
+    "obstacle-impact": ("kleefsman", "The surge's pressure on the box it strikes, against Kleefsman et al. (2005)",
+                        "experiment (Kleefsman et al. 2005)"),
+}
+
+
+def experiment(case, name):
+    path = os.path.join(ROOT, "media", "validation", "%s_exp_data_p%s.csv" % (CASES[case][0], name[1:]))
     with open(path) as f:
         return [(float(t), float(p)) for t, p in (row for row in csv.reader(f) if row and not row[0].startswith("#"))]
 
@@ -46,7 +54,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+", help="JSON files of `ranryu validate impact-pressure --json`")
     ap.add_argument("--out", required=True, help="PREFIX of PREFIX.png and PREFIX.svg")
-    ap.add_argument("--title", default="The surge's pressure on the wall it strikes, against Lobovsky et al. (2014)")
+    ap.add_argument("--title", help="the chart's title (default: the case's)")
     args = ap.parse_args()
     runs = []
     for path in args.runs:
@@ -55,16 +63,21 @@ def main():
                 run = json.load(f)
         except (OSError, ValueError) as e:
             sys.exit("impact-charts: %s: %s" % (path, e))
-        if run.get("case") != "impact-pressure" or len(run.get("sensors", [])) != 3:
-            sys.exit("impact-charts: %s: not the JSON of `ranryu validate impact-pressure`" % path)
+        if run.get("case") not in CASES or not run.get("sensors"):
+            sys.exit("impact-charts: %s: not the JSON of `ranryu validate impact-pressure` or `obstacle-impact`" % path)
+        if runs and (run["case"] != runs[0]["case"] or len(run["sensors"]) != len(runs[0]["sensors"])):
+            sys.exit("impact-charts: %s: a run of %s, where %s is of %s" % (path, run["case"], args.runs[0], runs[0]["case"]))
         runs.append(run)
+    case = runs[0]["case"]
     window = runs[0].get("window", [3.0, 5.5])
-    fig, axes = plt.subplots(3, 1, figsize=(9, 10), sharex=True)
+    n = len(runs[0]["sensors"])
+    fig, axes = plt.subplots(n, 1, figsize=(9, 3.4 * n), sharex=True, squeeze=False)
+    axes = [a[0] for a in axes]
     for k, ax in enumerate(axes):
         name = runs[0]["sensors"][k]["name"]
-        ax.axvspan(window[0], window[1], color="0.92", label="compared run-up")
-        t, p = zip(*experiment(name))
-        ax.plot(t, p, color="black", linewidth=1.6, label="experiment (Lobovsky et al. 2014)")
+        ax.axvspan(window[0], window[1], color="0.92", label="compared window")
+        t, p = zip(*experiment(case, name))
+        ax.plot(t, p, color="black", linewidth=1.6, label=CASES[case][2])
         for run in runs:
             s = run["sensors"][k]
             ax.plot([q["T"] for q in s["simulation"]], [q["p"] for q in s["simulation"]], linewidth=1.0, label=label(run))
@@ -73,7 +86,7 @@ def main():
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel("T = t sqrt(g/H)")
     axes[0].legend(fontsize=8, loc="upper left")
-    fig.suptitle(args.title, fontsize=11)
+    fig.suptitle(args.title or CASES[case][1], fontsize=11)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     for ext in ("png", "svg"):

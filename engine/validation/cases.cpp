@@ -456,6 +456,7 @@ std::vector<std::string> scene_cases() {
 scene::Scene case_scene(const std::string& name) {
     if (name == "standing-wave") return standing_wave_scene();
     if (name == "impact-pressure") return impact_pressure_scene();
+    if (name == "obstacle-impact") return obstacle_impact_scene();
     if (name == "dam-break" || name == "hydrostatic") return scene::load(name);
     if (is_scene_case(name)) {
         const std::vector<std::string> sph = scene_cases();
@@ -471,7 +472,7 @@ scene::Scene case_scene(const std::string& name) {
         }
         return scene::load(scene_name);
     }
-    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, scene:NAME of a bundled SPH scene)");
+    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact, scene:NAME of a bundled SPH scene)");
 }
 
 SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& shaders, double seconds, frame::Progress* progress) {
@@ -615,6 +616,10 @@ scene::Scene impact_pressure_scene() {
     return scene::parse(scene::bundled_file("validation/impact-pressure.json"), "the impact-pressure case (media/validation/impact-pressure.json)");
 }
 
+scene::Scene obstacle_impact_scene() {
+    return scene::parse(scene::bundled_file("validation/obstacle-impact.json"), "the obstacle-impact case (media/validation/obstacle-impact.json)");
+}
+
 double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, std::span<const glm::vec4> densities) {
     const double r2max = probe.radius * probe.radius;
     double sum = 0.0, weight = 0.0;
@@ -642,63 +647,53 @@ std::optional<double> first_reaching(const std::vector<std::pair<double, double>
     }
     return std::nullopt;
 }
-}  // namespace
 
-void compare_sensor(ImpactPressureResult::Sensor& s) {
-    s.onset_measured = first_reaching(s.measured, kImpactOnset);
-    s.onset_simulated = first_reaching(s.simulated, kImpactOnset);
-    s.peak_measured = s.peak_simulated = 0.0;
-    for (const auto& [t, p] : s.measured) s.peak_measured = std::max(s.peak_measured, p);
-    for (const auto& [t, p] : s.simulated) s.peak_simulated = std::max(s.peak_simulated, p);
-    double sum_m = 0.0, sum_s = 0.0, sum2 = 0.0;
-    s.compared = 0;
-    for (const auto& [t, p] : s.measured) {
-        if (t < kImpactWindow[0] || t > kImpactWindow[1]) continue;
-        const auto sim = interpolate(s.simulated, t);
-        if (!sim) continue;
-        sum_m += p, sum_s += *sim, sum2 += (*sim - p) * (*sim - p);
-        ++s.compared;
-    }
-    if (s.compared == 0)
-        throw NoMeasurement("impact-pressure: sensor " + s.name + "'s simulated readings cover none of the experiment's times in T = [" +
-                            std::to_string(kImpactWindow[0]) + ", " + std::to_string(kImpactWindow[1]) + "]");
-    s.mean_measured = sum_m / s.compared;
-    s.mean_simulated = sum_s / s.compared;
-    s.rms_error = std::sqrt(sum2 / s.compared);
-}
+// A case's sensors on the face x = `face` of a wall or an obstacle, the fluid arriving from the side
+// `side` (−1: from smaller x, +1: from larger), over the strip [z_lo, z_hi] across it.
+struct SensorSpec {
+    const char* name;
+    const char* file;    // under media/validation/
+    double height;       // above the floor, in the experiment (m)
+};
+struct SensorFace {
+    std::string label, source;
+    double experiment_height;   // the experiment's H (m): the sensors' heights scale with the scene's
+    double face, side, z_lo, z_hi;
+    double window[2];
+    std::vector<SensorSpec> sensors;
+};
 
-ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
-    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("impact-pressure: the scene must be SPH with one block");
+ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until,
+                                 const SensorFace& f) {
     const scene::Block& column = scene.blocks.front();
     ImpactPressureResult r;
+    r.source = f.source;
     r.height = column.max.y - column.min.y;
     r.spacing = scene.spacing;
-    r.wall = scene.tank_max.x;
+    r.wall = f.face;
+    r.window[0] = f.window[0], r.window[1] = f.window[1];
     const double g = glm::length(scene.gravity), rho0 = scene.sph.rest_density;
     const double time_scale = std::sqrt(g / r.height), pressure_scale = rho0 * g * r.height;   // T = t sqrt(g/H), p/(rho0 g H)
-    // The experiment's sensors, at their heights for H = 0.3 m scaled to this column.
-    const std::pair<const char*, double> sensors[] = {{"P1", 0.003}, {"P3", 0.030}, {"P4", 0.080}};
     double last = 0.0;
-    for (const auto& [name, z] : sensors) {
+    for (const SensorSpec& spec : f.sensors) {
         ImpactPressureResult::Sensor s;
-        s.name = name;
-        s.z = z * r.height / 0.3;
-        s.measured = read_series(scene::bundled_file(std::string("validation/lobovsky_exp_data_p") + (name + 1) + ".csv"));
-        if (s.measured.empty()) throw Error(std::string("impact-pressure: no data for sensor ") + name);
+        s.name = spec.name;
+        s.z = spec.height * r.height / f.experiment_height;
+        s.measured = read_series(scene::bundled_file(std::string("validation/") + spec.file));
+        if (s.measured.empty()) throw Error(f.label + ": no data for sensor " + spec.name);
         last = std::max(last, s.measured.back().first);
         r.sensors.push_back(std::move(s));
     }
     if (until <= 0.0) until = last;
-    if (until < kImpactWindow[1])
-        throw InputError("impact-pressure: a run to T = " + std::to_string(until) + " leaves out the compared window, which ends at T = " +
-                         std::to_string(kImpactWindow[1]));
-    // The probe: half a spacing from the wall (where the fluid's first layer lies against it), a kernel
-    // support across, over the middle half of the tank's width (the side walls' boundary layers aside).
-    const double width = scene.tank_max.z - scene.tank_min.z;
+    if (until < f.window[1])
+        throw InputError(f.label + ": a run to T = " + std::to_string(until) + " leaves out the compared window, which ends at T = " +
+                         std::to_string(f.window[1]));
+    // The probe: half a spacing off the face (where the fluid's first layer lies against it), a kernel
+    // support across, over the strip.
     Probe probe;
-    probe.x = r.wall - 0.5 * r.spacing;
-    probe.z_lo = scene.tank_min.z + 0.25 * width;
-    probe.z_hi = scene.tank_max.z - 0.25 * width;
+    probe.x = f.face + f.side * 0.5 * r.spacing;
+    probe.z_lo = f.z_lo;
+    probe.z_hi = f.z_hi;
     probe.radius = sim::kernel_support(float(r.spacing));
     const int frames = int(std::ceil(until / time_scale / scene.frame_dt));
 
@@ -720,8 +715,68 @@ ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::Fi
     run_observed(pipeline, frames, progress, state);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
-    for (auto& s : r.sensors) compare_sensor(s);
+    for (auto& s : r.sensors) compare_sensor(s, f.window[0], f.window[1]);
     return r;
+}
+}  // namespace
+
+void compare_sensor(ImpactPressureResult::Sensor& s, double window_from, double window_to) {
+    s.onset_measured = first_reaching(s.measured, kImpactOnset);
+    s.onset_simulated = first_reaching(s.simulated, kImpactOnset);
+    s.peak_measured = s.peak_simulated = 0.0;
+    for (const auto& [t, p] : s.measured) s.peak_measured = std::max(s.peak_measured, p);
+    for (const auto& [t, p] : s.simulated) s.peak_simulated = std::max(s.peak_simulated, p);
+    double sum_m = 0.0, sum_s = 0.0, sum2 = 0.0;
+    s.compared = 0;
+    for (const auto& [t, p] : s.measured) {
+        if (t < window_from || t > window_to) continue;
+        const auto sim = interpolate(s.simulated, t);
+        if (!sim) continue;
+        sum_m += p, sum_s += *sim, sum2 += (*sim - p) * (*sim - p);
+        ++s.compared;
+    }
+    if (s.compared == 0)
+        throw NoMeasurement("sensor " + s.name + "'s simulated readings cover none of the experiment's times in T = [" +
+                            std::to_string(window_from) + ", " + std::to_string(window_to) + "]");
+    s.mean_measured = sum_m / s.compared;
+    s.mean_simulated = sum_s / s.compared;
+    s.rms_error = std::sqrt(sum2 / s.compared);
+}
+
+ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
+    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("impact-pressure: the scene must be SPH with one block");
+    // The wall struck is the tank's far end; the strip the middle half of the tank's width (the side
+    // walls' boundary layers aside).
+    const double width = scene.tank_max.z - scene.tank_min.z;
+    const SensorFace f{"impact-pressure",
+                       "Lobovsky et al. 2014, J. Fluids Struct. 48, H = 300 mm, sensors 1, 3 and 4",
+                       0.3,
+                       scene.tank_max.x,
+                       -1.0,
+                       scene.tank_min.z + 0.25 * width,
+                       scene.tank_max.z - 0.25 * width,
+                       {3.0, 5.5},
+                       {{"P1", "lobovsky_exp_data_p1.csv", 0.003}, {"P3", "lobovsky_exp_data_p3.csv", 0.030}, {"P4", "lobovsky_exp_data_p4.csv", 0.080}}};
+    return run_sensors(scene, shaders, progress, until, f);
+}
+
+ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
+    if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || scene.obstacles.empty() ||
+        scene.obstacles.front().kind != scene::Obstacle::Kind::box)
+        throw InputError("obstacle-impact: the scene must be SPH with one block and a box obstacle");
+    // The box's face towards the column (the column lies at larger x); the strip the middle half of its width.
+    const scene::Obstacle& box = scene.obstacles.front();
+    const double width = box.max.z - box.min.z;
+    const SensorFace f{"obstacle-impact",
+                       "Kleefsman et al. 2005, J. Comput. Phys. 206 (SPHERIC test 2), H = 0.55 m, sensors P1 and P3",
+                       0.55,
+                       box.max.x,
+                       1.0,
+                       box.min.z + 0.25 * width,
+                       box.max.z - 0.25 * width,
+                       {2.5, 7.0},
+                       {{"P1", "kleefsman_exp_data_p1.csv", 0.021}, {"P3", "kleefsman_exp_data_p3.csv", 0.101}}};
+    return run_sensors(scene, shaders, progress, until, f);
 }
 
 }  // namespace ranryu::validation

@@ -167,22 +167,32 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
 // crossings.
 void measure_mode(StandingWaveResult& r);
 
-// Lobovsky et al. (2014), "Experimental investigation of dynamic pressure loads during dam break",
-// H = 0.3 m (docs/VALIDATION.md "Impact pressure"): a column 0.6 m long and H high collapses along a
-// tank 1.61 m long and 0.15 m wide, and the surge strikes the far wall, where sensors at 3, 30 and 80 mm
-// above the floor (their P1, P3, P4) recorded the pressure, p/(rho0 g H) against T = t sqrt(g/H)
-// (media/validation/lobovsky_exp_data_p{1,3,4}.csv). The simulated sensor reads the frame's pressure of
-// the fluid beside it (probe_pressure()), every frame's state read back asynchronously
-// (ParticleSnapshots). Compared (compare_sensor()): the impact's time, the largest reading, and the
-// readings over the run-up that follows, T in [kImpactWindow[0], kImpactWindow[1]], before the second
-// impact near T = 6 (the wave that overturns back onto the wall). `impact_pressure_scene()` builds the
-// case's scene (spacing 0.0125 m: H/dx = 24, 13,824 particles); the sensors' heights and the probe's
-// place scale with the column's height and the spacing.
+// Pressure on a wall the surge strikes, against an experiment's sensors (docs/VALIDATION.md "Impact
+// pressure"): p/(rho0 g H) against T = t sqrt(g/H), H the column's height. Two cases:
+//   impact-pressure   Lobovsky et al. (2014), "Experimental investigation of dynamic pressure loads
+//                     during dam break", H = 0.3 m: a column 0.6 m long collapses along a tank 1.61 m long
+//                     and 0.15 m wide onto its far wall, where sensors at 3, 30 and 80 mm above the floor
+//                     (their P1, P3, P4) recorded it (media/validation/lobovsky_exp_data_p{1,3,4}.csv);
+//                     the run-up compared over T in [3, 5.5], before the second impact near T = 6 (the
+//                     wave that overturns back onto the wall). Its scene: spacing 0.0125 m, H/dx = 24,
+//                     13,824 particles.
+//   obstacle-impact   Kleefsman et al. (2005), SPHERIC's test 2, H = 0.55 m: a column 1.228 m long across
+//                     the whole 1 m width of a 3.22 m tank collapses onto a box 0.161 m high and 0.403 m
+//                     wide, whose face towards it held sensors at 21 and 101 mm above the floor (their P1,
+//                     P3: media/validation/kleefsman_exp_data_p{1,3}.csv); compared over T in [2.5, 7],
+//                     the flow piled against the box after its impact. Its scene: spacing 0.04 m, H/dx =
+//                     13.75, 10,540 particles (less those the box holds).
+// The simulated sensor reads the frame's pressure of the fluid beside it (probe_pressure()), every
+// frame's state read back asynchronously (ParticleSnapshots). Compared (compare_sensor()): the impact's
+// time, the largest reading, and the readings over the case's window. The sensors' heights and the
+// probe's place scale with the column's height and the spacing.
 struct ImpactPressureResult {
-    double height = 0.0, spacing = 0.0, wall = 0.0;   // H (the column's block), dx, x of the wall struck
+    std::string source;                              // the experiment, as a citation
+    double height = 0.0, spacing = 0.0, wall = 0.0;  // H (the column's block), dx, x of the face struck
+    double window[2] = {0.0, 0.0};                   // T: the readings compared after the impact
     std::size_t particles = 0;
     struct Sensor {
-        std::string name;   // the experiment's: P1, P3, P4
+        std::string name;   // the experiment's: P1, P3, ...
         double z = 0.0;     // height above the floor (m)
         std::vector<std::pair<double, double>> measured, simulated;   // (T, p/(rho0 g H))
         // The first T at which the reading reaches kImpactOnset (linear between samples); none if never.
@@ -198,26 +208,29 @@ struct ImpactPressureResult {
     double seconds = 0.0;
     RunStats stats;
 };
-constexpr double kImpactOnset = 0.25;                   // p/(rho0 g H) that marks a sensor's impact
-constexpr double kImpactWindow[2] = {3.0, 5.5};         // T: the run-up after the first impact
+constexpr double kImpactOnset = 0.25;   // p/(rho0 g H) that marks a sensor's impact
 scene::Scene impact_pressure_scene();
-// Runs to T = `until` (the experiment's last sample when 0). InputError when the scene is not SPH with
-// one block, or `until` leaves the window out.
+scene::Scene obstacle_impact_scene();
+// Run to T = `until` (the experiment's last sample when 0). InputError when the scene is not SPH with
+// one block (and, for obstacle_impact, a box obstacle: the first is the one struck), or `until` leaves
+// the window out.
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
+                                     double until = 0.0);
+ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
                                      double until = 0.0);
 
 // A wall sensor's reading from a frame's particles: the pressures (Density.y) of the particles whose
 // distance from the point (x, y) in the x-y plane is under `radius` and whose z lies in [z_lo, z_hi]
-// (the sensor's strip across the tank), averaged with the weights (1 − r²/radius²)³ (Shepard's
+// (the sensor's strip across the face), averaged with the weights (1 − r²/radius²)³ (Shepard's
 // normalisation: a constant pressure reads exactly); 0 where no particle is that near (dry: the
 // gauge's zero, the atmosphere's pressure).
 struct Probe {
     double x = 0.0, y = 0.0, z_lo = 0.0, z_hi = 0.0, radius = 0.0;
 };
 double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, std::span<const glm::vec4> densities);
-// A sensor's comparisons from its two series (impact_pressure()'s last step; the fields above).
-// NoMeasurement where the simulation covers none of the experiment's times in the window.
-void compare_sensor(ImpactPressureResult::Sensor& s);
+// A sensor's comparisons from its two series over T in [window_from, window_to] (the cases' last step;
+// the fields above). NoMeasurement where the simulation covers none of the experiment's times there.
+void compare_sensor(ImpactPressureResult::Sensor& s, double window_from, double window_to);
 
 // Scene cases (docs/SWEEP.md "Scene cases"): "scene:NAME" runs the bundled SPH scene NAME as it is.
 constexpr const char* kScenePrefix = "scene:";

@@ -76,13 +76,13 @@ TEST_CASE("validate impact-pressure: the three sensors' table and series, agains
         const std::string svg = read_file(prefix.string() + ".svg");
         for (const char* label : {"p/(rho0 g H)", "T = t sqrt(g/H)", "P1, 3 mm above the floor", "P3, 30 mm above the floor",
                                   "P4, 80 mm above the floor", "experiment (Lobovsky et al. 2014)", "dfsph, nu_b 0.001, H/dx 10",
-                                  "compared run-up"})
+                                  "compared window"})
             CHECK_THAT(svg, Contains(label));
         // Anything but the case's JSON is refused, naming the file.
         std::ofstream(dir / "other.json") << R"({"case": "dam-break"})";
         const Result bad = run({"/usr/bin/python3", (source_dir() / "scripts" / "impact-charts.py").string(), (dir / "other.json").string(),
                                 "--out", prefix.string()});
         CHECK(bad.exit_code != 0);
-        CHECK_THAT(bad.err, Contains("other.json") && Contains("not the JSON of `ranryu validate impact-pressure`"));
+        CHECK_THAT(bad.err, Contains("other.json") && Contains("not the JSON of `ranryu validate impact-pressure` or `obstacle-impact`"));
     }
 }

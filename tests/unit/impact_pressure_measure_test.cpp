@@ -92,7 +92,7 @@ TEST_CASE("impact pressure: a sensor's impact, peak and run-up against the exper
     s.name = "P1";
     s.measured = series(0.0, 0.6, 400);
     s.simulated = series(0.1, 0.7, 200);
-    validation::compare_sensor(s);
+    validation::compare_sensor(s, 3.0, 5.5);
     REQUIRE(s.onset_measured);
     REQUIRE(s.onset_simulated);
     CHECK(*s.onset_measured == Approx(2.4 + 0.25 / 20.0).margin(1e-9));   // level 0.25 on the ramp
@@ -114,10 +114,10 @@ TEST_CASE("impact pressure: a sensor's impact, peak and run-up against the exper
     // A reading that never reaches the level has no onset; a simulation short of the window is no measurement.
     validation::ImpactPressureResult::Sensor dry = s;
     for (auto& [t, p] : dry.simulated) p = 0.1;
-    validation::compare_sensor(dry);
+    validation::compare_sensor(dry, 3.0, 5.5);
     CHECK_FALSE(dry.onset_simulated);
     CHECK(dry.rms_error == Approx(0.5).margin(1e-12));
     validation::ImpactPressureResult::Sensor short_run = s;
     short_run.simulated.resize(500);   // to T = 2.5
-    CHECK_THROWS_AS(validation::compare_sensor(short_run), validation::NoMeasurement);
+    CHECK_THROWS_AS(validation::compare_sensor(short_run, 3.0, 5.5), validation::NoMeasurement);
 }
