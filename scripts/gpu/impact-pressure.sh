@@ -5,7 +5,7 @@
 #     [CASE=impact-pressure] scripts/gpu/impact-pressure.sh ["0.0125 0.00625 0.003125"] ["dfsph dfsph-free-slip wcsph pbf"]
 # A run is a solver (dfsph, wcsph, pbf: the case's scene as it is), dfsph-free-slip (DFSPH with
 # sph.boundary_viscosity 0) or dfsph-nu-VALUE (DFSPH with sph.boundary_viscosity VALUE), the scene being
-# media/validation/CASE.json. Writes RUN-SPACING.txt (the printed table) and .json (the series) to $OUT
+# the case's own (media/validation/impact-pressure.json, obstacle-impact.json). Writes RUN-SPACING.txt (the printed table) and .json (the series) to $OUT
 # (or ./bench-out), and a line a run here. RUN_TIMEOUT (default 300 s) bounds each run.
 . "$(dirname "$0")/env.sh" bench-out
 case_name=${CASE:-impact-pressure}
