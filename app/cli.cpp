@@ -239,7 +239,7 @@ Options parse(const std::vector<std::string>& args) {
         }
     }
     if (o.command == "validate" && o.case_name.empty() && !o.help)
-        throw InputError("validate: name a case (dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact)");
+        throw InputError(std::string("validate: name a case (") + validation::kCaseList + ")");
     if (o.relax && o.case_name != "hydrostatic") throw InputError("--relax: only the hydrostatic case relaxes its start");
     if ((o.settle || o.average) && o.case_name != "hydrostatic")
         throw InputError(std::string(o.settle ? "--settle" : "--average") + ": only the hydrostatic case settles and averages");

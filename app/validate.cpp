@@ -16,8 +16,7 @@ namespace ranryu::app {
 int validate(const Options& o) {
     if (o.case_name != "dam-break" && o.case_name != "hydrostatic" && o.case_name != "standing-wave" && o.case_name != "impact-pressure" &&
         o.case_name != "obstacle-impact")
-        throw InputError("validate: unknown case \"" + o.case_name +
-                         "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact)");
+        throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: " + validation::kCaseList + ")");
     const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
     check_report_files(o);   // --json, before the case runs
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
@@ -59,7 +58,7 @@ int validate(const Options& o) {
         progress.finish();
         std::printf("%s (%s): H = %.3f m, spacing %.4f m (H/dx = %.1f), %zu particles\n", o.case_name.c_str(), r.source.c_str(), r.height,
                     r.spacing, r.height / r.spacing, r.particles);
-        std::printf("p/(rho0 g H) on the face struck (x = %.4f m); impact: first T at %.2f; compared: T in [%.1f, %.1f]\n", r.wall,
+        std::printf("p/(rho0 g H) on the face struck (x = %.4f m); impact: first T at %.2f; compared: T in [%.1f, %.1f]\n", r.face,
                     validation::kImpactOnset, r.window[0], r.window[1]);
         std::printf("%6s %8s %18s %18s %22s %10s\n", "sensor", "z (mm)", "impact T exp/sim", "peak exp/sim", "window mean exp/sim", "rms diff");
         auto onset = [](const std::optional<double>& t) { return t ? *t : -1.0; };
@@ -88,7 +87,8 @@ int validate(const Options& o) {
         j.update({{"height", r.height},
                   {"particles", r.particles},
                   {"source", r.source},
-                  {"face_x", r.wall},
+                  {"face_x", r.face},
+                  {"sample_offset_frames", r.sample_offset},
                   {"onset_level", validation::kImpactOnset},
                   {"window", {r.window[0], r.window[1]}},
                   {"sensors", sensors},

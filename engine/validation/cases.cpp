@@ -472,7 +472,7 @@ scene::Scene case_scene(const std::string& name) {
         }
         return scene::load(scene_name);
     }
-    throw InputError("unknown validation case \"" + name + "\" (cases: dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact, scene:NAME of a bundled SPH scene)");
+    throw InputError("unknown validation case \"" + name + "\" (cases: " + std::string(kCaseList) + ", scene:NAME of a bundled SPH scene)");
 }
 
 SceneRunResult scene_run(const scene::Scene& scene, const shader::FileSource& shaders, double seconds, frame::Progress* progress) {
@@ -626,6 +626,7 @@ double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, 
     for (std::size_t i = 0; i < positions.size(); ++i) {
         const glm::vec4& x = positions[i];
         if (x.w < -0.5 || double(x.z) < probe.z_lo || double(x.z) > probe.z_hi) continue;   // parked (sim/fluid.h), or off the strip
+        if (probe.side != 0.0 && probe.side * (double(x.x) - probe.face) <= 0.0) continue;   // behind the face (side 0: no face)
         const double dx = double(x.x) - probe.x, dy = double(x.y) - probe.y, r2 = dx * dx + dy * dy;
         if (r2 >= r2max) continue;
         const double q = 1.0 - r2 / r2max, w = q * q * q;
@@ -657,9 +658,11 @@ struct SensorSpec {
 };
 struct SensorFace {
     std::string label, source;
-    double experiment_height;   // the experiment's H (m): the sensors' heights scale with the scene's
-    double face, side, z_lo, z_hi;
-    double window[2];
+    double experiment_height = 0.0;   // the experiment's H (m): the sensors' heights scale with the column's
+    double face = 0.0;                // x of the face
+    double side = 0.0;                // −1: the fluid arrives from smaller x, +1: from larger
+    double z_lo = 0.0, z_hi = 0.0;    // the strip across the face
+    double window_from = 0.0, window_to = 0.0;
     std::vector<SensorSpec> sensors;
 };
 
@@ -668,34 +671,46 @@ ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSo
     const scene::Block& column = scene.blocks.front();
     ImpactPressureResult r;
     r.source = f.source;
-    r.height = column.max.y - column.min.y;
     r.spacing = scene.spacing;
-    r.wall = f.face;
-    r.window[0] = f.window[0], r.window[1] = f.window[1];
+    // H is the depth of the lattice that fills the column, whole layers of dx (as the tank at rest's):
+    // the fluid's own column, which sets the flow's time and pressure scales; the sensors stand at the
+    // experiment's heights scaled with the column's block.
+    const double nominal = column.max.y - column.min.y;
+    const int layers = int(std::floor(nominal / r.spacing + 1e-4));
+    if (layers < 2) throw InputError(f.label + ": spacing " + std::to_string(r.spacing) + " leaves the column fewer than two layers");
+    r.height = layers * r.spacing + (column.min.y - scene.tank_min.y);
+    r.face = f.face;
+    r.window[0] = f.window_from, r.window[1] = f.window_to;
     const double g = glm::length(scene.gravity), rho0 = scene.sph.rest_density;
     const double time_scale = std::sqrt(g / r.height), pressure_scale = rho0 * g * r.height;   // T = t sqrt(g/H), p/(rho0 g H)
     double last = 0.0;
     for (const SensorSpec& spec : f.sensors) {
         ImpactPressureResult::Sensor s;
         s.name = spec.name;
-        s.z = spec.height * r.height / f.experiment_height;
+        s.z = spec.height * nominal / f.experiment_height;
         s.measured = read_series(scene::bundled_file(std::string("validation/") + spec.file));
         if (s.measured.empty()) throw Error(f.label + ": no data for sensor " + spec.name);
         last = std::max(last, s.measured.back().first);
         r.sensors.push_back(std::move(s));
     }
     if (until <= 0.0) until = last;
-    if (until < f.window[1])
+    if (until < f.window_to)
         throw InputError(f.label + ": a run to T = " + std::to_string(until) + " leaves out the compared window, which ends at T = " +
-                         std::to_string(f.window[1]));
-    // The probe: half a spacing off the face (where the fluid's first layer lies against it), a kernel
-    // support across, over the strip.
+                         std::to_string(f.window_to));
+    // The probe: half a spacing off the face on the fluid's side (where the fluid's first layer lies
+    // against it), a kernel support across, over the strip; nothing behind the face.
     Probe probe;
     probe.x = f.face + f.side * 0.5 * r.spacing;
+    probe.face = f.face;
+    probe.side = f.side;
     probe.z_lo = f.z_lo;
     probe.z_hi = f.z_hi;
     probe.radius = sim::kernel_support(float(r.spacing));
     const int frames = int(std::ceil(until / time_scale / scene.frame_dt));
+    // Each frame's sample stands at the time its pressure is of: DFSPH's Density.y is the frame's
+    // Δt-weighted mean (docs/DFSPH.md "The pressure a frame"), of the frame's middle; WCSPH's and PBF's
+    // the last step's, of the frame's end.
+    r.sample_offset = scene.sph.solver == scene::Solver::dfsph ? 0.5 : 0.0;
 
     frame::Pipeline pipeline = simulation_only(scene, shaders);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
@@ -704,7 +719,7 @@ ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSo
     tally.listen(fluid, r.steps);
     for (auto& s : r.sensors) s.simulated.reserve(std::size_t(frames) + 1);
     ParticleSnapshots state(fluid, ParticleSnapshots::kPositions | ParticleSnapshots::kDensities, [&](const ParticleSnapshots::View& v) {
-        const double T = double(v.tag) * scene.frame_dt * time_scale;
+        const double T = (double(v.tag) - r.sample_offset) * scene.frame_dt * time_scale;
         for (auto& s : r.sensors) {
             probe.y = scene.tank_min.y + s.z;
             s.simulated.emplace_back(T, probe_pressure(probe, v.positions, v.densities) / pressure_scale);
@@ -715,7 +730,13 @@ ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSo
     run_observed(pipeline, frames, progress, state);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.stats = tally.end();
-    for (auto& s : r.sensors) compare_sensor(s, f.window[0], f.window[1]);
+    for (auto& s : r.sensors) {
+        try {
+            compare_sensor(s, f.window_from, f.window_to);
+        } catch (const NoMeasurement& e) {
+            throw NoMeasurement(f.label + ": " + e.what());
+        }
+    }
     return r;
 }
 }  // namespace
@@ -726,37 +747,54 @@ void compare_sensor(ImpactPressureResult::Sensor& s, double window_from, double 
     s.peak_measured = s.peak_simulated = 0.0;
     for (const auto& [t, p] : s.measured) s.peak_measured = std::max(s.peak_measured, p);
     for (const auto& [t, p] : s.simulated) s.peak_simulated = std::max(s.peak_simulated, p);
-    double sum_m = 0.0, sum_s = 0.0, sum2 = 0.0;
-    s.compared = 0;
+    // The experiment's samples in the window that the simulation covers, each weighted by half the time
+    // to its neighbours there (the trapezoid rule): a digitised series samples some stretches more
+    // densely than others, and the means are over time, not over samples.
+    std::vector<std::pair<double, double>> at;   // (T, p) measured, with the simulation's p beside
+    std::vector<double> sim;
     for (const auto& [t, p] : s.measured) {
         if (t < window_from || t > window_to) continue;
-        const auto sim = interpolate(s.simulated, t);
-        if (!sim) continue;
-        sum_m += p, sum_s += *sim, sum2 += (*sim - p) * (*sim - p);
-        ++s.compared;
+        const auto q = interpolate(s.simulated, t);
+        if (!q) continue;
+        at.emplace_back(t, p);
+        sim.push_back(*q);
     }
+    s.compared = int(at.size());
     if (s.compared == 0)
         throw NoMeasurement("sensor " + s.name + "'s simulated readings cover none of the experiment's times in T = [" +
                             std::to_string(window_from) + ", " + std::to_string(window_to) + "]");
-    s.mean_measured = sum_m / s.compared;
-    s.mean_simulated = sum_s / s.compared;
-    s.rms_error = std::sqrt(sum2 / s.compared);
+    double weight = 0.0, sum_m = 0.0, sum_s = 0.0, sum2 = 0.0;
+    for (std::size_t k = 0; k < at.size(); ++k) {
+        const double w = at.size() == 1 ? 1.0 : 0.5 * ((k + 1 < at.size() ? at[k + 1].first : at[k].first) - (k > 0 ? at[k - 1].first : at[k].first));
+        weight += w, sum_m += w * at[k].second, sum_s += w * sim[k], sum2 += w * (sim[k] - at[k].second) * (sim[k] - at[k].second);
+    }
+    if (weight <= 0.0) weight = 1.0, sum_m = at[0].second, sum_s = sim[0], sum2 = (sim[0] - at[0].second) * (sim[0] - at[0].second);
+    s.mean_measured = sum_m / weight;
+    s.mean_simulated = sum_s / weight;
+    s.rms_error = std::sqrt(sum2 / weight);
 }
 
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
-    if (scene.model != scene::Model::sph || scene.blocks.size() != 1) throw InputError("impact-pressure: the scene must be SPH with one block");
+    if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || !scene.obstacles.empty())
+        throw InputError("impact-pressure: the scene must be SPH with one block and no obstacle");
+    if (scene.blocks.front().min.x > scene.tank_min.x + 1e-6f)
+        throw InputError("impact-pressure: the column must stand against the tank's wall at x = " + std::to_string(scene.tank_min.x) +
+                         " (the wall it strikes is the other end, x = " + std::to_string(scene.tank_max.x) + ")");
     // The wall struck is the tank's far end; the strip the middle half of the tank's width (the side
     // walls' boundary layers aside).
     const double width = scene.tank_max.z - scene.tank_min.z;
-    const SensorFace f{"impact-pressure",
-                       "Lobovsky et al. 2014, J. Fluids Struct. 48, H = 300 mm, sensors 1, 3 and 4",
-                       0.3,
-                       scene.tank_max.x,
-                       -1.0,
-                       scene.tank_min.z + 0.25 * width,
-                       scene.tank_max.z - 0.25 * width,
-                       {3.0, 5.5},
-                       {{"P1", "lobovsky_exp_data_p1.csv", 0.003}, {"P3", "lobovsky_exp_data_p3.csv", 0.030}, {"P4", "lobovsky_exp_data_p4.csv", 0.080}}};
+    const SensorFace f{.label = "impact-pressure",
+                       .source = "Lobovsky et al. 2014, J. Fluids Struct. 48, H = 300 mm, sensors 1, 3 and 4",
+                       .experiment_height = 0.3,
+                       .face = scene.tank_max.x,
+                       .side = -1.0,
+                       .z_lo = scene.tank_min.z + 0.25 * width,
+                       .z_hi = scene.tank_max.z - 0.25 * width,
+                       .window_from = 3.0,
+                       .window_to = 5.5,
+                       .sensors = {{"P1", "lobovsky_exp_data_p1.csv", 0.003},
+                                   {"P3", "lobovsky_exp_data_p3.csv", 0.030},
+                                   {"P4", "lobovsky_exp_data_p4.csv", 0.080}}};
     return run_sensors(scene, shaders, progress, until, f);
 }
 
@@ -764,18 +802,22 @@ ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::Fi
     if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || scene.obstacles.empty() ||
         scene.obstacles.front().kind != scene::Obstacle::Kind::box)
         throw InputError("obstacle-impact: the scene must be SPH with one block and a box obstacle");
-    // The box's face towards the column (the column lies at larger x); the strip the middle half of its width.
+    // The box's face towards the column, which lies at larger x; the strip the middle half of its width.
     const scene::Obstacle& box = scene.obstacles.front();
+    if (scene.blocks.front().min.x <= box.max.x)
+        throw InputError("obstacle-impact: the column (from x = " + std::to_string(scene.blocks.front().min.x) +
+                         ") must lie beyond the box's face at x = " + std::to_string(box.max.x));
     const double width = box.max.z - box.min.z;
-    const SensorFace f{"obstacle-impact",
-                       "Kleefsman et al. 2005, J. Comput. Phys. 206 (SPHERIC test 2), H = 0.55 m, sensors P1 and P3",
-                       0.55,
-                       box.max.x,
-                       1.0,
-                       box.min.z + 0.25 * width,
-                       box.max.z - 0.25 * width,
-                       {2.5, 7.0},
-                       {{"P1", "kleefsman_exp_data_p1.csv", 0.021}, {"P3", "kleefsman_exp_data_p3.csv", 0.101}}};
+    const SensorFace f{.label = "obstacle-impact",
+                       .source = "Kleefsman et al. 2005, J. Comput. Phys. 206 (SPHERIC test 2), H = 0.55 m, sensors P1 and P3",
+                       .experiment_height = 0.55,
+                       .face = box.max.x,
+                       .side = 1.0,
+                       .z_lo = box.min.z + 0.25 * width,
+                       .z_hi = box.max.z - 0.25 * width,
+                       .window_from = 2.5,
+                       .window_to = 7.0,
+                       .sensors = {{"P1", "kleefsman_exp_data_p1.csv", 0.021}, {"P3", "kleefsman_exp_data_p3.csv", 0.101}}};
     return run_sensors(scene, shaders, progress, until, f);
 }
 

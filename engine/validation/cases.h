@@ -180,16 +180,20 @@ void measure_mode(StandingWaveResult& r);
 //                     the whole 1 m width of a 3.22 m tank collapses onto a box 0.161 m high and 0.403 m
 //                     wide, whose face towards it held sensors at 21 and 101 mm above the floor (their P1,
 //                     P3: media/validation/kleefsman_exp_data_p{1,3}.csv); compared over T in [2.5, 7],
-//                     the flow piled against the box after its impact. Its scene: spacing 0.04 m, H/dx =
-//                     13.75, 10,540 particles (less those the box holds).
-// The simulated sensor reads the frame's pressure of the fluid beside it (probe_pressure()), every
-// frame's state read back asynchronously (ParticleSnapshots). Compared (compare_sensor()): the impact's
-// time, the largest reading, and the readings over the case's window. The sensors' heights and the
-// probe's place scale with the column's height and the spacing.
+//                     the flow piled against the box after its impact. Its scene: spacing 0.034375 m, H/dx =
+//                     16, 16,240 particles).
+// H is the depth of the lattice that fills the column. The simulated sensor reads the frame's pressure
+// of the fluid beside it (probe_pressure()), every frame's state read back asynchronously
+// (ParticleSnapshots), each sample at the time its pressure is of (sample_offset). Compared
+// (compare_sensor()): the impact's time, the largest reading, and the readings over the case's window.
+// The sensors' heights scale with the column's block, the probe's place with the spacing.
 struct ImpactPressureResult {
     std::string source;                              // the experiment, as a citation
-    double height = 0.0, spacing = 0.0, wall = 0.0;  // H (the column's block), dx, x of the face struck
+    double height = 0.0, spacing = 0.0, face = 0.0;  // H (the column's lattice), dx, x of the face struck
     double window[2] = {0.0, 0.0};                   // T: the readings compared after the impact
+    // Frames before a frame's end its sample's time stands: 0.5 for DFSPH, whose Density.y is the frame's
+    // Δt-weighted mean pressure (docs/DFSPH.md "The pressure a frame"), 0 for WCSPH and PBF (the last step's).
+    double sample_offset = 0.0;
     std::size_t particles = 0;
     struct Sensor {
         std::string name;   // the experiment's: P1, P3, ...
@@ -198,8 +202,9 @@ struct ImpactPressureResult {
         // The first T at which the reading reaches kImpactOnset (linear between samples); none if never.
         std::optional<double> onset_measured, onset_simulated;
         double peak_measured = 0.0, peak_simulated = 0.0;   // the largest readings
-        // Over the window: the mean of each series at the experiment's times there (the simulation's
-        // interpolated to them), and the rms of their differences; `compared` such times.
+        // Over the window: the time-weighted mean of each series at the experiment's times there (the
+        // simulation's interpolated to them; trapezoid weights), and the rms of their differences;
+        // `compared` such times.
         double mean_measured = 0.0, mean_simulated = 0.0, rms_error = 0.0;
         int compared = 0;
     };
@@ -209,11 +214,14 @@ struct ImpactPressureResult {
     RunStats stats;
 };
 constexpr double kImpactOnset = 0.25;   // p/(rho0 g H) that marks a sensor's impact
+// The cases `ranryu validate` runs, for its messages and help.
+constexpr const char* kCaseList = "dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact";
 scene::Scene impact_pressure_scene();
 scene::Scene obstacle_impact_scene();
 // Run to T = `until` (the experiment's last sample when 0). InputError when the scene is not SPH with
-// one block (and, for obstacle_impact, a box obstacle: the first is the one struck), or `until` leaves
-// the window out.
+// one block, its column not where the case needs it (impact_pressure: against the tank's wall at its
+// smallest x, no obstacle; obstacle_impact: a box obstacle, the first, and the column beyond its face at
+// larger x), its spacing leaves the column fewer than two layers, or `until` leaves the window out.
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
                                      double until = 0.0);
 ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
@@ -221,11 +229,13 @@ ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::Fi
 
 // A wall sensor's reading from a frame's particles: the pressures (Density.y) of the particles whose
 // distance from the point (x, y) in the x-y plane is under `radius` and whose z lies in [z_lo, z_hi]
-// (the sensor's strip across the face), averaged with the weights (1 − r²/radius²)³ (Shepard's
+// (the sensor's strip across the face) and which lie on the fluid's side of the face x = `face`
+// (side·(x − face) > 0; side 0: no face), averaged with the weights (1 − r²/radius²)³ (Shepard's
 // normalisation: a constant pressure reads exactly); 0 where no particle is that near (dry: the
 // gauge's zero, the atmosphere's pressure).
 struct Probe {
     double x = 0.0, y = 0.0, z_lo = 0.0, z_hi = 0.0, radius = 0.0;
+    double face = 0.0, side = 0.0;
 };
 double probe_pressure(const Probe& probe, std::span<const glm::vec4> positions, std::span<const glm::vec4> densities);
 // A sensor's comparisons from its two series over T in [window_from, window_to] (the cases' last step;

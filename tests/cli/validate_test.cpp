@@ -1,8 +1,10 @@
-// `ranryu validate impact-pressure` end to end (app/validate.cpp): its table and its JSON, at a coarse
-// spacing (H/dx = 10, 2,160 particles), so the numbers are the command's plumbing, not the physics
-// (tests/gl/validation_test.cpp bounds those).
+// `ranryu validate impact-pressure` and `obstacle-impact` end to end (app/validate.cpp): the table and
+// the JSON at a coarse spacing (H/dx = 10, 1,000 particles), so the numbers are the command's plumbing,
+// not the physics (tests/gl/validation_test.cpp bounds those); the chart script on that JSON; and the
+// scenes each case refuses.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -39,18 +41,21 @@ TEST_CASE("validate impact-pressure: the three sensors' table and series, agains
         CHECK(s["z"].get<double>() == Approx(heights[k]));
         CHECK(s["window_compared"].get<int>() > 5);
         REQUIRE(s["onset_experiment"].is_number());
-        // The series: one sample a frame (T = frame t sqrt(g/H)), to the experiment's last T (6.98),
-        // every reading finite (a dry sensor reads 0).
+        // The series: one sample a frame, at the frame's middle (DFSPH's pressure is the frame's mean:
+        // T = (f + 1/2) frame_dt sqrt(g/H) for frame f from 0), to the experiment's last T (6.98), every
+        // reading finite (a dry sensor reads 0).
         const auto& sim = s["simulation"];
         const double dT = std::sqrt(9.81 / 0.3) / 60.0;
         REQUIRE(sim.size() == std::size_t(std::ceil(6.982 / dT - 1e-9)));
         for (std::size_t f = 0; f < sim.size(); ++f) {
-            CHECK(sim[f]["T"].get<double>() == Approx(double(f + 1) * dT).epsilon(1e-6));
+            CHECK(sim[f]["T"].get<double>() == Approx((double(f) + 0.5) * dT).epsilon(1e-6));
             CHECK(std::isfinite(sim[f]["p"].get<double>()));
         }
     }
     CHECK(j["sensors"][0]["onset_experiment"].get<double>() == Approx(2.427).margin(1e-9));
     CHECK(j["sensors"][0]["peak_experiment"].get<double>() == Approx(2.843).margin(1e-9));
+    CHECK(j["sample_offset_frames"].get<double>() == 0.5);
+    CHECK(j["face_x"].get<double>() == Approx(1.61));
     CHECK(j["window"][0].get<double>() == 3.0);
     CHECK(j["window"][1].get<double>() == 5.5);
 
@@ -85,4 +90,35 @@ TEST_CASE("validate impact-pressure: the three sensors' table and series, agains
         CHECK(bad.exit_code != 0);
         CHECK_THAT(bad.err, Contains("other.json") && Contains("not the JSON of `ranryu validate impact-pressure` or `obstacle-impact`"));
     }
+}
+
+TEST_CASE("validate impact-pressure and obstacle-impact: a scene whose column or face is not where the case needs it is refused",
+          "[validate]") {
+    TempDir dir;
+    const std::string impact = (source_dir() / "media" / "validation" / "impact-pressure.json").string(),
+                      obstacle = (source_dir() / "media" / "validation" / "obstacle-impact.json").string();
+    // The box case's scene given to the wall case: its column stands at the far end, against the wall
+    // the case would read (a probe inside the column would read its weight from the first frame).
+    Result r = run_ranryu(dir.path(), {"validate", "impact-pressure", "--scene", obstacle, "--spacing", "0.1", "--quiet"});
+    INFO(r.out << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("impact-pressure") && Contains("no obstacle"));
+    // And the other way: no box to read.
+    r = run_ranryu(dir.path(), {"validate", "obstacle-impact", "--scene", impact, "--spacing", "0.05", "--quiet"});
+    INFO(r.out << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("obstacle-impact") && Contains("a box obstacle"));
+    // A box case whose column lies on the near side of the box.
+    std::string text = read_file(obstacle);
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const auto at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    };
+    replace("\"min\": [1.992, 0.0, 0.0], \"max\": [3.22, 0.55, 1.0]", "\"min\": [0.05, 0.0, 0.0], \"max\": [0.5, 0.55, 1.0]");
+    std::ofstream(dir / "near.json") << text;
+    r = run_ranryu(dir.path(), {"validate", "obstacle-impact", "--scene", (dir / "near.json").string(), "--spacing", "0.05", "--quiet"});
+    INFO(r.out << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("must lie beyond the box's face"));
 }

@@ -65,6 +65,14 @@ TEST_CASE("impact pressure: the probe averages the pressure beside it", "[valida
     x.emplace_back(glm::vec3(c.x + 0.1 * kDx, c.y, c.z), 1.0f), d.emplace_back(1000.0f, 1e7f, 0.0f, 0.0f);
     CHECK(validation::probe_pressure(probe, x, d) > reading + 1000.0);
 
+    // With a face: nothing behind it is read (a probe placed on the wrong side would read through it).
+    validation::Probe faced = probe;
+    faced.face = c.x - 0.5 * kDx, faced.side = 1.0;   // the fluid at larger x; the lattice's column at c.x - kDx lies behind
+    std::vector<glm::vec4> xf, df;
+    lattice(xf, df, c, 4, [&](glm::dvec3 q) { return q.x < faced.face ? 1e7 : p0; });
+    CHECK(validation::probe_pressure(faced, xf, df) == Approx(p0).epsilon(1e-6));
+    CHECK(validation::probe_pressure(probe, xf, df) > 2.0 * p0);   // without the face the column behind it counts
+
     // Dry: no particle within the support reads zero.
     std::vector<glm::vec4> far{glm::vec4(glm::vec3(c) + glm::vec3(0.05f, 0.0f, 0.0f), 1.0f)}, far_d{glm::vec4(1000.0f, 5000.0f, 0.0f, 0.0f)};
     CHECK(validation::probe_pressure(probe, far, far_d) == 0.0);
@@ -74,8 +82,9 @@ TEST_CASE("impact pressure: a sensor's impact, peak and run-up against the exper
     // The experiment: dry, a ramp to 2 over T in [2.4, 2.5], down to 0.6 by T = 3 and 0.6 after; the
     // simulation the same shape `shift` later with its run-up at `plateau`, sampled every 0.005 (a frame
     // at this scale). Every kink of the simulated series falls on one of its samples, so its linear
-    // interpolation is the function itself: the comparisons have closed forms, summed here over the
-    // experiment's samples in the window from the function, not from the series.
+    // interpolation is the function itself: the comparisons have closed forms, summed here with the
+    // trapezoid rule's weights over the experiment's samples in the window (every 1/400: half a weight at
+    // the window's ends) from the function, not from the series.
     auto f = [](double t, double shift, double plateau) {
         const double T = t - shift;
         if (T < 2.4) return 0.0;
@@ -100,15 +109,26 @@ TEST_CASE("impact pressure: a sensor's impact, peak and run-up against the exper
     CHECK(s.peak_measured == Approx(2.0).margin(1e-9));                   // the ramp's top is a sample
     CHECK(s.peak_simulated == Approx(2.0).margin(1e-9));
     int n = 0;
-    double mean = 0.0, square = 0.0;
+    double weight = 0.0, mean = 0.0, square = 0.0;
     for (int k = 1200; k <= 2200; ++k) {   // the experiment's samples in T = [3, 5.5]
-        const double t = k / 400.0, d = f(t, 0.1, 0.7);
-        ++n, mean += d, square += (d - 0.6) * (d - 0.6);
+        const double t = k / 400.0, d = f(t, 0.1, 0.7), w = (k == 1200 || k == 2200) ? 0.5 : 1.0;
+        ++n, weight += w, mean += w * d, square += w * (d - 0.6) * (d - 0.6);
     }
     CHECK(s.compared == n);
     CHECK(s.mean_measured == Approx(0.6).margin(1e-12));
-    CHECK(s.mean_simulated == Approx(mean / n).margin(1e-9));
-    CHECK(s.rms_error == Approx(std::sqrt(square / n)).margin(1e-9));
+    CHECK(s.mean_simulated == Approx(mean / weight).margin(1e-9));
+    CHECK(s.rms_error == Approx(std::sqrt(square / weight)).margin(1e-9));
+
+    // Time, not samples: an experiment sampled ten times as densely over half the window weighs that half
+    // as much as the other. A step from 0.6 to 0.8 at T = 4.25 with the samples dense before it: the mean
+    // over time is 0.7, over samples 0.62.
+    validation::ImpactPressureResult::Sensor uneven;
+    uneven.name = "P3";
+    for (int k = 0; k <= 1250; ++k) uneven.measured.emplace_back(3.0 + k * 0.001, 0.6);   // 3 .. 4.25, every 0.001
+    for (int k = 1; k <= 125; ++k) uneven.measured.emplace_back(4.25 + k * 0.01, 0.8);    // 4.26 .. 5.5, every 0.01
+    uneven.simulated = {{0.0, 0.0}, {7.0, 0.0}};
+    validation::compare_sensor(uneven, 3.0, 5.5);
+    CHECK(uneven.mean_measured == Approx(0.7).margin(0.002));   // the step's sample interval, 0.01 of 2.5, at 0.2
     CHECK(s.mean_simulated > 0.7);   // the shifted descent is still above its plateau at the window's start
 
     // A reading that never reaches the level has no onset; a simulation short of the window is no measurement.
