@@ -16,7 +16,10 @@ import json
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit("impact-charts: python3-matplotlib is not installed (scripts/install-deps.sh installs it)")
 
 matplotlib.use("Agg")
 matplotlib.rcParams["svg.fonttype"] = "none"   # the SVG's labels stay <text>, readable and searchable
@@ -27,10 +30,27 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 CASES = {
     "impact-pressure": ("lobovsky", "The surge's pressure on the wall it strikes, against Lobovsky et al. (2014)",
-                        "experiment (Lobovsky et al. 2014)"),
+                        "experiment (Lobovsky et al. 2014)", ("P1", "P3", "P4")),
     "obstacle-impact": ("kleefsman", "The surge's pressure on the box it strikes, against Kleefsman et al. (2005)",
-                        "experiment (Kleefsman et al. 2005)"),
+                        "experiment (Kleefsman et al. 2005)", ("P1", "P3")),
 }
+
+
+def well_formed(run):
+    """Whether `run` is the JSON of one of CASES with its sensors in order, each with a (T, p) series."""
+    if not isinstance(run, dict) or run.get("case") not in CASES or not isinstance(run.get("sensors"), list):
+        return False
+    names = CASES[run["case"]][3]
+    if len(run["sensors"]) != len(names):
+        return False
+    for sensor, name in zip(run["sensors"], names):
+        if not isinstance(sensor, dict) or sensor.get("name") != name or not isinstance(sensor.get("z"), (int, float)):
+            return False
+        series = sensor.get("simulation")
+        if not isinstance(series, list) or not all(isinstance(q, dict) and isinstance(q.get("T"), (int, float)) and
+                                                   isinstance(q.get("p"), (int, float)) for q in series):
+            return False
+    return True
 
 
 def experiment(case, name):
@@ -63,7 +83,7 @@ def main():
                 run = json.load(f)
         except (OSError, ValueError) as e:
             sys.exit("impact-charts: %s: %s" % (path, e))
-        if run.get("case") not in CASES or not run.get("sensors"):
+        if not well_formed(run):
             sys.exit("impact-charts: %s: not the JSON of `ranryu validate impact-pressure` or `obstacle-impact`" % path)
         if runs and (run["case"] != runs[0]["case"] or len(run["sensors"]) != len(runs[0]["sensors"])):
             sys.exit("impact-charts: %s: a run of %s, where %s is of %s" % (path, run["case"], args.runs[0], runs[0]["case"]))
@@ -88,9 +108,12 @@ def main():
     axes[0].legend(fontsize=8, loc="upper left")
     fig.suptitle(args.title or CASES[case][1], fontsize=11)
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    for ext in ("png", "svg"):
-        fig.savefig("%s.%s" % (args.out, ext), dpi=110)
+    try:
+        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+        for ext in ("png", "svg"):
+            fig.savefig("%s.%s" % (args.out, ext), dpi=110)
+    except OSError as e:
+        sys.exit("impact-charts: --out %s: %s" % (args.out, e.strerror or e))
     print("wrote %s.png and %s.svg" % (args.out, args.out))
 
 
