@@ -167,8 +167,8 @@ StandingWaveResult standing_wave(const scene::Scene& scene, const shader::FileSo
 // crossings.
 void measure_mode(StandingWaveResult& r);
 
-// Pressure on a wall the surge strikes, against an experiment's sensors (docs/VALIDATION.md "Impact
-// pressure"): p/(rho0 g H) against T = t sqrt(g/H), H the column's height. Two cases:
+// The pressure on a wall or a box the surge strikes, against an experiment's sensors (docs/VALIDATION.md
+// "Impact pressure"): p/(rho0 g H) against T = t sqrt(g/H), H the column's height. Two cases:
 //   impact-pressure   Lobovsky et al. (2014), "Experimental investigation of dynamic pressure loads
 //                     during dam break", H = 0.3 m: a column 0.6 m long collapses along a tank 1.61 m long
 //                     and 0.15 m wide onto its far wall, where sensors at 3, 30 and 80 mm above the floor
@@ -181,7 +181,7 @@ void measure_mode(StandingWaveResult& r);
 //                     wide, whose face towards it held sensors at 21 and 101 mm above the floor (their P1,
 //                     P3: media/validation/kleefsman_exp_data_p{1,3}.csv); compared over T in [2.5, 7],
 //                     the flow piled against the box after its impact. Its scene: spacing 0.034375 m, H/dx =
-//                     16, 16,240 particles).
+//                     16, 16,240 particles.
 // H is the depth of the lattice that fills the column. The simulated sensor reads the frame's pressure
 // of the fluid beside it (probe_pressure()), every frame's state read back asynchronously
 // (ParticleSnapshots), each sample at the time its pressure is of (sample_offset). Compared
