@@ -18,6 +18,7 @@ int validate(const Options& o) {
         o.case_name != "obstacle-impact")
         throw InputError("validate: unknown case \"" + o.case_name + "\" (cases: " + validation::kCaseList + ")");
     const scene::Scene scene = with_options(o.scene_given ? scene::load(o.scene) : validation::case_scene(o.case_name), o);
+    validation::check_case_scene(o.case_name, scene);   // before the GL context is made
     check_report_files(o);   // --json, before the case runs
     frame::Progress progress = make_progress(o, "ranryu validate " + o.case_name);
     const shader::FileSource shaders = shader_source(o);

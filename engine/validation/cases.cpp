@@ -676,8 +676,7 @@ ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSo
     // the fluid's own column, which sets the flow's time and pressure scales; the sensors stand at the
     // experiment's heights scaled with the column's block.
     const double nominal = column.max.y - column.min.y;
-    const int layers = int(std::floor(nominal / r.spacing + 1e-4));
-    if (layers < 2) throw InputError(f.label + ": spacing " + std::to_string(r.spacing) + " leaves the column fewer than two layers");
+    const int layers = int(std::floor(nominal / r.spacing + 1e-4));   // at least two (check_case_scene)
     r.height = layers * r.spacing + (column.min.y - scene.tank_min.y);
     r.face = f.face;
     r.window[0] = f.window_from, r.window[1] = f.window_to;
@@ -774,12 +773,29 @@ void compare_sensor(ImpactPressureResult::Sensor& s, double window_from, double 
     s.rms_error = std::sqrt(sum2 / weight);
 }
 
+void check_case_scene(const std::string& case_name, const scene::Scene& scene) {
+    if (case_name != "impact-pressure" && case_name != "obstacle-impact") return;
+    if (case_name == "impact-pressure") {
+        if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || !scene.obstacles.empty())
+            throw InputError("impact-pressure: the scene must be SPH with one block and no obstacle");
+        if (scene.blocks.front().min.x > scene.tank_min.x + 1e-6f)
+            throw InputError("impact-pressure: the column must stand against the tank's wall at x = " + std::to_string(scene.tank_min.x) +
+                             " (the wall it strikes is the other end, x = " + std::to_string(scene.tank_max.x) + ")");
+    } else {
+        if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || scene.obstacles.empty() ||
+            scene.obstacles.front().kind != scene::Obstacle::Kind::box)
+            throw InputError("obstacle-impact: the scene must be SPH with one block and a box obstacle");
+        if (scene.blocks.front().min.x <= scene.obstacles.front().max.x)
+            throw InputError("obstacle-impact: the column (from x = " + std::to_string(scene.blocks.front().min.x) +
+                             ") must lie beyond the box's face at x = " + std::to_string(scene.obstacles.front().max.x));
+    }
+    const scene::Block& column = scene.blocks.front();
+    if (int(std::floor((column.max.y - column.min.y) / scene.spacing + 1e-4)) < 2)
+        throw InputError(case_name + ": spacing " + std::to_string(scene.spacing) + " leaves the column fewer than two layers");
+}
+
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
-    if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || !scene.obstacles.empty())
-        throw InputError("impact-pressure: the scene must be SPH with one block and no obstacle");
-    if (scene.blocks.front().min.x > scene.tank_min.x + 1e-6f)
-        throw InputError("impact-pressure: the column must stand against the tank's wall at x = " + std::to_string(scene.tank_min.x) +
-                         " (the wall it strikes is the other end, x = " + std::to_string(scene.tank_max.x) + ")");
+    check_case_scene("impact-pressure", scene);
     // The wall struck is the tank's far end; the strip the middle half of the tank's width (the side
     // walls' boundary layers aside).
     const double width = scene.tank_max.z - scene.tank_min.z;
@@ -799,14 +815,9 @@ ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::Fi
 }
 
 ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
-    if (scene.model != scene::Model::sph || scene.blocks.size() != 1 || scene.obstacles.empty() ||
-        scene.obstacles.front().kind != scene::Obstacle::Kind::box)
-        throw InputError("obstacle-impact: the scene must be SPH with one block and a box obstacle");
+    check_case_scene("obstacle-impact", scene);
     // The box's face towards the column, which lies at larger x; the strip the middle half of its width.
     const scene::Obstacle& box = scene.obstacles.front();
-    if (scene.blocks.front().min.x <= box.max.x)
-        throw InputError("obstacle-impact: the column (from x = " + std::to_string(scene.blocks.front().min.x) +
-                         ") must lie beyond the box's face at x = " + std::to_string(box.max.x));
     const double width = box.max.z - box.min.z;
     const SensorFace f{.label = "obstacle-impact",
                        .source = "Kleefsman et al. 2005, J. Comput. Phys. 206 (SPHERIC test 2), H = 0.55 m, sensors P1 and P3",

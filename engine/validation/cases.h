@@ -218,10 +218,13 @@ constexpr double kImpactOnset = 0.25;   // p/(rho0 g H) that marks a sensor's im
 constexpr const char* kCaseList = "dam-break, hydrostatic, standing-wave, impact-pressure, obstacle-impact";
 scene::Scene impact_pressure_scene();
 scene::Scene obstacle_impact_scene();
-// Run to T = `until` (the experiment's last sample when 0). InputError when the scene is not SPH with
-// one block, its column not where the case needs it (impact_pressure: against the tank's wall at its
-// smallest x, no obstacle; obstacle_impact: a box obstacle, the first, and the column beyond its face at
-// larger x), its spacing leaves the column fewer than two layers, or `until` leaves the window out.
+// InputError, naming the case, where `scene` is not one the case `case_name` can read: not SPH with one
+// block, its column not where the case needs it (impact-pressure: against the tank's wall at its smallest
+// x, no obstacle; obstacle-impact: a box obstacle, the first, and the column beyond its face at larger x),
+// or its spacing leaves the column fewer than two layers. Other cases: nothing checked here.
+void check_case_scene(const std::string& case_name, const scene::Scene& scene);
+// Run to T = `until` (the experiment's last sample when 0). InputError as check_case_scene(), or where
+// `until` leaves the window out.
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
                                      double until = 0.0);
 ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
