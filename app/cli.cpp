@@ -439,7 +439,8 @@ settings").
   --out DIR           the sweep's folder (made if missing)
   --quick             the small preset: dam-break and hydrostatic, dfsph and wcsph, spacings 0.04 and
                       0.025 m, factors 1 and 10 (wcsph at 10 goes unstable): a first look in a minute
-  --cases LIST        dam-break,hydrostatic,standing-wave (default all three), and the scene cases:
+  --cases LIST        dam-break,hydrostatic,standing-wave (default all three), impact-pressure and
+                      obstacle-impact (the pressure after the impact, error the sensors' mean rms), and the scene cases:
                       scene:NAME runs the bundled SPH scene NAME as it is for --seconds, checked for
                       stability and compression (no reference); scenes names every bundled SPH scene
   --solvers LIST      dfsph,wcsph,pbf (default all three; --quick: dfsph,wcsph)

@@ -168,12 +168,30 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
                       {"error_name", "largest mean compression over the frames (no reference; max density deviation as error_max)"},
                       {"mean_density_deviation_peak", r.peak_mean_compression}, {"mean_density_deviation_peak_time", r.peak_time},
                       {"mean_density_deviation_average", r.average_mean_compression}});
+        } else if (row.case_name == "impact-pressure" || row.case_name == "obstacle-impact") {
+            const validation::ImpactPressureResult r = row.case_name == "impact-pressure" ? validation::impact_pressure(scene, shaders, &progress)
+                                                                                       : validation::obstacle_impact(scene, shaders, &progress);
+            put_stats(j, r);
+            // The sensors' rms over the case's window after the impact, their mean the error and the
+            // largest the error_max (docs/VALIDATION.md "Impact pressure").
+            double sum = 0.0, most = 0.0;
+            nlohmann::json sensors = nlohmann::json::object();
+            for (const auto& s : r.sensors) {
+                sum += s.rms_error, most = std::max(most, s.rms_error);
+                sensors[s.name] = {{"rms_error", s.rms_error}, {"mean", s.mean_simulated}, {"mean_experiment", s.mean_measured},
+                                   {"onset", s.onset_simulated ? nlohmann::json(*s.onset_simulated) : nlohmann::json()},
+                                   {"onset_experiment", s.onset_measured ? nlohmann::json(*s.onset_measured) : nlohmann::json()}};
+            }
+            j.update({{"error", sum / double(r.sensors.size())},
+                      {"error_max", most},
+                      {"error_name", "pressure's rms error / rho0 g H after the impact, mean over the sensors (" + r.source.substr(0, r.source.find(',')) + ")"},
+                      {"sensors", sensors}});
         } else if (row.case_name == "standing-wave") {
             const validation::StandingWaveResult r = validation::standing_wave(scene, shaders, &progress);
             put_stats(j, r);
             j.update({{"error", r.period_error}, {"error_max", r.period_error},
                       {"error_name", "standing wave's period error |T - T_linear| / T_linear"}, {"decay_rate", r.decay_rate}});
-        } else {
+        } else {   // hydrostatic (--cases admits no other: validation::case_scene)
             const validation::HydrostaticResult r = validation::hydrostatic(scene, shaders, 1.0, &progress);
             put_stats(j, r);
             j.update({{"error", r.max_error}, {"error_max", r.floor_error},

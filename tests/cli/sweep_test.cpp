@@ -592,3 +592,42 @@ TEST_CASE("scripts/gpu/scene-settings.sh smoke: the GPU host's scene sweep and i
     CHECK_THAT(none.out, Contains("scene:dam-break pbf"));
     CHECK_FALSE(fs::exists(dir / "none" / "sweep.json"));
 }
+
+TEST_CASE("sweep: the impact cases' rows carry the sensors' pressure error after the impact", "[sweep]") {
+    // Each case through the sweep at a coarse spacing (impact-pressure at 0.05 m, H/dx = 6; obstacle-impact
+    // at 0.1 m): the row is the case's own run (its sensors named, the error their mean rms and the error_max
+    // their largest; docs/VALIDATION.md "Impact pressure"), not another case's.
+    TempDir dir;
+    RunOptions slow;
+    slow.timeout = std::chrono::seconds(300);
+    const std::pair<const char*, const char*> runs[] = {{"impact-pressure", "0.05"}, {"obstacle-impact", "0.1"}};
+    for (const auto& [name, dx] : runs) {
+        INFO(name);
+        const fs::path out = dir.path() / name;
+        const Result r = run_ranryu(dir.path(), {"sweep", "--cases", name, "--solvers", "dfsph", "--spacings", dx, "--factors", "1", "--out",
+                                                 out.string(), "--quiet"},
+                                    slow);
+        INFO(r.out << r.err);
+        REQUIRE(r.exit_code == 0);
+        const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+        REQUIRE(j["rows"].size() == 1);
+        const auto& row = j["rows"][0];
+        INFO(row.dump().substr(0, 600));
+        CHECK(row["case"] == name);
+        CHECK(row["status"] == "stable");
+        const std::vector<std::string> sensors = std::string(name) == "impact-pressure" ? std::vector<std::string>{"P1", "P3", "P4"}
+                                                                                        : std::vector<std::string>{"P1", "P3"};
+        REQUIRE(row["sensors"].size() == sensors.size());
+        double sum = 0.0, most = 0.0;
+        for (const std::string& s : sensors) {
+            REQUIRE(row["sensors"].contains(s));
+            const double e = row["sensors"][s]["rms_error"].get<double>();
+            CHECK(e > 0.0);
+            sum += e, most = std::max(most, e);
+        }
+        CHECK(row["error"].get<double>() == Approx(sum / double(sensors.size())).epsilon(1e-12));
+        CHECK(row["error_max"].get<double>() == Approx(most).epsilon(1e-12));
+        CHECK_THAT(row["error_name"].get<std::string>(),
+                   Contains(std::string(name) == "impact-pressure" ? "Lobovsky et al. 2014" : "Kleefsman et al. 2005"));
+    }
+}
