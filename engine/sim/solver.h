@@ -45,6 +45,11 @@ public:
     // The solver's own state from step to step, and what it planned from the records (sim/state_io.h;
     // its per-particle warm starts are the fluid's carried arrays, saved with the fluid).
     virtual void persist(StateIo&) {}
+    // When in a frame the pressure the solver leaves in Density.y after the frame is of, in frames
+    // before the frame's end: 0 where it is the last step's (WCSPH, PBF), 0.5 where it is the frame's
+    // Δt-weighted mean (DFSPH, docs/DFSPH.md "The pressure a frame"). Read by the validation cases that
+    // sample it over time.
+    virtual double pressure_sample_offset() const { return 0.0; }
 };
 
 // The scene's solver (scene.sph.solver), its programs built (start-up) and its arrays allocated for `fluid`.

@@ -706,14 +706,12 @@ ImpactPressureResult run_sensors(const scene::Scene& scene, const shader::FileSo
     probe.z_hi = f.z_hi;
     probe.radius = sim::kernel_support(float(r.spacing));
     const int frames = int(std::ceil(until / time_scale / scene.frame_dt));
-    // Each frame's sample stands at the time its pressure is of: DFSPH's Density.y is the frame's
-    // Δt-weighted mean (docs/DFSPH.md "The pressure a frame"), of the frame's middle; WCSPH's and PBF's
-    // the last step's, of the frame's end.
-    r.sample_offset = scene.sph.solver == scene::Solver::dfsph ? 0.5 : 0.0;
 
     frame::Pipeline pipeline = simulation_only(scene, shaders);
     sim::Fluid& fluid = pipeline.simulation()->fluid();
     r.particles = fluid.count();
+    // Each frame's sample stands at the time its pressure is of (the solver's Density.y: sim/solver.h).
+    r.sample_offset = pipeline.simulation()->solver().pressure_sample_offset();
     StatsTally tally(scene, pipeline);
     tally.listen(fluid, r.steps);
     for (auto& s : r.sensors) s.simulated.reserve(std::size_t(frames) + 1);

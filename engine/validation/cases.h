@@ -191,8 +191,8 @@ struct ImpactPressureResult {
     std::string source;                              // the experiment, as a citation
     double height = 0.0, spacing = 0.0, face = 0.0;  // H (the column's lattice), dx, x of the face struck
     double window[2] = {0.0, 0.0};                   // T: the readings compared after the impact
-    // Frames before a frame's end its sample's time stands: 0.5 for DFSPH, whose Density.y is the frame's
-    // Δt-weighted mean pressure (docs/DFSPH.md "The pressure a frame"), 0 for WCSPH and PBF (the last step's).
+    // Frames before a frame's end its sample's time stands: the solver's pressure_sample_offset()
+    // (sim/solver.h): 0.5 for DFSPH, whose Density.y is the frame's Δt-weighted mean, 0 for WCSPH and PBF.
     double sample_offset = 0.0;
     std::size_t particles = 0;
     struct Sensor {

@@ -59,6 +59,19 @@ TEST_CASE("validate impact-pressure: the three sensors' table and series, agains
     CHECK(j["window"][0].get<double>() == 3.0);
     CHECK(j["window"][1].get<double>() == 5.5);
 
+    SECTION("PBF's samples at the frame's end: its Density.y is the last step's pressure") {
+        const Result p = run_ranryu(dir.path(), {"validate", "impact-pressure", "--spacing", "0.05", "--solver", "pbf", "--json", "pbf.json", "--quiet"},
+                                    slow);
+        INFO(p.out << p.err);
+        REQUIRE(p.exit_code == 0);
+        const auto k = nlohmann::json::parse(read_file(dir / "pbf.json"));
+        CHECK(k["sample_offset_frames"].get<double>() == 0.0);
+        const double dT = std::sqrt(9.81 / 0.3) / 60.0;
+        const auto& first = k["sensors"][0]["simulation"];
+        REQUIRE(first.size() > 2);
+        for (std::size_t f = 0; f < 3; ++f) CHECK(first[f]["T"].get<double>() == Approx(double(f + 1) * dT).epsilon(1e-6));
+    }
+
     SECTION("its chart: PNG and SVG, with the axes' and legend's labels as text") {
         // matplotlib is a runtime option of the chart script (scripts/install-deps.sh installs it).
         if (run({"/usr/bin/python3", "-c", "import matplotlib"}).exit_code != 0) {

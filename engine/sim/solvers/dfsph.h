@@ -94,6 +94,7 @@ public:
     static std::size_t bytes_for(std::size_t count, std::size_t boundary, bool rows, bool chebyshev, bool correction, int runs,
                                  bool wall_gradient);
     scene::Solver kind() const override { return scene::Solver::dfsph; }
+    double pressure_sample_offset() const override { return 0.5; }   // the frame's mean (integrate_pressure.comp)
     void begin_frame(Fluid& fluid) override;
     void step(Fluid& fluid, StepHooks& hooks) override;
     void persist(StateIo& io) override;
