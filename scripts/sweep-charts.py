@@ -13,6 +13,7 @@ DIR/accuracy-vs-cost.{png,svg} and DIR/stability-map.{png,svg}.
 import argparse
 import os
 import sys
+import textwrap
 
 import sweep_rows  # scripts/sweep_rows.py, beside this file
 
@@ -72,7 +73,8 @@ def accuracy_chart(rows, out):
         ax.set_xscale("log")
         ax.set_xlabel("cost: GPU ms per simulated second")
         name = next((r.get("error_name") for r in stable if r.get("error_name")), "error")
-        ax.set_ylabel(f"error: {name}", fontsize=8)
+        # Wrapped at words: the impact cases' names run past the panel's height on one line.
+        ax.set_ylabel(textwrap.fill(f"error: {name}", 60), fontsize=8)
         ax.set_title(f"{case}: accuracy against cost")
         ax.grid(True, which="both", alpha=0.3)
         if stable:
