@@ -19,7 +19,8 @@ for v in current flat2; do
   python3 docs/perf/2026-12-01-h200-kernel-constants/sass.py /tmp/cache-$v "$root/sass-$v/p" 2>&1 | tail -40
 done
 tar czf "$root/caches.tgz" -C /tmp cache-current cache-flat2
-nvcc -O3 -arch=sm_90 -cubin docs/perf/2026-12-02-replica-real-state/walk_real.cu -o /tmp/wr.cubin > /dev/null 2>&1
+patch -s -o /tmp/walk_real.cu docs/perf/2026-11-29-h200-walk-floor/walk_bench.cu docs/perf/2026-12-02-replica-real-state/walk_real.patch
+nvcc -O3 -arch=sm_90 -cubin /tmp/walk_real.cu -o /tmp/wr.cubin > /dev/null 2>&1
 cuobjdump --dump-sass /tmp/wr.cubin > /tmp/wr.sass 2>&1 || nvdisasm -c /tmp/wr.cubin > /tmp/wr.sass 2>&1
 wc -l /tmp/wr.sass; cp /tmp/wr.sass "$root/replica.sass"
 (cd "$root" && tar czf sass.tgz sass-current sass-flat2 replica.sass && rm -rf sass-current sass-flat2 replica.sass)

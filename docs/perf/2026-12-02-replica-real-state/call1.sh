@@ -12,7 +12,8 @@ root=$OUT; here=docs/perf/2026-12-02-replica-real-state
 { nvidia-smi --query-gpu=name,driver_version --format=csv,noheader; date -u; nvcc --version | tail -1; } > "$root/device.txt"
 dx=$(python3 scripts/gpu/scene-at.py dam-break /tmp/s30.json 246078 sph.min_iterations=30 sph.max_iterations=30 sph.shrink_step_above=0)
 echo "dx $dx" | tee -a "$root/device.txt"
-nvcc -O3 -arch=sm_90 -Xptxas -v $here/walk_real.cu -o /tmp/walk_real > "$root/nvcc.txt" 2>&1 || { tail -20 "$root/nvcc.txt"; exit 1; }
+patch -s -o /tmp/walk_real.cu docs/perf/2026-11-29-h200-walk-floor/walk_bench.cu $here/walk_real.patch
+nvcc -O3 -arch=sm_90 -Xptxas -v /tmp/walk_real.cu -o /tmp/walk_real > "$root/nvcc.txt" 2>&1 || { tail -20 "$root/nvcc.txt"; exit 1; }
 timeout 150 "$B" record --scene /tmp/s30.json --spacing "$dx" --frames 400 --export-particles ply --no-png \
   --shading particles --size 64x36 --out /tmp/rec --force --quiet > "$root/record.txt" 2>&1
 echo "== record rc $?"; ls /tmp/rec | wc -l
