@@ -168,9 +168,8 @@ nlohmann::json run_row(const Row& row, const Options& o, const shader::FileSourc
                       {"error_name", "largest mean compression over the frames (no reference; max density deviation as error_max)"},
                       {"mean_density_deviation_peak", r.peak_mean_compression}, {"mean_density_deviation_peak_time", r.peak_time},
                       {"mean_density_deviation_average", r.average_mean_compression}});
-        } else if (row.case_name == "impact-pressure" || row.case_name == "obstacle-impact") {
-            const validation::ImpactPressureResult r = row.case_name == "impact-pressure" ? validation::impact_pressure(scene, shaders, &progress)
-                                                                                       : validation::obstacle_impact(scene, shaders, &progress);
+        } else if (validation::is_impact_case(row.case_name)) {
+            const validation::ImpactPressureResult r = validation::impact_case(row.case_name, scene, shaders, &progress);
             put_stats(j, r);
             // The sensors' rms over the case's window after the impact, their mean the error and the
             // largest the error_max (docs/VALIDATION.md "Impact pressure").

@@ -53,9 +53,8 @@ int validate(const Options& o) {
                   {"max_error", r.max_error},
                   {"steps", r.steps},
                   {"wall_seconds", r.seconds}});
-    } else if (o.case_name == "impact-pressure" || o.case_name == "obstacle-impact") {
-        const validation::ImpactPressureResult r = o.case_name == "impact-pressure" ? validation::impact_pressure(scene, shaders, &progress)
-                                                                                   : validation::obstacle_impact(scene, shaders, &progress);
+    } else if (validation::is_impact_case(o.case_name)) {
+        const validation::ImpactPressureResult r = validation::impact_case(o.case_name, scene, shaders, &progress);
         progress.finish();
         std::printf("%s (%s): H = %.3f m, spacing %.4f m (H/dx = %.1f), %zu particles\n", o.case_name.c_str(), r.source.c_str(), r.height,
                     r.spacing, r.height / r.spacing, r.particles);

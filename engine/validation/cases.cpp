@@ -812,6 +812,15 @@ ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::Fi
     return run_sensors(scene, shaders, progress, until, f);
 }
 
+bool is_impact_case(const std::string& case_name) { return case_name == "impact-pressure" || case_name == "obstacle-impact"; }
+
+ImpactPressureResult impact_case(const std::string& case_name, const scene::Scene& scene, const shader::FileSource& shaders,
+                                 frame::Progress* progress) {
+    if (case_name == "impact-pressure") return impact_pressure(scene, shaders, progress);
+    if (case_name == "obstacle-impact") return obstacle_impact(scene, shaders, progress);
+    throw InputError("unknown impact case '" + case_name + "' (impact-pressure, obstacle-impact)");
+}
+
 ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress, double until) {
     check_case_scene("obstacle-impact", scene);
     // The box's face towards the column, which lies at larger x; the strip the middle half of its width.

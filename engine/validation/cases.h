@@ -227,6 +227,11 @@ void check_case_scene(const std::string& case_name, const scene::Scene& scene);
 // `until` leaves the window out.
 ImpactPressureResult impact_pressure(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
                                      double until = 0.0);
+// Whether `case_name` names one of the two impact cases, and that case's run (impact_pressure() or
+// obstacle_impact()), for the commands that take a case by name.
+bool is_impact_case(const std::string& case_name);
+ImpactPressureResult impact_case(const std::string& case_name, const scene::Scene& scene, const shader::FileSource& shaders,
+                                 frame::Progress* progress = nullptr);
 ImpactPressureResult obstacle_impact(const scene::Scene& scene, const shader::FileSource& shaders, frame::Progress* progress = nullptr,
                                      double until = 0.0);
 
