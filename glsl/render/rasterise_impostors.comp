@@ -16,8 +16,10 @@
 // sub-particle's is kChild | its index, and a sphere of level E has radius r/2^E: parents (u_children.x
 // = 0) carry their levels word, one that the spawn pass split is not drawn (its sub-particles are);
 // sub-particles (u_children.x = 1) carry E in position.w, and are as many as their draw's instances.
-// Not drawn, as in the draw: a parked particle (position.w = −1) and a sphere holding the eye; and,
-// unlike the draw, which shows the part of it beyond the near plane, a sphere the near plane cuts.
+// Not drawn, as in the draw: a parked particle (position.w = −1) and a sphere holding the eye. A sphere
+// the near plane cuts is drawn as the draw draws it: the hardware clips its quad at the near plane, so
+// a pixel shows the sphere where its ray meets it and meets the quad's plane beyond the near plane (the
+// box: the quad clipped there, projected; the front's depth clamped to ≥ 0 as below).
 // Dispatches: one invocation per particle (u_count); built with BY_LEVEL, for the sub-particles, their
 // spawn pass's indirect dispatch (u_children.y sub-particles a workgroup, surface/dispatch_2d.glsl);
 // built with LARGE, the listed spheres (ImpostorLarge), RANRYU_IMPOSTOR_LARGE_TILES workgroups each,
@@ -54,10 +56,20 @@ layout(location = RANRYU_LOC_IMPOSTOR_CHILDREN) uniform uvec3 u_children;
 #endif
 const uint kChild = 0x80000000u;
 
-// Sphere `id`'s centre c (view space) and radius r, and the pixels [first, last] its silhouette's
-// bounding box holds within the target; false where it is not drawn or covers no pixel centre.
-bool place(uint id, out vec3 c, out float r, out ivec2 first, out ivec2 last) {
+// The window position of view-space point p (q.w > 0), within the target grown by a pixel.
+vec2 window_of(vec3 p) {
+    vec2 size = frame.viewport.xy;
+    precise vec4 q = frame.proj * vec4(p, 1.0);
+    precise vec2 w = clamp((q.xy / q.w * 0.5 + 0.5) * size, vec2(-1.0), size + 1.0);
+    return w;
+}
+
+// Sphere `id`'s centre c (view space) and radius r, whether the near plane cuts it, and the pixels
+// [first, last] its silhouette's bounding box holds within the target (the quad clipped at the near
+// plane where it is cut); false where it is not drawn or covers no pixel centre.
+bool place(uint id, out vec3 c, out float r, out bool cut, out ivec2 first, out ivec2 last) {
     first = ivec2(0), last = ivec2(-1);
+    cut = false;
     r = frame.material.w;
 #ifdef BY_LEVEL
     bool child = (id & kChild) != 0u;
@@ -71,23 +83,42 @@ bool place(uint id, out vec3 c, out float r, out ivec2 first, out ivec2 last) {
 #endif
     precise vec3 centre = (frame.view * vec4(x.xyz, 1.0)).xyz;
     c = centre;
-    if (parked || -c.z - r < near_plane()) return false;   // parked, or cut by the near plane
+    if (parked || length(centre) <= r * 1.001) return false;   // parked, or the eye inside the sphere (impostor.vert)
+    float near = near_plane();
+    cut = -c.z - r < near;
     vec2 size = frame.viewport.xy;
     precise vec2 lo = size + 1.0, hi = vec2(-1.0);
+    // The quad's corners in turn around it; where cut, the quad clipped at z = −near (Sutherland and
+    // Hodgman: each corner beyond the plane, and each edge's crossing of it).
+    const vec2 kRing[4] = vec2[4](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
     for (int k = 0; k < 4; ++k) {
-        precise vec4 q = frame.proj * vec4(silhouette_corner(centre, r, vec2(float(k & 1), float(k >> 1)) * 2.0 - 1.0), 1.0);
-        precise vec2 w = clamp((q.xy / q.w * 0.5 + 0.5) * size, vec2(-1.0), size + 1.0);
-        lo = min(lo, w), hi = max(hi, w);
+        precise vec3 a = silhouette_corner(centre, r, kRing[k]);
+        bool a_in = !cut || -a.z >= near;
+        if (a_in) {
+            precise vec2 w = window_of(a);
+            lo = min(lo, w), hi = max(hi, w);
+        }
+        if (!cut) continue;
+        precise vec3 b = silhouette_corner(centre, r, kRing[(k + 1) & 3]);
+        if (a_in != (-b.z >= near)) {
+            precise vec3 m = mix(a, b, (-near - a.z) / (b.z - a.z));
+            m.z = -near;
+            precise vec2 w = window_of(m);
+            lo = min(lo, w), hi = max(hi, w);
+        }
     }
     first = max(ivec2(ceil(lo - 0.5)), ivec2(0));
     last = min(ivec2(floor(hi - 0.5)), ivec2(size) - 1);
     return all(greaterThanEqual(last, first));
 }
 
-void cover(uint id, vec3 c, float r, ivec2 p) {
+// Where the near plane cuts the sphere (`cut`), a pixel is covered only where its ray meets the quad's
+// plane (through c, facing the eye: t_q = |c|²/(dir·c)) beyond the near plane, as the draw's clipped quad.
+void cover(uint id, vec3 c, float r, bool cut, ivec2 p) {
     vec3 dir = view_ray(vec2(p) + 0.5);
     precise float t = sphere_front(dir, c, r);
     if (t < 0.0) return;
+    if (cut && -dir.z * dot(c, c) / dot(dir, c) < near_plane()) return;
     precise float z = max(window_depth(t * dir), 0.0);   // ≥ 0 (near the near plane, rounding may give −0 or −ε)
     uint bits = floatBitsToUint(z);
 #ifdef RESOLVE
@@ -103,12 +134,13 @@ void main() {
     uint id = large_spheres[gl_WorkGroupID.x];
     vec3 c;
     float r;
+    bool cut;
     ivec2 first, last;
-    if (!place(id, c, r, first, last)) return;
+    if (!place(id, c, r, cut, first, last)) return;
     uint width = uint(last.x - first.x + 1), pixels = width * uint(last.y - first.y + 1);
     uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.x;
     for (uint k = gl_WorkGroupID.y * gl_WorkGroupSize.x + gl_LocalInvocationIndex; k < pixels; k += stride)
-        cover(id, c, r, first + ivec2(k % width, k / width));
+        cover(id, c, r, cut, first + ivec2(k % width, k / width));
 }
 #else
 // Sphere `id` whole, or listed for the LARGE dispatch when its box holds more than
@@ -116,8 +148,9 @@ void main() {
 void rasterise(uint id) {
     vec3 c;
     float r;
+    bool cut;
     ivec2 first, last;
-    if (!place(id, c, r, first, last)) return;
+    if (!place(id, c, r, cut, first, last)) return;
     uint pixels = uint(last.x - first.x + 1) * uint(last.y - first.y + 1);
     if (pixels > uint(RANRYU_IMPOSTOR_LARGE_PIXELS)) {
 #ifdef RESOLVE
@@ -134,7 +167,7 @@ void rasterise(uint id) {
 #endif
     }
     for (int y = first.y; y <= last.y; ++y)
-        for (int x = first.x; x <= last.x; ++x) cover(id, c, r, ivec2(x, y));
+        for (int x = first.x; x <= last.x; ++x) cover(id, c, r, cut, ivec2(x, y));
 }
 
 void main() {

@@ -146,6 +146,11 @@ public:
         return 0.5 * c.z / c.w + 0.5;
     }
 
+    // How far a world point lies in front of the eye along its view direction (−z in view space), and
+    // the near plane's distance (glm::perspective: P[3][2]/(P[2][2] − 1)).
+    double view_depth(glm::dvec3 p) const { return -(glm::dmat4(f_.view) * glm::dvec4(p, 1.0)).z; }
+    double near_plane() const { return double(f_.proj[3][2]) / (double(f_.proj[2][2]) - 1.0); }
+
     // Distance along `dir` to the front of the sphere (c, r), and the ray's closest approach to c
     // in units of r (< 1: it hits; near 1: the silhouette).
     struct SphereHit {
@@ -259,6 +264,13 @@ struct Sphere {
     glm::dvec3 velocity;
 };
 
+// Where the ray `dir` meets the plane of the impostor quad of the sphere centred at c: the plane
+// through c facing the eye.
+glm::dvec3 quad_point(const Caster& cast, glm::dvec3 dir, glm::dvec3 c) {
+    const glm::dvec3 axis = glm::normalize(c - cast.eye());
+    return cast.eye() + dir * (glm::dot(c - cast.eye(), axis) / glm::dot(dir, axis));
+}
+
 // What the CPU expects at one pixel, or nothing where the pixel is ambiguous (see the top).
 struct Expected {
     enum Kind { sphere, floor, background } kind;
@@ -280,6 +292,11 @@ std::optional<Expected> expect_pixel(const Caster& cast, const EdgeMap& edges, c
         const auto h = cast.sphere(dir, spheres[k].centre, r);
         if (h.approach > 0.95 && h.approach < 1.05) return std::nullopt;   // silhouette
         if (h.approach >= 1.0) continue;
+        // The draw's quad is clipped at the near plane: its fragment here exists where the quad's point
+        // on this ray lies beyond it (left out within 1 % of the near plane's distance, the clip's edge).
+        const double clip = cast.view_depth(quad_point(cast, dir, spheres[k].centre)) / cast.near_plane();
+        if (clip > 0.99 && clip < 1.01) return std::nullopt;
+        if (clip <= 1.0) continue;
         if (h.t < t_near) {
             t_second = t_near;
             t_near = h.t;
@@ -295,8 +312,10 @@ std::optional<Expected> expect_pixel(const Caster& cast, const EdgeMap& edges, c
         const Sphere& s = spheres[std::size_t(nearest)];
         const glm::dvec3 p = cast.eye() + t_near * dir;
         double ndl = 0.0;
+        // The front's depth, clamped to ≥ 0 where the near plane cuts the sphere in front of it (written
+        // as gl_FragDepth, clamped to the depth range).
         Expected e{Expected::sphere, cast.shade(cast.particle_base(s.velocity), (p - s.centre) / r, -dir, &ndl),
-                   cast.depth(p), nearest, approach, 0.0};
+                   std::max(cast.depth(p), 0.0), nearest, approach, 0.0};
         if (std::abs(ndl) < 0.02) return std::nullopt;   // terminator: the specular term switches off there
         // The sphere's depth 1/100 pixel away along x and along y, by a hundred: its slope here.
         for (const glm::dvec2 step : {glm::dvec2(0.01, 0.0), glm::dvec2(0.0, 0.01)}) {
@@ -304,9 +323,7 @@ std::optional<Expected> expect_pixel(const Caster& cast, const EdgeMap& edges, c
             const auto h = cast.sphere(d, s.centre, r);
             if (h.approach < 1.0) e.depth_slope = std::max(e.depth_slope, 100.0 * std::abs(cast.depth(cast.eye() + h.t * d) - *e.depth));
         }
-        // The impostor quad lies in the plane through the centre facing the eye.
-        const glm::dvec3 axis = glm::normalize(s.centre - cast.eye());
-        e.quad_depth = cast.depth(cast.eye() + dir * (glm::dot(s.centre - cast.eye(), axis) / glm::dot(dir, axis)));
+        e.quad_depth = cast.depth(quad_point(cast, dir, s.centre));
         return e;
     }
     // No sphere: the floor, if the pixel centre and its four corners meet it in one checker cell.
@@ -532,6 +549,60 @@ TEST_CASE("render: a cloud of impostors, small and large, matches the CPU ray ca
                           << " background");
         CHECK(t.failures == 0);
         CHECK(seen > 40);
+    }
+    ranryu::test::require_no_gl_errors();
+}
+
+TEST_CASE("render: a sphere the near plane cuts is drawn where its quad lies beyond the near plane, by either raster") {
+    ranryu::test::context();
+    ranryu::test::Random rng;
+    INFO("seed " << rng.seed());
+    // A sphere whose centre lies d = 1.02–1.04 n from the eye (n = 0.01 m, the near plane:
+    // render::frame_params), of radius 0.5–0.8 d (the eye outside it, its front nearer than n), 12–18°
+    // off the view axis towards a random side: it fills the view, and its quad's plane, tilted to the
+    // near plane, meets it on the screen. Where the ray meets the quad beyond n the pixel shows the
+    // sphere's front (its depth clamped to 0 where the front is nearer than n, as everywhere here);
+    // elsewhere what lies behind it.
+    const double d = 0.01 * double(rng.uniform(1.02f, 1.04f));
+    const float r = float(d) * rng.uniform(0.5f, 0.8f);
+    const Setup s = random_setup(rng, r);
+    const gpu::FrameParams fp = render::frame_params(s.scene, s.camera, kWidth, kHeight);
+    const Caster cast(fp);
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(s.camera.target) - cast.eye());
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0.0, 1.0, 0.0)));
+    const glm::dvec3 up = glm::cross(right, forward);
+    const double off = glm::radians(double(rng.uniform(12.0f, 18.0f))), phi = rng.uniform(0.0f, 6.2831853f);
+    const glm::dvec3 axis = std::cos(off) * forward + std::sin(off) * (std::cos(phi) * right + std::sin(phi) * up);
+    const glm::dvec3 c = cast.eye() + d * axis;
+    const glm::dvec3 v(rng.uniform(-3.0f, 3.0f), rng.uniform(-3.0f, 3.0f), rng.uniform(-3.0f, 3.0f));
+    REQUIRE(cast.view_depth(c) - r < cast.near_plane());
+    REQUIRE(glm::length(c - cast.eye()) > 1.01 * r);
+    const std::vector<Sphere> spheres = {{c, v}};
+    // The pixels whose rays meet the sphere: with the quad's point beyond the near plane (drawn), and
+    // in front of it (clipped), each clear of the clip's edge.
+    int drawn = 0, clipped = 0;
+    for (int j = 0; j < kHeight; ++j)
+        for (int i = 0; i < kWidth; ++i) {
+            const glm::dvec3 dir = cast.ray(i + 0.5, j + 0.5);
+            if (cast.sphere(dir, c, r).approach >= 0.95) continue;
+            const double clip = cast.view_depth(quad_point(cast, dir, c)) / cast.near_plane();
+            drawn += clip > 1.01, clipped += clip < 0.99;
+        }
+    INFO(drawn << " pixels of the sphere drawn, " << clipped << " clipped");
+    REQUIRE(drawn > 200);
+    REQUIRE(clipped > 200);
+    for (const auto& [raster, name] : kRasters) {
+        INFO("impostors: " << name);
+        const Image img = render_particles(s, fp, {glm::vec4(glm::vec3(c), 1.0f)}, {glm::vec4(glm::vec3(v), 0.0f)}, raster);
+        int clipped_compared = 0;
+        const Tally t = compare(img, cast, spheres, r, ray_offset(raster), [&](const Expected& e, int i, int j) {
+            if (e.kind != Expected::sphere && cast.sphere(cast.ray(i + 0.5, j + 0.5), c, r).approach < 1.0) ++clipped_compared;
+        });
+        INFO("compared: " << t.sphere << " sphere pixels, " << clipped_compared << " behind its clipped part, " << t.floor
+                          << " floor, " << t.background << " background");
+        CHECK(t.failures == 0);
+        CHECK(t.sphere > 100);
+        CHECK(clipped_compared > 100);
     }
     ranryu::test::require_no_gl_errors();
 }
