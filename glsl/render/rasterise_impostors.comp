@@ -64,9 +64,9 @@ vec2 window_of(vec3 p) {
     return w;
 }
 
-// Sphere `id`'s centre c (view space) and radius r, whether the near plane cuts it, and the pixels
-// [first, last] its silhouette's bounding box holds within the target (the quad clipped at the near
-// plane where it is cut); false where it is not drawn or covers no pixel centre.
+// Sphere `id`'s centre c (view space) and radius r, whether the near plane clips its quad, and the
+// pixels [first, last] its silhouette's bounding box holds within the target (the quad clipped at the
+// near plane); false where it is not drawn or covers no pixel centre.
 bool place(uint id, out vec3 c, out float r, out bool cut, out ivec2 first, out ivec2 last) {
     first = ivec2(0), last = ivec2(-1);
     cut = false;
@@ -84,22 +84,25 @@ bool place(uint id, out vec3 c, out float r, out bool cut, out ivec2 first, out 
     precise vec3 centre = (frame.view * vec4(x.xyz, 1.0)).xyz;
     c = centre;
     if (parked || length(centre) <= r * 1.001) return false;   // parked, or the eye inside the sphere (impostor.vert)
+    // The quad's corners in turn around it. Where one lies in front of the near plane the draw's quad is
+    // clipped there (`cut`), and the box is the clipped quad's (Sutherland and Hodgman: each corner
+    // beyond the plane, and each edge's crossing of it); where none does, the quad is whole.
     float near = near_plane();
-    cut = -c.z - r < near;
+    const vec2 kRing[4] = vec2[4](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
+    precise vec3 q[4];
+    for (int k = 0; k < 4; ++k) {
+        q[k] = silhouette_corner(centre, r, kRing[k]);
+        cut = cut || -q[k].z < near;
+    }
     vec2 size = frame.viewport.xy;
     precise vec2 lo = size + 1.0, hi = vec2(-1.0);
-    // The quad's corners in turn around it; where cut, the quad clipped at z = −near (Sutherland and
-    // Hodgman: each corner beyond the plane, and each edge's crossing of it).
-    const vec2 kRing[4] = vec2[4](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
     for (int k = 0; k < 4; ++k) {
-        precise vec3 a = silhouette_corner(centre, r, kRing[k]);
-        bool a_in = !cut || -a.z >= near;
+        precise vec3 a = q[k], b = q[(k + 1) & 3];
+        bool a_in = -a.z >= near;
         if (a_in) {
             precise vec2 w = window_of(a);
             lo = min(lo, w), hi = max(hi, w);
         }
-        if (!cut) continue;
-        precise vec3 b = silhouette_corner(centre, r, kRing[(k + 1) & 3]);
         if (a_in != (-b.z >= near)) {
             precise vec3 m = mix(a, b, (-near - a.z) / (b.z - a.z));
             m.z = -near;
@@ -112,13 +115,16 @@ bool place(uint id, out vec3 c, out float r, out bool cut, out ivec2 first, out 
     return all(greaterThanEqual(last, first));
 }
 
-// Where the near plane cuts the sphere (`cut`), a pixel is covered only where its ray meets the quad's
-// plane (through c, facing the eye: t_q = |c|²/(dir·c)) beyond the near plane, as the draw's clipped quad.
+// Where the quad is clipped (`cut`), a pixel is covered only where its ray meets the quad's plane
+// (through c, facing the eye: t_q = |c|²/(dir·c)) beyond the near plane, as the draw's clipped quad.
 void cover(uint id, vec3 c, float r, bool cut, ivec2 p) {
     vec3 dir = view_ray(vec2(p) + 0.5);
     precise float t = sphere_front(dir, c, r);
     if (t < 0.0) return;
-    if (cut && -dir.z * dot(c, c) / dot(dir, c) < near_plane()) return;
+    if (cut) {
+        precise float quad_depth = -dir.z * dot(c, c) / dot(dir, c);   // both builds decide alike
+        if (quad_depth < near_plane()) return;
+    }
     precise float z = max(window_depth(t * dir), 0.0);   // ≥ 0 (near the near plane, rounding may give −0 or −ε)
     uint bits = floatBitsToUint(z);
 #ifdef RESOLVE
