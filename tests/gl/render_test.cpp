@@ -324,8 +324,9 @@ std::optional<Expected> expect_pixel(const Caster& cast, const EdgeMap& edges, c
         for (const glm::dvec2 step : {glm::dvec2(0.01, 0.0), glm::dvec2(0.0, 0.01)}) {
             const glm::dvec3 d = cast.ray(x + step.x, y + step.y);
             const auto h = cast.sphere(d, s.centre, r);
-            if (h.approach < 1.0)
-                e.depth_slope = std::max(e.depth_slope, 100.0 * std::abs(std::max(cast.depth(cast.eye() + h.t * d), 0.0) - *e.depth));
+            if (h.approach >= 1.0) continue;
+            const double depth = std::max(cast.depth(cast.eye() + h.t * d), 0.0);   // clamped, as written
+            e.depth_slope = std::max(e.depth_slope, 100.0 * std::abs(depth - *e.depth));
         }
         e.quad_depth = cast.depth(quad_point(cast, dir, s.centre));
         return e;
@@ -566,8 +567,9 @@ TEST_CASE("render: spheres the near plane cuts are drawn where their quads lie b
     // 12–18° off the view axis, the second 30–60° around it from the first: each fills the view,
     // and its quad's plane, tilted to the near plane, meets it on the screen. Where a ray meets a quad
     // beyond n the pixel shows that sphere's front (its depth clamped to 0: the front is nearer than n
-    // everywhere here); where it meets neither quad beyond n, what lies behind them. Both are large (their boxes fill the target), so with a list of one the compute
-    // raster's first dispatch draws one of them itself and the list's dispatch the other.
+    // everywhere here); where it meets neither quad beyond n, what lies behind them. Both are large
+    // (their boxes fill the target), so with a list of one the compute raster's first dispatch draws one
+    // of them itself and the list's dispatch the other.
     const double n = 0.01;
     const double d0 = n * double(rng.uniform(1.02f, 1.04f)), d1 = n * double(rng.uniform(1.02f, 1.04f));
     const float r = float(std::min(d0, d1)) * rng.uniform(0.5f, 0.8f);
