@@ -141,3 +141,19 @@ TEST_CASE("impact pressure: a sensor's impact, peak and run-up against the exper
     short_run.simulated.resize(500);   // to T = 2.5
     CHECK_THROWS_AS(validation::compare_sensor(short_run, 3.0, 5.5), validation::NoMeasurement);
 }
+
+TEST_CASE("impact pressure: the commands' case names choose the two impact cases, another is refused by name",
+          "[validation][unit]") {
+    CHECK(validation::is_impact_case("impact-pressure"));
+    CHECK(validation::is_impact_case("obstacle-impact"));
+    for (const char* other : {"dam-break", "hydrostatic", "standing-wave", "impact", ""}) {
+        INFO("case '" << other << "'");
+        CHECK_FALSE(validation::is_impact_case(other));
+        // Refused, as bad input naming the case, before the scene or the shaders are read (no context here).
+        const ranryu::scene::Scene scene{};
+        const auto shaders = ranryu::shader::FileSource::embedded();
+        CHECK_THROWS_AS(validation::impact_case(other, scene, shaders), ranryu::InputError);
+        CHECK_THROWS_WITH(validation::impact_case(other, scene, shaders),
+                          Catch::Contains("unknown impact case '" + std::string(other) + "'"));
+    }
+}
